@@ -1,0 +1,161 @@
+# SPDX-License-Identifier: Apache-2.0
+#
+# Helper functions of the hcimpact build: compile flags, optional components
+# and examples.
+
+# Normalise a tri-state option (AUTO / ON / OFF, any CMake boolean spelling for
+# the last two) into one of the words AUTO, ON, OFF.
+function(hcimpact_feature_mode option_name out_var)
+  set(value "${${option_name}}")
+  string(TOUPPER "${value}" upper)
+  if(upper STREQUAL "" OR upper STREQUAL "AUTO")
+    set(mode "AUTO")
+  elseif(value)
+    set(mode "ON")
+  else()
+    set(mode "OFF")
+  endif()
+  set(${out_var} "${mode}" PARENT_SCOPE)
+endfunction()
+
+# The extra Fortran flags of a Debug build with HCIMPACT_DEBUG_CHECKS=ON.
+# -ffpe-trap takes effect in programs whose main unit is compiled with it; it
+# turns an invalid operation (including an ordered comparison such as x < y
+# with a NaN operand), a division by zero or an overflow into SIGFPE.
+function(hcimpact_debug_flags out_var)
+  set(flags "")
+  if(CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
+    # -Wno-compare-reals: exact comparisons are deliberate in this library
+    # (branch points, exactly representable results) and in its tests
+    set(flags -Wall -Wextra -Wno-compare-reals -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace)
+  elseif(CMAKE_Fortran_COMPILER_ID MATCHES "^Intel")
+    set(flags -warn all -check all -fpe0 -traceback)
+  endif()
+  set(${out_var} "${flags}" PARENT_SCOPE)
+endfunction()
+
+# Compile options for every target built from our own sources (library,
+# components, tests, examples).
+function(hcimpact_target_flags target)
+  hcimpact_debug_flags(debug_flags)
+  if(CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
+    # No contraction of a*b+c into a fused multiply-add behind our back (it is
+    # the default of GCC once FMA instructions are enabled, e.g. by -march):
+    # the error-free transformations of the library need each operation
+    # rounded on its own.
+    target_compile_options(${target} PRIVATE "$<$<COMPILE_LANGUAGE:Fortran>:-ffp-contract=off>")
+  endif()
+  if(HCIMPACT_DEBUG_CHECKS AND debug_flags)
+    target_compile_options(${target} PRIVATE
+      "$<$<AND:$<CONFIG:Debug>,$<COMPILE_LANGUAGE:Fortran>>:${debug_flags}>")
+  endif()
+  if(HCIMPACT_DEBUG_CHECKS AND HCIMPACT_HAVE_C AND CMAKE_C_COMPILER_ID MATCHES "GNU|Clang")
+    target_compile_options(${target} PRIVATE
+      "$<$<AND:$<CONFIG:Debug>,$<COMPILE_LANGUAGE:C>>:-Wall;-Wextra>")
+  endif()
+endfunction()
+
+# hcimpact_add_component(<name> [LIBRARIES ...] [INCLUDE_DIRS ...] [DEFINITIONS ...])
+#
+# Build the library hcimpact_<name> (alias hcimpact::<name>, exported as
+# hcimpact::<name>) from components/<name>/*.f90 / *.F90, if that directory
+# holds any source. Sources are preprocessed, so DEFINITIONS reach them.
+# The target is only created when there is something to compile.
+function(hcimpact_add_component name)
+  cmake_parse_arguments(arg "" "" "LIBRARIES;INCLUDE_DIRS;DEFINITIONS" ${ARGN})
+  set(dir "${PROJECT_SOURCE_DIR}/components/${name}")
+  if(NOT IS_DIRECTORY "${dir}")
+    return()
+  endif()
+  file(GLOB sources CONFIGURE_DEPENDS "${dir}/*.f90" "${dir}/*.F90")
+  if(NOT sources)
+    return()
+  endif()
+  list(SORT sources)
+  set(target "hcimpact_${name}")
+  add_library(${target} ${sources})
+  add_library(hcimpact::${name} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES
+    EXPORT_NAME "${name}"
+    POSITION_INDEPENDENT_CODE ON
+    Fortran_PREPROCESS ON
+    Fortran_MODULE_DIRECTORY "${HCIMPACT_MODULE_DIR}"
+    VERSION "${PROJECT_VERSION}"
+    SOVERSION "${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}"
+    INSTALL_RPATH_USE_LINK_PATH TRUE)
+  target_link_libraries(${target} PUBLIC hcimpact)
+  if(arg_LIBRARIES)
+    target_link_libraries(${target} PRIVATE ${arg_LIBRARIES})
+  endif()
+  if(arg_INCLUDE_DIRS)
+    target_include_directories(${target} PRIVATE ${arg_INCLUDE_DIRS})
+  endif()
+  if(arg_DEFINITIONS)
+    target_compile_definitions(${target} PRIVATE ${arg_DEFINITIONS})
+  endif()
+  hcimpact_target_flags(${target})
+  set_property(GLOBAL APPEND PROPERTY HCIMPACT_COMPONENT_TARGETS ${target})
+endfunction()
+
+# Every directory example/<name>/ with a main.f90 (Fortran) or main.c (C)
+# becomes the executable <build>/example/<name>; other sources in the same
+# directory are compiled into it too. With testing on, each example also runs
+# as the CTest test hcimpact/example/<name>.
+function(hcimpact_add_examples root)
+  file(GLOB entries LIST_DIRECTORIES true CONFIGURE_DEPENDS "${root}/*")
+  list(SORT entries)
+  set(built "")
+  set(skipped "")
+  foreach(dir IN LISTS entries)
+    if(NOT IS_DIRECTORY "${dir}")
+      continue()
+    endif()
+    get_filename_component(name "${dir}" NAME)
+    if(EXISTS "${dir}/main.f90" OR EXISTS "${dir}/main.F90")
+      set(lang Fortran)
+    elseif(EXISTS "${dir}/main.c")
+      set(lang C)
+      if(NOT HCIMPACT_HAVE_C)
+        list(APPEND skipped "${name}")
+        continue()
+      endif()
+    else()
+      continue()
+    endif()
+    file(GLOB sources CONFIGURE_DEPENDS "${dir}/*.f90" "${dir}/*.F90")
+    if(HCIMPACT_HAVE_C)
+      file(GLOB c_sources CONFIGURE_DEPENDS "${dir}/*.c")
+      list(APPEND sources ${c_sources})
+    endif()
+    set(target "hcimpact-example-${name}")
+    add_executable(${target} ${sources})
+    target_link_libraries(${target} PRIVATE hcimpact)
+    set_target_properties(${target} PROPERTIES
+      OUTPUT_NAME "${name}"
+      RUNTIME_OUTPUT_DIRECTORY "${PROJECT_BINARY_DIR}/example"
+      Fortran_MODULE_DIRECTORY "${PROJECT_BINARY_DIR}/example/modules/${name}")
+    if(lang STREQUAL "C")
+      # A C main program still needs the Fortran runtime of the library.
+      set_target_properties(${target} PROPERTIES LINKER_LANGUAGE Fortran)
+    endif()
+    hcimpact_target_flags(${target})
+    if(BUILD_TESTING AND HCIMPACT_IS_TOP_LEVEL)
+      add_test(NAME "hcimpact/example/${name}" COMMAND ${target})
+      set_tests_properties("hcimpact/example/${name}" PROPERTIES
+        LABELS "example"
+        ENVIRONMENT "HCIMPACT_REFERENCE_DIR=${PROJECT_SOURCE_DIR}/test/reference")
+    endif()
+    list(APPEND built "${name}")
+  endforeach()
+  if(built)
+    list(JOIN built ", " text)
+    set(status "ON (${text})")
+  else()
+    set(status "ON (none found)")
+  endif()
+  if(skipped)
+    list(JOIN skipped ", " text)
+    string(APPEND status "; skipped without a C compiler: ${text}")
+  endif()
+  set(HCIMPACT_EXAMPLES_STATUS "${status}" PARENT_SCOPE)
+endfunction()
