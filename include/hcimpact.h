@@ -44,6 +44,20 @@ double hcimpact_lambert_w0p1(double t);
  *  NaN; t = +inf: -inf. */
 double hcimpact_lambert_wm1p1(double t);
 
+/* ------------------------------------------------------------------------
+ * Restitution of the Hunt-Crossley impact (depends on beta = b V only)
+ * ------------------------------------------------------------------------ */
+
+/** Coefficient of restitution k(beta) = -V+/V- for beta = b V- >= 0
+ *  (damping b in s/m times approach speed V- in m/s). k(0) = 1, k ~ 1/beta for
+ *  large beta, k(+inf) = 0. Within 2 ulp of the exact value. beta < 0 or NaN: NaN. */
+double hcimpact_restitution(double beta);
+
+/** The exact inverse: beta >= 0 with k(beta) = e, for 0 < e <= 1 (then b = beta/V-).
+ *  beta(1) = 0; within 4 ulp. e outside (0, 1] or NaN: NaN; e below 1/DBL_MAX
+ *  (where beta would exceed DBL_MAX): +inf. */
+double hcimpact_restitution_inverse(double e);
+
 #ifdef __cplusplus
 }
 #endif

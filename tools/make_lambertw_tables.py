@@ -35,6 +35,8 @@ TABLES = {
     "s": (Fraction(1, 8), -16, 16, 14),     # s in [-2.0625, 2.0625]
     "p": (Fraction(1, 16), -10, 69, 14),    # p in [-0.65625, 4.34375]: z up to 3.1
     "q": (Fraction(1, 2), 9, 128, 14),      # p in [4.25, 64.25]: W0 for z up to 759
+    "k": (Fraction(1, 16), 0, 58, 14),      # beta in [0, 3.65625]: restitution k(beta)
+    "m": (Fraction(1, 4), 14, 160, 14),     # beta in [3.375, 40.125]: k(beta), coarser
 }
 
 
@@ -72,7 +74,32 @@ def mul(a, b, n):
     return out
 
 
+def restitution_series(n):
+    """Taylor series of k(beta) at 0 from h(-k beta) = h(beta), h(u) = u - ln(1 + u):
+    sum_{m>=2} k^m beta^(m-2)/m = sum_{m>=2} (-1)^m beta^(m-2)/m, solved order by order."""
+    a = [Fraction(1)] + [Fraction(0)] * n
+
+    def residual(coef, order):
+        total = Fraction(0)
+        power = [Fraction(1)] + [Fraction(0)] * n
+        for m in range(1, order + 3):
+            power = mul(power, coef, n)
+            if m >= 2 and order + 2 - m >= 0:
+                total += power[order + 2 - m] / m
+        return total - Fraction((-1) ** (order + 2), order + 2)
+
+    for order in range(1, n + 1):
+        r0 = residual(a, order)
+        trial = list(a)
+        trial[order] = Fraction(1)
+        r1 = residual(trial, order)
+        a[order] = -r0 / (r1 - r0)
+    return a
+
+
 def origin_series(kind, n):
+    if kind == "k":
+        return [mp.mpf(c.numerator) / c.denominator for c in restitution_series(n)[:n]]
     if kind == "s":      # F(V) = -V - ln(1 - V) = sum_{k>=2} V^k / k
         coef = [Fraction(0), Fraction(0)] + [Fraction(1, k) for k in range(2, n + 3)]
     else:                # F(Y) = 1 + (Y - 1) e^Y = sum_{k>=2} (k - 1) Y^k / k!
@@ -80,8 +107,16 @@ def origin_series(kind, n):
     return [mp.mpf(c.numerator) / c.denominator for c in revert(coef, n)]
 
 
+def restitution_value(beta):
+    """k(beta) = (1 + W0(-(1 + beta) exp(-(1 + beta))))/beta (seed eq. 21)."""
+    z = -(1 + beta) * mp.exp(-(1 + beta))
+    return (1 + mp.lambertw(z, 0).real) / beta
+
+
 def value_at(kind, xc):
-    """V(s) (kind s) or Y(p) (kinds p, q) at a non-zero centre, 60 digits."""
+    """V(s) (kind s), Y(p) (kinds p, q) or k (kind k) at a non-zero centre, 60 digits."""
+    if kind == "k":
+        return restitution_value(xc)
     if kind == "s":
         z = -mp.exp(-1 - xc * xc / 2)
     else:
@@ -90,9 +125,38 @@ def value_at(kind, xc):
     return 1 + mp.lambertw(z, branch).real
 
 
+def series_mul(a, b, n):
+    return [sum(a[i] * b[k - i] for i in range(k + 1)) for k in range(n)]
+
+
+def restitution_taylor(bc, n):
+    """Taylor coefficients of k(beta) at bc > 0 by composing power series in d = beta - bc:
+    h(beta) = beta - ln(1 + beta), s = sqrt(2 h), V(s) from the s-table recurrence, k = V/beta."""
+    q = 1 + bc
+    h = [bc - mp.log(q), 1 - 1 / q] + [mp.mpf(-1) ** k / (k * q**k) for k in range(2, n)]
+    # s = sqrt(2h): r^2 = 2h, r0 = sqrt(2 h0), r_k = (2h_k - sum_{j=1..k-1} r_j r_{k-j}) / (2 r0)
+    r = [mp.sqrt(2 * h[0])]
+    for k in range(1, n):
+        r.append((2 * h[k] - sum(r[j] * r[k - j] for j in range(1, k))) / (2 * r[0]))
+    v = taylor("s", r[0], n)          # V(r0 + sigma) = sum v_j sigma^j
+    sigma = [mp.mpf(0)] + r[1:]       # s(beta) - r0
+    comp = [mp.mpf(0)] * n
+    power = [mp.mpf(1)] + [mp.mpf(0)] * (n - 1)
+    for j in range(n):
+        comp = [c + v[j] * p for c, p in zip(comp, power)]
+        power = series_mul(power, sigma, n)
+    # k = comp / (bc + d)
+    k = []
+    for m in range(n):
+        k.append((comp[m] - (k[m - 1] if m else 0)) / bc)
+    return k
+
+
 def taylor(kind, xc, n):
     if xc == 0:
         return origin_series(kind, n)[:n]
+    if kind in ("k", "m"):
+        return restitution_taylor(xc, n)
     a = [value_at(kind, xc)]
     # y y' * P(delta) = (y - 1 [p only]) * Q(delta), with
     #   s-table: P = 1, right side s (1 - V)      -> R_k = (s(1-V))_k
@@ -123,6 +187,8 @@ def taylor(kind, xc, n):
 
 
 def exact_value(kind, x):
+    if kind in ("k", "m"):
+        return mp.mpf(1) if x == 0 else restitution_value(x)
     if kind == "s":
         if x == 0:
             return mp.mpf(0)
@@ -164,6 +230,8 @@ def main():
     w("!> `s` tables: V(s) = 1 + W(-exp(-1 - s**2/2)), s = +-sqrt(2t) (+: W0, -: W-1).")
     w("!> `p` tables: W(z) with p = +-sqrt(2(1 + e z)) (+: W0, -: W-1; DLMF 4.13.6).")
     w("!> `q` tables: W0(z) in the same variable p, coarser, for 3 < z < 759.")
+    w("!> `k` tables: the restitution k(beta) of the Hunt-Crossley impact, 0 <= beta < 3.66;")
+    w("!> `m` tables: the same, coarser, for 3.66 <= beta < 40.125.")
     w("module hcimpact_lambertw_tables")
     w("   use hcimpact_kinds, only : wp")
     w("   implicit none")
@@ -172,6 +240,8 @@ def main():
     w("   public :: s_ncoef, s_step_inv, s_first, s_last, s_coef, s_lo")
     w("   public :: p_ncoef, p_step_inv, p_first, p_last, p_coef, p_lo")
     w("   public :: q_ncoef, q_step_inv, q_first, q_last, q_coef, q_lo")
+    w("   public :: k_ncoef, k_step_inv, k_first, k_last, k_coef, k_lo")
+    w("   public :: m_ncoef, m_step_inv, m_first, m_last, m_coef, m_lo")
     w("   public :: w0_series")
     worst_all = {}
     for kind, (h, i0, i1, nterms) in TABLES.items():
@@ -183,8 +253,8 @@ def main():
             # check on the interval against the implicit definition
             for frac in (-0.5, -0.37, -0.21, 0.13, 0.29, 0.5):
                 x = xc + frac * mp.mpf(h.numerator) / h.denominator
-                if x == 0:
-                    continue
+                if x == 0 or (kind == "k" and x < 0):
+                    continue      # the k table is used for beta >= 0 only
                 ref = exact_value(kind, x)
                 d = x - xc
                 approx = sum(ck * d**k for k, ck in enumerate(c))

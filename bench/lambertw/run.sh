@@ -2,8 +2,9 @@
 # SPDX-License-Identifier: Apache-2.0
 #
 # Lambert W benchmark: configure a Release build with the benchmarks, build
-# bench_lambertw_speed and bench_lambertw_peers, run them and the SciPy script,
-# and write the results to doc/lambertw-bench.md.
+# bench_lambertw_speed and bench_lambertw_peers, run them (the speed program
+# twice: throughput, then --latency) and the SciPy script, and write the
+# results to doc/lambertw-bench.md.
 #
 # Usage (from anywhere): bench/lambertw/run.sh [options]
 #   --quick          short speed run (N=1024, 5 ms, 3 repeats), for smoke tests
@@ -122,18 +123,24 @@ trap 'rm -f "$tmp"' EXIT INT TERM
         echo "Build: \`$CMAKE -S . -B $build -DCMAKE_BUILD_TYPE=Release -DHCIMPACT_BUILD_BENCH=ON $extra_off\`, then"
         echo "\`$CMAKE --build $build --target bench_lambertw_speed bench_lambertw_peers\`."
     fi
-    echo "Programs: \`$speed $quick\`, \`$peers $csv\`, \`$PYTHON bench/lambertw/scipy_accuracy.py $csv\`."
+    echo "Programs: \`$speed${quick:+ $quick}\` (throughput), \`$speed${quick:+ $quick} --latency\`, \`$peers $csv\`,"
+    echo "\`$PYTHON bench/lambertw/scipy_accuracy.py $csv\`."
     echo "How the numbers are made, and how to read them: bench/README.md."
     echo
     echo "## Speed"
     echo
     echo "Timings on a shared machine are noisy; compare ratios within one run, never across machines."
+    echo "Two views, each with its goal table: throughput (independent calls, which the processor"
+    echo "may overlap) and latency (each call waits for the previous result)."
     echo
 } >"$tmp"
 
-echo "+ $speed $quick" >&2
+echo "+ $speed${quick:+ $quick}" >&2
 # shellcheck disable=SC2086
 "$speed" $quick >>"$tmp"
+echo "+ $speed${quick:+ $quick} --latency" >&2
+# shellcheck disable=SC2086
+"$speed" $quick --latency >>"$tmp"
 
 {
     echo

@@ -6,10 +6,12 @@
 module hcimpact_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int
    use hcimpact_lambertw, only : lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1
+   use hcimpact_restitution_law, only : restitution, restitution_inverse
    implicit none
    private
 
    public :: c_lambert_w0, c_lambert_wm1, c_lambert_w0p1, c_lambert_wm1p1
+   public :: c_restitution, c_restitution_inverse
 
 contains
 
@@ -40,5 +42,19 @@ contains
       real(c_double) :: v
       v = lambert_wm1p1(t)
    end function c_lambert_wm1p1
+
+   !> Coefficient of restitution k(beta), beta = b V >= 0; NaN for beta < 0 or NaN.
+   function c_restitution(beta) result(k) bind(C, name="hcimpact_restitution")
+      real(c_double), value, intent(in) :: beta
+      real(c_double) :: k
+      k = restitution(beta)
+   end function c_restitution
+
+   !> beta with k(beta) = e for 0 < e <= 1; NaN outside, +inf for e below 1/DBL_MAX.
+   function c_restitution_inverse(e) result(beta) bind(C, name="hcimpact_restitution_inverse")
+      real(c_double), value, intent(in) :: e
+      real(c_double) :: beta
+      beta = restitution_inverse(e)
+   end function c_restitution_inverse
 
 end module hcimpact_api

@@ -255,40 +255,6 @@ contains
       w = z + z2 * (even + z * odd)
    end function w0_taylor
 
-   !> Index of the table centre nearest to x >= 0 on a grid of spacing 1/scale (a power
-   !> of two), rounding halves up. x*scale and its fractional part are exact, so x lies
-   !> in [xc - h/2, xc + h/2) and x - xc is exact (Sterbenz) for the centre xc it gives.
-   !> A rounded x*scale + 1/2 could instead put x just outside and make x - xc inexact.
-   elemental function nearest_index(x, scale) result(i)
-      real(wp), intent(in) :: x, scale
-      integer :: i
-      real(wp) :: y
-      y = x * scale
-      i = int(y)
-      if (y - i >= 0.5_wp) i = i + 1
-   end function nearest_index
-
-   !> Value at x = xh + xl of the local Taylor polynomial c(0) + c(1) d + ... + c(13) d**13
-   !> about xc, d = x - xc, with c(0) and c(1) extended by the low parts clo. The leading
-   !> terms c0 + c1*d are formed exactly (two_prod, two_sum) so the result is rounded
-   !> once; xh - xc is exact because |xh - xc| <= |xc|/2 or xc = 0 (Sterbenz). The tail
-   !> is a Horner scheme split in even and odd parts (shorter dependency chain).
-   pure subroutine taylor_dd(c, clo, xc, xh, xl, yh, yl)
-      real(wp), intent(in) :: c(0:13), clo(0:1), xc, xh, xl
-      real(wp), intent(out) :: yh, yl
-      real(wp) :: d, d2, even, odd, tail, ph, pl, sh, sl, rest
-
-      d = xh - xc
-      d2 = d * d
-      even = (((c(12)*d2 + c(10))*d2 + c(8))*d2 + c(6))*d2 + c(4)
-      odd = ((((c(13)*d2 + c(11))*d2 + c(9))*d2 + c(7))*d2 + c(5))*d2 + c(3)
-      tail = d2 * ((even*d2 + c(2)) + odd*d)
-      call two_prod(c(1), d, ph, pl)
-      call two_sum(c(0), ph, sh, sl)
-      rest = sl + (pl + (clo(0) + clo(1)*d + xl*(c(1) + 2.0_wp*c(2)*d) + tail))
-      call fast_two_sum(sh, rest, yh, yl)
-   end subroutine taylor_dd
-
    !> p = sqrt(2 (1 + e z)) = sqrt(2 e (z + 1/e)) as ph + pl, for -1/e < z < 0.
    !> z + 1/e is exact as a double-double when 1/e is split in two doubles.
    elemental subroutine branch_p(z, ph, pl)

@@ -19,10 +19,12 @@
 !>
 !> Each node is handed to the integrand with its distances to both ends, and
 !> the distance to the nearer end is formed without cancellation:
-!> b - x = r (1 - tanh u) = r 2 exp(-2u) / (1 + exp(-2u)), u = (pi/2) sinh t.
-!> A node never lies on an end (its distance is at least the smallest normal
-!> number), although x itself may round to a or b: an integrand singular at an
-!> end must be written in terms of the distance.
+!> b - x = r (1 - tanh u) = 2 r / (1 + exp(2u)), u = (pi/2) sinh t, from a
+!> table of 1 - tanh u. A node never lies on an end (its distance is at least
+!> the smallest normal number), although x itself may round to a or b: an
+!> integrand singular at an end must be written in terms of the distance.
+!>
+!> Method, error estimate, limits and measured costs: doc/quadrature.md.
 module hcimpact_quadrature
    use, intrinsic :: iso_fortran_env, only : real128
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan, ieee_value, &
@@ -43,7 +45,7 @@ module hcimpact_quadrature
    !> estimate and its error estimate is still reported
    integer(ik), parameter :: quadrature_not_converged = 1_ik
    !> The integrand returned NaN or an infinity, or the sum overflowed;
-   !> the integral is NaN
+   !> the integral is NaN and the error estimate +Inf
    integer(ik), parameter :: quadrature_nonfinite = 2_ik
    !> An end of the interval is NaN or infinite, a > b, or b - a overflows
    integer(ik), parameter :: quadrature_invalid_interval = 3_ik
@@ -117,7 +119,7 @@ module hcimpact_quadrature
       real(wp) :: error = 0.0_wp
       !> Number of calls of the integrand
       integer(ik) :: evaluations = 0_ik
-      !> Last level computed: the finest step used was 2**(-levels)
+      !> Levels completed: the finest step used was 2**(-levels) (0 if none)
       integer(ik) :: levels = 0_ik
       !> One of the quadrature_* status codes
       integer(ik) :: status = quadrature_success
@@ -241,9 +243,9 @@ contains
    !>                               rounding level (more than tripling the digits
    !>                               in one level is a coincidence, not convergence);
    !>   max(d_k, d_(k-1))           when d_(k-1) > L/10 (level k-1 had no digit
-   !>                               right, so d_k may be small by coincidence;
-   !>                               this also keeps level 1 from ever converging);
+   !>                               right, so d_k may be small by coincidence);
    !>   d_k                         otherwise.
+   !> Level 1 is never accepted: one difference proves nothing.
    !> The first form assumes the next level gains at least half as many digits as
    !> the last one did. The asymptotic rate of the rule doubles the digits per
    !> level (Bailey's estimate uses that and takes the power 1); half is what stays
@@ -251,12 +253,19 @@ contains
    !> (see doc/quadrature.md). Added to it: half an ulp of L (rounding), the
    !> tails dropped by the truncation, and the integrand beyond the tables.
    pure subroutine integrate(integrand, a, b, res, rtol, atol, max_levels)
+      !> Integrand
       class(integrand_type), intent(in) :: integrand
+      !> Lower end
       real(wp), intent(in) :: a
+      !> Upper end
       real(wp), intent(in) :: b
+      !> Integral, error estimate, evaluations, levels and status
       type(quadrature_result), intent(out) :: res
+      !> Relative tolerance (default epsilon)
       real(wp), intent(in), optional :: rtol
+      !> Absolute tolerance (default 0)
       real(wp), intent(in), optional :: atol
+      !> Most levels (default tanh_sinh_default_levels)
       integer(ik), intent(in), optional :: max_levels
 
       ! Node tables, folded by the compiler in the kind xp and rounded once:
@@ -284,7 +293,7 @@ contains
       integer :: levels, level, stride, j, side, last_index
       integer :: cut(2), last_large(2), small_run(2)
       real(wp) :: g_last(2)
-      logical :: open(2)
+      logical :: walking(2)
 
       res = quadrature_result()
 
@@ -363,21 +372,21 @@ contains
       if (res%status /= quadrature_success) return
       l1 = abs(g)
       g_last(:) = g
-      open(:) = .true.
+      walking(:) = .true.
       small_run(:) = 0
       last_large(:) = 0
       cut(:) = last_index + 1
       stride = 2**tanh_sinh_max_levels
       j = 0
-      do while (any(open))
+      do while (any(walking))
          j = j + 1
          i = j * stride
          do side = 1, 2
-            if (.not. open(side)) cycle
+            if (.not. walking(side)) cycle
             if (i > last_index) then
                ! Out of table (or the distance would underflow): whatever lies
                ! beyond is at most about |w f| at the last node times a unit of t.
-               open(side) = .false.
+               walking(side) = .false.
                if (small_run(side) == 0) tail = tail + r * abs(g_last(side))
                cycle
             end if
@@ -389,7 +398,7 @@ contains
             if (r * abs(g) <= small) then
                small_run(side) = small_run(side) + 1
                if (small_run(side) >= 2) then
-                  open(side) = .false.
+                  walking(side) = .false.
                   cut(side) = i - stride
                end if
             else
@@ -402,9 +411,7 @@ contains
       l1_int = r * l1
       res%levels = 0
 
-      ! level 0 counts as having no digit right, so that level 1 alone never
-      ! claims convergence
-      delta_prev = huge(1.0_wp)
+      delta_prev = 0.0_wp
       do level = 1, levels
          stride = 2**(tanh_sinh_max_levels - level)
          h = 2.0_wp**(-level)
@@ -434,6 +441,12 @@ contains
          end if
 
          delta = abs(integral - previous)
+         if (level == 1) then
+            ! one difference proves nothing: levels 0 and 1 can agree by
+            ! coincidence (a peak between their nodes)
+            delta_prev = delta
+            cycle
+         end if
          if (.not. l1_int > 0.0_wp) then
             ! the integrand vanished at every node
             estimate = 0.0_wp
@@ -464,6 +477,7 @@ contains
    pure function converging(delta, delta_prev, l1) result(yes)
       !> |I_k - I_(k-1)|, |I_(k-1) - I_(k-2)| and the integral of |f|, > 0
       real(wp), intent(in) :: delta, delta_prev, l1
+      !> True when the last two differences show convergence
       logical :: yes
 
       yes = delta < delta_prev .and. delta_prev <= 0.1_wp * l1
@@ -475,7 +489,9 @@ contains
    !> (Neumaier's variant of Kahan summation) and return w f.
    pure subroutine add_node(integrand, a, b, r, complement, weight, towards, term, &
          & total, comp, res)
+      !> Integrand
       class(integrand_type), intent(in) :: integrand
+      !> Ends of the interval and half its width
       real(wp), intent(in) :: a, b, r
       !> 1 - tanh u and the weight at the node, from the tables
       real(wp), intent(in) :: complement, weight
@@ -514,6 +530,7 @@ contains
 
    !> Record a non-finite integrand value or sum: no sensible integral exists.
    pure subroutine set_nonfinite(res)
+      !> Result to mark
       type(quadrature_result), intent(inout) :: res
       res%status = quadrature_nonfinite
       res%integral = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -523,8 +540,11 @@ contains
    !> Largest table index whose node distance r complement_i is a normal number
    !> (complement decreases with the index; bisection).
    pure function last_normal_node(r, complement) result(last)
+      !> Half-width of the interval
       real(wp), intent(in) :: r
+      !> Table of 1 - tanh u, decreasing
       real(wp), intent(in) :: complement(0:)
+      !> Largest usable index
       integer :: last
       integer :: lo, hi, mid
 

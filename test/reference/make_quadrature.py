@@ -36,6 +36,9 @@ def cases():
     centre = double(0.3)
     width = double(1e-2)
     k_gauss = double(50)
+    offset = double(1e-6)
+    bump_at = double(0.35)
+    bump_width = double(0.02)
     tiny_b = double(1e-300)
     small_b = double(1e-30)
     huge_b = double(1e300)
@@ -60,6 +63,13 @@ def cases():
         ("gauss50", mp.sqrt(mp.pi / k_gauss) / 2 * mp.erf(mp.sqrt(k_gauss)),
          lambda x: mp.exp(-k_gauss * x * x), 0, 1),
         ("small_interval", 2 * mp.sqrt(small_b), None, 0, small_b),
+        ("late_singularity",
+         2 * ((1 + offset) ** mpf(1.5) - offset ** mpf(1.5)) / 3,
+         lambda x: mp.sqrt(1 - x + offset), 0, 1),
+        ("hidden_bump",
+         2 + 100 * bump_width * mp.sqrt(mp.pi) / 2
+         * (mp.erf((1 - bump_at) / bump_width) + mp.erf((1 + bump_at) / bump_width)),
+         lambda x: 1 + 100 * mp.exp(-(((x - bump_at) / bump_width) ** 2)), -1, 1),
         ("tiny_interval", 2 * mp.sqrt(tiny_b), None, 0, tiny_b),
         ("huge_interval", 2 * huge_b * tiny_c, None, -huge_b, huge_b),
     ]
@@ -69,7 +79,8 @@ def main():
     for name, closed, integrand, a, b in cases():
         if integrand is not None:
             # split at the interior peak so that mpmath.quad resolves it
-            points = [a, b] if name != "interior_peak" else [a, double(0.3), b]
+            points = {"interior_peak": [a, double(0.3), b],
+                      "hidden_bump": [a, double(0.35), b]}.get(name, [a, b])
             check = mp.quad(integrand, points, maxdegree=10)
             if abs(check - closed) > mpf(10) ** -20 * abs(closed):
                 sys.exit(f"{name}: closed form {closed} and quadrature {check} disagree")

@@ -13,7 +13,7 @@
 !> tested with ieee_is_nan before any ordered comparison, and differences that
 !> could overflow are formed at half scale.
 module hcimpact_check
-   use, intrinsic :: iso_fortran_env, only : wp => real64
+   use, intrinsic :: iso_fortran_env, only : wp => real64, int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_nan, ieee_is_finite, ieee_value, &
       & ieee_positive_inf, ieee_quiet_nan
    use testdrive, only : error_type, test_failed
@@ -36,13 +36,15 @@ contains
    !> (ref_lo defaults to 0), so that it can be known to more than double
    !> precision. The result is
    !>
-   !>     |(actual - ref_hi) - ref_lo| / spacing(ref_hi)
+   !>     |(actual - ref_hi) - ref_lo| / ulp(ref_hi + ref_lo)
    !>
-   !> where spacing is the Fortran intrinsic: the distance from ref_hi to the
-   !> next double away from zero, and tiny(1.0_wp) for |ref_hi| < tiny (this
-   !> includes a zero and the subnormal range; a zero ref_hi is first replaced
-   !> by ref_lo). Against a zero reference any actual above a few tiny counts
-   !> as far off: use check_close with an absolute tolerance there.
+   !> where ulp is the unit in the last place of the exact reference, not of
+   !> ref_hi: when ref_hi is a power of two and ref_lo points towards zero, the
+   !> reference lies in the binade below and its ulp is half of spacing(ref_hi).
+   !> Zero and subnormal references have the ulp 2**-1074 (a zero ref_hi is
+   !> first replaced by ref_lo). The Fortran intrinsic spacing() is not used:
+   !> gfortran clamps it at tiny(1.0) for every |x| < 2**-970, which would hide
+   !> errors of millions of ulps for tiny values.
    !>
    !> Exceptional values: NaN against NaN is 0; NaN against a number, or a
    !> number against NaN, is +Inf; an infinity against the same infinity is 0,
@@ -57,7 +59,7 @@ contains
       !> Reference value, trailing part (|ref_lo| <= spacing(ref_hi)/2 for a
       !> normalised pair); default 0
       real(wp), intent(in), optional :: ref_lo
-      !> Error in units of spacing(ref_hi), >= 0
+      !> Error in ulps of the reference, >= 0
       real(wp) :: ulps
 
       real(wp) :: hi, lo, unit, diff, infinity
@@ -92,7 +94,7 @@ contains
          hi = lo
          lo = 0.0_wp
       end if
-      unit = spacing(hi)
+      unit = reference_ulp(hi, lo)
 
       ! actual - hi cannot overflow when both are at most huge/2 in magnitude;
       ! otherwise work at half scale (exact for numbers this large).
@@ -112,6 +114,34 @@ contains
          ulps = diff / unit
       end if
    end function ulp_error
+
+   !> Unit in the last place of the exact value ref_hi + ref_lo (ref_hi finite).
+   elemental function reference_ulp(ref_hi, ref_lo) result(ulp)
+      !> Reference rounded to the nearest double
+      real(wp), intent(in) :: ref_hi
+      !> Rest of the reference
+      real(wp), intent(in) :: ref_lo
+      !> The ulp, at least 2**-1074
+      real(wp) :: ulp
+      integer, parameter :: e_min = minexponent(1.0_wp) - digits(1.0_wp)   ! 2**-1074
+      integer :: e
+      logical :: towards_zero
+
+      if (abs(ref_hi) < tiny(ref_hi)) then
+         e = e_min
+      else
+         ! |ref_hi| in [2**(e+52), 2**(e+53))
+         e = exponent(ref_hi) - digits(ref_hi)
+         towards_zero = (ref_lo < 0.0_wp .and. ref_hi > 0.0_wp) .or. &
+            & (ref_lo > 0.0_wp .and. ref_hi < 0.0_wp)
+         ! A power of two has all stored significand bits zero
+         if (towards_zero) then
+            if (ibits(transfer(ref_hi, 0_int64), 0, digits(ref_hi) - 1) == 0_int64) e = e - 1
+         end if
+         e = max(e, e_min)
+      end if
+      ulp = scale(1.0_wp, e)
+   end function reference_ulp
 
    !> Check that `actual` is within `max_ulps` units in the last place of
    !> `expected` (+ `expected_lo`), as measured by ulp_error.

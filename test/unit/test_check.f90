@@ -88,8 +88,12 @@ contains
       call check(error, ulp_error(nearest(1.0_wp, -1.0_wp), 1.0_wp) == 0.5_wp, &
          & "next double below 1 is half a spacing(1)")
       if (allocated(error)) return
-      call check(error, ulp_error(tiny(1.0_wp), 0.0_wp) == 1.0_wp, &
-         & "zero reference: the unit is tiny")
+      call check(error, ulp_error(tiny(1.0_wp), 0.0_wp) == 2.0_wp**52, &
+         & "zero reference: the unit is the smallest subnormal 2**-1074")
+      if (allocated(error)) return
+      call check(error, ulp_error(nearest(nearest(nearest(1.0e-300_wp, 1.0_wp), 1.0_wp), &
+         & 1.0_wp), 1.0e-300_wp) == 3.0_wp, &
+         & "tiny normal reference: three doubles up is 3 ulp (not 3/2**52 of tiny)")
       if (allocated(error)) return
       call check(error, ulp_error(-huge(1.0_wp), huge(1.0_wp)) > 1.0e15_wp, &
          & "opposite huge values: large and finite, no overflow")
@@ -106,7 +110,8 @@ contains
       call check(error, ulp_error(nearest(1.0_wp, 2.0_wp), 1.0_wp, half_ulp) == 0.5_wp, &
          & "1 + eps vs 1 + eps/2")
       if (allocated(error)) return
-      call check(error, ulp_error(1.0_wp, 1.0_wp, -0.25_wp*spacing(1.0_wp)) == 0.25_wp, &
+      ! 1 - eps/4 lies in the binade below 1, whose ulp is eps/2
+      call check(error, ulp_error(1.0_wp, 1.0_wp, -0.25_wp*spacing(1.0_wp)) == 0.5_wp, &
          & "1 vs 1 - eps/4")
       if (allocated(error)) return
       call check(error, ulp_error(0.5_wp*tiny(1.0_wp), 0.0_wp, 0.5_wp*tiny(1.0_wp)) == 0.0_wp, &

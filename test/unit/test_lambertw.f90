@@ -16,7 +16,7 @@ module test_lambertw
       & ieee_negative_inf, ieee_is_nan, ieee_is_finite, ieee_next_after
    use testdrive, only : new_unittest, unittest_type, error_type, check, test_failed
    use hcimpact, only : wp, lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1
-   use hcimpact_check, only : median, format_real, reference_path
+   use hcimpact_check, only : ulp_error, median, format_real, reference_path
    implicit none
    private
 
@@ -152,69 +152,6 @@ contains
          y = ieee_value(x, ieee_quiet_nan)
       end select
    end function evaluate
-
-   !> Unit in the last place of the reference ref_hi + ref_lo.
-   !>
-   !> The ulp of the exact value, not of ref_hi: when ref_hi is a power of two and
-   !> ref_lo points towards zero, the reference lies in the binade below (this is
-   !> every 1 + W0 at t > 37, where ref_hi = 1). Subnormal and zero references have
-   !> the ulp 2**-1074. Hence not hcimpact_check's ulp_error, which divides by
-   !> spacing(ref_hi): that is twice too large at those powers of two, and gfortran
-   !> clamps spacing() at tiny(1.0) for every |x| < 2**-970, which would hide
-   !> errors of millions of ulps in the regions with tiny values of W.
-   elemental function reference_ulp(ref_hi, ref_lo) result(ulp)
-      !> Reference rounded to the nearest double
-      real(wp), intent(in) :: ref_hi
-      !> Rest of the reference
-      real(wp), intent(in) :: ref_lo
-      real(wp) :: ulp
-      integer :: e
-      integer, parameter :: e_min = minexponent(1.0_wp) - digits(1.0_wp)   ! 2**-1074
-      if (abs(ref_hi) < tiny(ref_hi)) then     ! zero or subnormal
-         e = e_min
-      else
-         e = exponent(ref_hi) - digits(ref_hi)   ! |ref_hi| in [2**(e+52), 2**(e+53))
-         if (is_power_of_two(ref_hi) .and. ((ref_lo < 0 .and. ref_hi > 0) &
-            & .or. (ref_lo > 0 .and. ref_hi < 0))) e = e - 1
-         e = max(e, e_min)
-      end if
-      ulp = scale(1.0_wp, e)
-   end function reference_ulp
-
-   !> True if |x| is a power of two (x normal): all stored significand bits are zero.
-   elemental function is_power_of_two(x) result(yes)
-      !> Value
-      real(wp), intent(in) :: x
-      logical :: yes
-      yes = ibits(transfer(x, 0_int64), 0, digits(x) - 1) == 0_int64
-   end function is_power_of_two
-
-   !> |actual - (ref_hi + ref_lo)| in ulps of the reference; huge(1.0) for NaN, an
-   !> infinity, or an error beyond 2**1000 ulp.
-   !>
-   !> (actual - ref_hi) is exact whenever the error is small (Sterbenz), so the
-   !> result keeps its meaning down to fractions of an ulp.
-   elemental function ulp_error(actual, ref_hi, ref_lo) result(err)
-      !> Value from the library
-      real(wp), intent(in) :: actual
-      !> Reference rounded to the nearest double
-      real(wp), intent(in) :: ref_hi
-      !> Rest of the reference
-      real(wp), intent(in) :: ref_lo
-      real(wp) :: err
-      real(wp) :: diff, ulp
-      if (ieee_is_nan(actual) .or. .not. ieee_is_finite(actual)) then
-         err = huge(1.0_wp)
-         return
-      end if
-      diff = abs((actual - ref_hi) - ref_lo)
-      ulp = reference_ulp(ref_hi, ref_lo)
-      if (diff > 0 .and. exponent(diff) - exponent(ulp) > 1000) then
-         err = huge(1.0_wp)
-      else
-         err = diff / ulp
-      end if
-   end function ulp_error
 
    !> Text of an error in ulps, three significant digits.
    function ulp_text(err) result(text)

@@ -49,6 +49,10 @@ module test_quadrature
    real(wp), parameter :: ref_interior_peak = 3.093986915124149344467e+2_wp
    !> int_0^1 exp(-50 x^2) dx
    real(wp), parameter :: ref_gauss50 = 1.253314137315500251208e-1_wp
+   !> int_0^1 sqrt(1 - x + c) dx, c the double nearest 1e-6
+   real(wp), parameter :: ref_late_singularity = 6.666676660002499999583e-1_wp
+   !> int_-1^1 (1 + 100 exp(-((x - 0.35)/0.02)^2)) dx
+   real(wp), parameter :: ref_hidden_bump = 5.54490770181103212839_wp
    !> int_0^b (b-x)^(-1/2) dx = 2 sqrt(b), b the double nearest 1e-30
    real(wp), parameter :: ref_small_interval = 2.000000000000000083336e-15_wp
    !> int_0^b (b-x)^(-1/2) dx = 2 sqrt(b), b the double nearest 1e-300
@@ -116,6 +120,8 @@ contains
          & new_unittest("near-pole", test_near_pole), &
          & new_unittest("near-pole-few-levels", test_near_pole_few_levels), &
          & new_unittest("interior-peak", test_interior_peak), &
+         & new_unittest("late-singularity", test_late_singularity), &
+         & new_unittest("hidden-bump", test_hidden_bump), &
          & new_unittest("object-state", test_object_state), &
          & new_unittest("function-equals-object", test_function_equals_object), &
          & new_unittest("loose-tolerance", test_loose_tolerance), &
@@ -236,6 +242,21 @@ contains
       real(wp) :: fx
       fx = 1.0_wp / ((x - 0.3_wp)**2 + 0.01_wp**2)
    end function interior_peak
+
+   !> sqrt(1 - x + 1e-6): a branch point 1e-6 beyond b
+   pure function sqrt_beyond_b(x, dxa, dxb) result(fx)
+      real(wp), intent(in) :: x, dxa, dxb
+      real(wp) :: fx
+      fx = sqrt(dxb + 1.0e-6_wp)
+   end function sqrt_beyond_b
+
+   !> 1 plus a bump of height 100 and width 0.02 at 0.35, between the nodes
+   !> of levels 0 and 1
+   pure function hidden_bump(x, dxa, dxb) result(fx)
+      real(wp), intent(in) :: x, dxa, dxb
+      real(wp) :: fx
+      fx = 1.0_wp + 100.0_wp * exp(-((x - 0.35_wp) / 0.02_wp)**2)
+   end function hidden_bump
 
    !> x^3 on a symmetric interval: the integral is 0
    pure function odd_cubic(x, dxa, dxb) result(fx)
@@ -361,8 +382,10 @@ contains
       call check_integral(error, res, ref_chebyshev, 4.0_wp, budget_smooth, "(1-x^2)^(-1/2)")
    end subroutine test_chebyshev
 
-   !> x^(-0.9): all but a 1e-27 share of the integral lies within 1e-10 of 0;
-   !> the distances reach 1e-275, so it converges like a smooth integrand.
+   !> x^(-0.9): a tenth of the integral lies within 1e-10 of 0, where x
+   !> itself could not tell the nodes apart, and a 3e-28 share below the
+   !> smallest node distance (1.7e-275). Through dxa it converges like a
+   !> smooth integrand.
    subroutine test_power_09(error)
       type(error_type), allocatable, intent(out) :: error
       type(quadrature_result) :: res
@@ -499,6 +522,45 @@ contains
       end do
       call check(error, any_converged, "interior peak: never converged")
    end subroutine test_interior_peak
+
+   !> sqrt(1 - x + 1e-6): the branch point 1e-6 beyond b governs the
+   !> convergence only from level 3 on; before, the levels converge fast and
+   !> look asymptotic. An estimate that assumes the digits double from there
+   !> (Bailey's, power 1 in `integrate`) converges at level 3 with an error of
+   !> about 80 ulp; the estimate used here takes two more levels and is right.
+   subroutine test_late_singularity(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(quadrature_result) :: res
+      call tanh_sinh(sqrt_beyond_b, 0.0_wp, 1.0_wp, res)
+      call check_integral(error, res, ref_late_singularity, 4.0_wp, 250_ik, "sqrt(1-x+1e-6)")
+   end subroutine test_late_singularity
+
+   !> A bump that the nodes of levels 0 and 1 miss: those two levels agree to
+   !> 2% while both are 64% off. The first difference is therefore
+   !> never trusted; at a loose tolerance the answer is right or not claimed.
+   subroutine test_hidden_bump(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(quadrature_result) :: res
+      real(wp), parameter :: rtols(3) = [1.0e-1_wp, 3.0e-2_wp, 1.0e-2_wp]
+      integer :: i
+
+      do i = 1, size(rtols)
+         call tanh_sinh(hidden_bump, -1.0_wp, 1.0_wp, res, rtol=rtols(i))
+         if (res%status == quadrature_success) then
+            call check_close(error, res%integral, ref_hidden_bump, rel=10 * rtols(i), &
+               & message="hidden bump, rtol " // format_real(rtols(i)) // &
+               & ": converged to a wrong answer")
+            if (allocated(error)) return
+         end if
+         call check_honest(error, res, ref_hidden_bump, "hidden bump")
+         if (allocated(error)) return
+      end do
+      ! at full precision it converges too, if slowly (an interior peak of
+      ! width 0.02: 1747 evaluations, level 8)
+      call tanh_sinh(hidden_bump, -1.0_wp, 1.0_wp, res)
+      call check_integral(error, res, ref_hidden_bump, 4.0_wp, &
+         & 12_ik * 2_ik**tanh_sinh_default_levels + 1_ik, "hidden bump")
+   end subroutine test_hidden_bump
 
    ! ------------------------------------------------------------------------
    ! Interfaces and tolerances

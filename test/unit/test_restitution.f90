@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> Tests of hcimpact_restitution: k(beta), 1 - k, 1 - k**2, dk/dbeta and the inverse
+!> Tests of hcimpact_restitution_law: k(beta), 1 - k, 1 - k**2, dk/dbeta and the inverse
 !> beta(e), against the mpmath references of test/reference/restitution.csv
 !> (written by test/reference/make_impact.py), plus domain rules and identities.
 !>
@@ -10,7 +10,7 @@ module test_restitution
       & ieee_is_nan
    use testdrive, only : new_unittest, unittest_type, error_type, check, test_failed
    use hcimpact_kinds, only : wp
-   use hcimpact_restitution, only : restitution, one_minus_restitution, energy_loss_ratio, &
+   use hcimpact_restitution_law, only : restitution, one_minus_restitution, energy_loss_ratio, &
       & restitution_derivative, restitution_inverse, u_minus_log1p
    use hcimpact_check, only : ulp_error, check_ulps, check_close, median, format_real, &
       & reference_path

@@ -9,18 +9,25 @@
 !>
 !> where V(t) = 1 + W0(-exp(-1 - t)) is `lambert_w0p1`. Computing k this way in double
 !> precision with a library W0 loses everything for small beta (the argument of W0 is
-!> next to -1/e and 1 + W0 cancels). Here h(beta) is computed as a double-double, V is
-!> evaluated from it directly (`lambert_w0p1_dd`) and divided by beta with one rounding.
+!> next to -1/e and 1 + W0 cancels). Here:
+!> - beta < 40.1: local Taylor polynomials of k itself (generated with the other Lambert W
+!>   tables), summed with one rounding;
+!> - beyond: z = -(1 + beta) exp(-(1 + beta)) is below 2**-55, so 1 + W0(z) = 1 + z and
+!>   k = (1 + z)/beta with one rounding;
+!> - 1 - k, dk/dbeta and the inverse use h(beta) as a double-double and V from it
+!>   (`lambert_w0p1_dd`), which keeps 1 - k accurate where k is close to 1.
 !>
 !> Accuracy against mpmath (test/unit/test_restitution.f90, doc/restitution.md): k within
 !> 2 ulp for beta in [1e-300, 1e300], the inverse within 4 ulp for e in [1e-300, 1).
-module hcimpact_restitution
+module hcimpact_restitution_law
    use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf, &
       & ieee_is_nan
    use hcimpact_kinds, only : wp
    use hcimpact_libm, only : log1p
    use hcimpact_lambertw, only : lambert_w0p1_dd
+   use hcimpact_lambertw_tables, only : k_step_inv, k_last, k_coef, k_lo, m_step_inv, m_last, &
+      & m_coef, m_lo
    implicit none
    private
 
@@ -31,6 +38,10 @@ module hcimpact_restitution
    real(wp), parameter :: series_max = 2.0_wp**(-17)
    !> Above this beta, 1 + W0 = 1 exactly in double precision (exp(-1-h) < 2**-60)
    real(wp), parameter :: huge_beta = 2.0_wp**60
+   !> Up to this beta, k comes from its Taylor table (tools/make_lambertw_tables.py)
+   real(wp), parameter :: k_table_max = (k_last + 0.5_wp) / k_step_inv
+   !> Up to this beta, k comes from the coarser second table
+   real(wp), parameter :: m_table_max = (m_last + 0.5_wp) / m_step_inv
    !> Bound on the Newton iterations of the inverse
    integer, parameter :: max_newton = 40
 
@@ -73,7 +84,8 @@ contains
       real(wp), intent(in) :: beta
       !> Coefficient of restitution
       real(wp) :: k
-      real(wp) :: vh, vl, ql
+      real(wp) :: vh, vl, ql, ah, al, z
+      integer :: i
 
       if (ieee_is_nan(beta)) then
          k = ieee_value(beta, ieee_quiet_nan)
@@ -83,12 +95,23 @@ contains
          ! Taylor series at 0; the first omitted term, 40/189 beta**5, is below 2**-86
          k = 1.0_wp + beta*(-2.0_wp/3.0_wp + beta*(4.0_wp/9.0_wp + beta*(-44.0_wp/135.0_wp &
             & + beta*(104.0_wp/405.0_wp))))
-      else if (beta > huge_beta) then
-         k = 1.0_wp / beta
-      else
-         call rebound_dd(beta, vh, vl)
+      else if (beta < k_table_max) then
+         i = nearest_index(beta, k_step_inv)
+         call taylor_dd(k_coef(:, i), k_lo(:, i), i / k_step_inv, beta, 0.0_wp, k, ql)
+      else if (beta < m_table_max) then
+         i = nearest_index(beta, m_step_inv)
+         call taylor_dd(m_coef(:, i), m_lo(:, i), i / m_step_inv, beta, 0.0_wp, k, ql)
+      else if (beta <= huge_beta) then
+         ! z = -(1 + beta) exp(-(1 + beta)), |z| < 7e-17: W0(z) = z - z**2 + ... = z to
+         ! 2**-100 relative. 1 + beta = ah + al is kept exact. (Underflow of exp for
+         ! beta > 745 is harmless.)
+         call two_sum(1.0_wp, beta, ah, al)
+         z = -(ah * exp(-ah)) * (1.0_wp + al * (1.0_wp / ah - 1.0_wp))
+         call fast_two_sum(1.0_wp, z, vh, vl)
          call div_dd(vh, vl, beta, k, ql)
          k = k + ql
+      else
+         k = 1.0_wp / beta
       end if
    end function restitution
 
@@ -313,4 +336,4 @@ contains
 
    include "ddarith.inc"
 
-end module hcimpact_restitution
+end module hcimpact_restitution_law

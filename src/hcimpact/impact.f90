@@ -1,0 +1,686 @@
+! SPDX-License-Identifier: Apache-2.0
+!> One Hunt-Crossley impact: closed forms, times by quadrature, and the time law.
+!>
+!> The contact is m x'' = -c x^n (1 + b x'), x(0) = 0, x'(0) = V > 0 (MODEL.md), or the
+!> same with a user-supplied elastic law f(x) in place of c x^n (`impact_law`). For two
+!> bodies use the effective mass and the relative velocity (hcimpact_hertz).
+!>
+!> What is computed, and how (power law; the references are the equations of MODEL.md):
+!> - beta = b V is formed exactly, as a double-double product: every output is the
+!>   value at the two doubles b and V.
+!> - Restitution k(beta) (seed eq. 21) and the end of the trajectory in double-double
+!>   (hcimpact_trajectory); the energy loss ratio 1 - k^2 = (1 - k)(1 + k).
+!> - Maximum compression x_max = [(n+1) m V^2 H / c]^(1/(n+1)), H = h(beta)/beta^2
+!>   (= h(beta)/(b^2 V^2) of MODEL.md, finite and smooth as b -> 0), evaluated as the
+!>   exponential of a sum of logarithms in double-double and rounded once.
+!> - Peak force F = c x^n (1 + b x'), reached in compression where n m x' = b c x^(n+1).
+!>   With u = b x' = beta q the condition is n q + (n+1) beta (q^2 H(beta q) - H) = 0
+!>   (from the first integral h(u) = h(beta)(1 - (x/x_max)^(n+1))); it is solved by
+!>   Newton's method in double-double, and the force is evaluated along the trajectory,
+!>   F = c x_max^n (1 - y)^(n/(n+1)) (1 + u), y = h(u)/h(beta), where it is stationary:
+!>   an error in q costs only its square.
+!> - Compression time, contact time and the time of the peak: tanh-sinh quadrature in
+!>   the log-velocity variable (hcimpact_trajectory), the integrand being
+!>   (x/x_max)^(-n) = 1 + delta with delta = (1 - q)^(-n/(n+1)) - 1 integrated and the
+!>   constant added exactly (near the turning point delta is small and keeps its
+!>   relative accuracy). Time unit x_max/((n+1) H V).
+!> - Time law: the time as a function of the position is inverted by Newton's method
+!>   on the quadrature, from the nearer end of the phase in time.
+!>
+!> Nothing here stops or prints; every procedure returns a status (hcimpact_status) and
+!> NaN outputs when it is not hcimpact_ok.
+module hcimpact_impact
+   use, intrinsic :: iso_fortran_env, only : int64
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
+   use hcimpact_kinds, only : wp, ik
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
+      & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
+      & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
+      & hcimpact_err_no_convergence, hcimpact_err_size, hcimpact_err_elastic_law
+   use hcimpact_libm, only : log1p, expm1
+   use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
+      & operator(-), operator(*), operator(/), dd_exp, dd_log
+   use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
+   use hcimpact_restitution_law, only : restitution_inverse
+   use hcimpact_elastic, only : elastic_law
+   use hcimpact_trajectory, only : trajectory_type, new_trajectory, phase_integrand, &
+      & compression, restitution, h_over_square_dd, turn_q, end_r, phase_duration, &
+      & duration_from_turn, duration_from_end, invert_from_turn, invert_from_end, &
+      & scaled_velocity, phase_length
+   implicit none
+   private
+
+   public :: contact_type, outcome_type
+   public :: impact, velocity_at_depth, time_law, time_law_samples
+   public :: damping_for_restitution, default_min_velocity
+   public :: compression_branch, restitution_branch
+
+   !> Quiet NaN, the value of every output on error
+   real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
+
+   !> Branch of `velocity_at_depth`: compression (x' > 0)
+   integer, parameter :: compression_branch = compression
+   !> Branch of `velocity_at_depth`: restitution (x' < 0)
+   integer, parameter :: restitution_branch = restitution
+
+   !> Default of `damping_for_restitution`'s min_velocity, in m/s: below this approach
+   !> speed the damping for a target restitution is computed at this speed
+   real(wp), parameter :: default_min_velocity = 1.0e-3_wp
+
+   !> A collinear impact with the power law f = c x^n: m x'' = -c x^n (1 + b x').
+   type :: contact_type
+      !> Mass in kg (the effective mass m1 m2/(m1 + m2) for two bodies), > 0
+      real(wp) :: mass = 0.0_wp
+      !> Contact constant c in N/m^n, > 0 (hcimpact_hertz: hertz_constant)
+      real(wp) :: stiffness = 0.0_wp
+      !> Exponent n of the elastic law, > 0 (3/2: Hertz)
+      real(wp) :: exponent = 1.5_wp
+      !> Damping constant b in s/m, >= 0 (0: Hertz's elastic impact)
+      real(wp) :: damping = 0.0_wp
+      !> Approach speed V in m/s, > 0 (the relative velocity for two bodies)
+      real(wp) :: velocity = 0.0_wp
+   end type contact_type
+
+   !> Everything `impact` computes. NaN (and 0 evaluations) until computed, or on error.
+   type :: outcome_type
+      !> Coefficient of restitution k = -(rebound velocity)/V, in (0, 1]
+      real(wp) :: restitution = nan
+      !> Share of the kinetic energy lost, 1 - k^2
+      real(wp) :: energy_loss_ratio = nan
+      !> Rebound velocity -k V in m/s (negative)
+      real(wp) :: rebound_velocity = nan
+      !> Maximum compression x_max in m
+      real(wp) :: max_compression = nan
+      !> Largest contact force during the impact, in N
+      real(wp) :: peak_force = nan
+      !> Compression at which the peak force acts, in m
+      real(wp) :: compression_at_peak_force = nan
+      !> Time from the start of contact to the peak force, in s
+      real(wp) :: time_at_peak_force = nan
+      !> Time from the start of contact to the maximum compression, in s
+      real(wp) :: compression_time = nan
+      !> Duration of the contact, in s
+      real(wp) :: contact_time = nan
+      !> Integrand evaluations spent by the quadratures (compression, restitution, peak)
+      integer(ik) :: evaluations(3) = 0_ik
+   end type outcome_type
+
+   !> Time integrand of the power law: (x/x_max)^(-n) - 1 per unit l; `flat` = 1.
+   type, extends(phase_integrand) :: power_integrand
+      !> alpha = n/(n+1) as a double-double number
+      real(wp) :: alpha_hi = 0.0_wp, alpha_lo = 0.0_wp
+      !> Time of the last d before an end of contact = end_coef d^(1/(n+1))
+      real(wp) :: end_coef(2) = 0.0_wp
+      !> 1/(n+1)
+      real(wp) :: inv_np1 = 0.0_wp
+   contains
+      procedure :: density => power_density
+      procedure :: end_time => power_end_time
+   end type power_integrand
+
+   !> Scales of one power-law impact
+   type :: power_model
+      !> The integrand, with the trajectory
+      type(power_integrand) :: f
+      !> n, n + 1, approach speed
+      real(wp) :: n = 0.0_wp, np1 = 0.0_wp, velocity = 0.0_wp
+      !> n + 1 exactly
+      type(dd_real) :: np1_dd
+      !> ln x_max and x_max (m)
+      type(dd_real) :: ln_x_max, x_max
+      !> c x_max^n (N)
+      type(dd_real) :: force_unit
+      !> Seconds per unit of the integrals: x_max/((n+1) H V)
+      type(dd_real) :: time_unit
+   end type power_model
+
+contains
+
+   !> Check a contact; hcimpact_ok or the status of the first bad field.
+   elemental function check_contact(contact) result(stat)
+      type(contact_type), intent(in) :: contact
+      integer :: stat
+      stat = hcimpact_ok
+      if (.not. (ieee_is_finite(contact%mass) .and. ieee_is_finite(contact%stiffness) &
+         & .and. ieee_is_finite(contact%exponent) .and. ieee_is_finite(contact%damping) &
+         & .and. ieee_is_finite(contact%velocity))) then
+         stat = hcimpact_err_not_finite
+      else if (.not. contact%mass > 0.0_wp) then
+         stat = hcimpact_err_mass
+      else if (.not. contact%stiffness > 0.0_wp) then
+         stat = hcimpact_err_stiffness
+      else if (.not. contact%exponent > 0.0_wp) then
+         stat = hcimpact_err_exponent
+      else if (.not. contact%velocity > 0.0_wp) then
+         stat = hcimpact_err_velocity
+      else if (contact%damping < 0.0_wp) then
+         stat = hcimpact_err_damping
+      end if
+   end function check_contact
+
+   !> Set up the scales of a power-law impact (the contact must be valid).
+   pure subroutine new_power_model(contact, model, stat)
+      type(contact_type), intent(in) :: contact
+      type(power_model), intent(out) :: model
+      integer, intent(out) :: stat
+      ! results beyond exp(+-log_limit) would overflow or lose their precision
+      real(wp), parameter :: log_limit = 690.0_wp
+      type(dd_real) :: beta, np1, alpha, hq, ln_v, t
+      real(wp) :: r0
+      integer :: phase
+
+      stat = hcimpact_ok
+      if (log(contact%damping + tiny(1.0_wp)) + log(contact%velocity) > log_limit) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      beta = two_prod(contact%damping, contact%velocity)
+      model%f%tr = new_trajectory(beta)
+      hq = model%f%tr%hq
+      model%n = contact%exponent
+      np1 = two_sum(contact%exponent, 1.0_wp)
+      model%np1 = np1%hi
+      model%np1_dd = np1
+      model%velocity = contact%velocity
+      alpha = dd(contact%exponent) / np1
+      model%f%alpha_hi = alpha%hi
+      model%f%alpha_lo = alpha%lo
+      model%f%inv_np1 = 1.0_wp / np1%hi
+      model%f%flat = 1.0_wp
+
+      ! x_max^(n+1) = (n+1) m V^2 H / c
+      ln_v = dd_log(dd(contact%velocity))
+      model%ln_x_max = (dd_log(np1) + dd_log(dd(contact%mass)) + ln_v + ln_v &
+         & + dd_log(hq) - dd_log(dd(contact%stiffness))) / np1
+      if (abs(model%ln_x_max%hi) > log_limit) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      model%x_max = dd_exp(model%ln_x_max)
+      t = dd_log(dd(contact%stiffness)) + contact%exponent * model%ln_x_max
+      if (abs(t%hi) > log_limit) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      model%force_unit = dd_exp(t)
+      ! dt = x_max/((n+1) H V) (x/x_max)^(-n) dl
+      model%time_unit = model%x_max / (np1 * hq * contact%velocity)
+
+      ! time of the last d in l before an end, in units of the integral, to first order:
+      ! integral of (d R(0)/H)^(-alpha) from 0 to d = (n+1) (H/R(0))^alpha d^(1/(n+1))
+      do phase = compression, restitution
+         r0 = model%f%tr%end_speed(phase)
+         t = dd_exp(alpha * dd_log(hq / r0)) * np1
+         model%f%end_coef(phase) = t%hi
+      end do
+   end subroutine new_power_model
+
+   !> (x/x_max)^(-n) - 1 at the point with distances dturn, dend of the current phase.
+   pure function power_density(self, dturn, dend) result(rate)
+      !> The integrand
+      class(power_integrand), intent(in) :: self
+      !> Distance to the turning point in l
+      real(wp), intent(in) :: dturn
+      !> Distance to the end of contact in l
+      real(wp), intent(in) :: dend
+      !> Density
+      real(wp) :: rate
+      real(wp) :: q, s, p
+      if (dturn <= dend) then
+         ! (x/x_max)^(n+1) = 1 - q: delta = exp(-alpha ln(1 - q)) - 1, small near the turn
+         q = turn_q(self%tr, self%phase, dturn)
+         s = log1p(-q)
+         rate = expm1(-(self%alpha_hi * s + self%alpha_lo * s))
+      else
+         ! (x/x_max)^(n+1) = d R(d)/H, singular like d^(-alpha) at the end
+         p = dend * end_r(self%tr, self%phase, dend) / self%tr%hq%hi
+         p = p - p * (self%tr%hq%lo / self%tr%hq%hi)
+         rate = p**(-self%alpha_hi) * (1.0_wp - self%alpha_lo * log(p)) - 1.0_wp
+      end if
+   end function power_density
+
+   !> Time (in units of the integral) to cross the last d in l before the end of
+   !> contact, to first order in d.
+   pure function power_end_time(self, d) result(time)
+      !> The integrand
+      class(power_integrand), intent(in) :: self
+      !> Width in l
+      real(wp), intent(in) :: d
+      !> Time
+      real(wp) :: time
+      time = self%end_coef(self%phase) * d**self%inv_np1
+   end function power_end_time
+
+   !> Everything about one impact with the power law (see `outcome_type`).
+   !>
+   !> Errors: hcimpact_err_not_finite (NaN or infinite field), _mass, _stiffness,
+   !> _exponent, _velocity (not positive), _damping (negative), _domain (results
+   !> outside the double range), _no_convergence (a quadrature failed: does not happen
+   !> for beta = b V up to 1e6 at least).
+   elemental subroutine impact(contact, outcome, stat)
+      !> The contact
+      type(contact_type), intent(in) :: contact
+      !> Its outcome; every real field NaN on error
+      type(outcome_type), intent(out) :: outcome
+      !> Status: hcimpact_ok or an error code of hcimpact_status
+      integer, intent(out) :: stat
+      type(power_model) :: model
+      type(dd_real) :: k, t, dur(2), tpeak, q, y, u, lp
+      integer(ik) :: ev(3)
+      real(wp) :: half
+
+      outcome = outcome_type()
+      stat = check_contact(contact)
+      if (stat /= hcimpact_ok) return
+      call new_power_model(contact, model, stat)
+      if (stat /= hcimpact_ok) return
+
+      ev = 0_ik
+      call phase_duration(model%f, compression, dur(1), ev(1), stat)
+      if (stat == hcimpact_ok) call phase_duration(model%f, restitution, dur(2), ev(2), stat)
+      if (stat /= hcimpact_ok) return
+
+      ! the peak: q = u/beta at the peak, y = 1 - (x/x_max)^(n+1), l of the point
+      call power_peak(model, q, y, lp)
+      u = model%f%tr%beta * q
+      half = 0.5_wp * model%f%tr%l_end(compression)%hi
+      if (lp%hi <= half) then
+         call duration_from_turn(model%f, compression, lp%hi, t, ev(3), stat)
+         tpeak = dur(1) - t
+      else
+         t = model%f%tr%l_end(compression) - lp
+         call duration_from_end(model%f, compression, t%hi, tpeak, ev(3), stat)
+      end if
+      if (stat /= hcimpact_ok) return
+
+      k = model%f%tr%k
+      outcome%restitution = k%hi
+      t = (1.0_wp - k) * (k + 1.0_wp)
+      outcome%energy_loss_ratio = t%hi
+      t = -(k * contact%velocity)
+      outcome%rebound_velocity = t%hi
+      outcome%max_compression = model%x_max%hi
+      t = model%time_unit * dur(1)
+      outcome%compression_time = t%hi
+      t = model%time_unit * (dur(1) + dur(2))
+      outcome%contact_time = t%hi
+      t = model%time_unit * tpeak
+      outcome%time_at_peak_force = t%hi
+      ! x_peak = x_max (1 - y)^(1/(n+1)); F = c x_peak^n (1 + u)
+      t = model%ln_x_max + dd_log(1.0_wp - y) / model%np1
+      outcome%compression_at_peak_force = dd_exp_hi(t)
+      t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)
+      outcome%peak_force = dd_exp_hi(t)
+      outcome%evaluations = ev
+   end subroutine impact
+
+   !> exp of a double-double number, rounded to a double.
+   elemental function dd_exp_hi(a) result(x)
+      type(dd_real), intent(in) :: a
+      real(wp) :: x
+      type(dd_real) :: e
+      e = dd_exp(a)
+      x = e%hi
+   end function dd_exp_hi
+
+   !> The peak of the force during compression (power law): q = u/beta there,
+   !> y = 1 - (x/x_max)^(n+1) = h(u)/h(beta), and the point's l = (u - h(u))/beta.
+   !>
+   !> F(q) = n q + (n+1) beta (q^2 H(beta q) - H) = 0 is increasing and convex with
+   !> F(0) < 0 <= F((n+1) beta H/n): Newton's method from the right end converges
+   !> monotonically; a double iteration, then two in double-double.
+   pure subroutine power_peak(model, q, y, lp)
+      type(power_model), intent(in) :: model
+      type(dd_real), intent(out) :: q, y, lp
+      type(dd_real) :: beta, hq, u, fq, dfq
+      real(wp) :: qd, b, n, np1, h, step, hu
+      integer :: it
+
+      beta = model%f%tr%beta
+      b = beta%hi
+      hq = model%f%tr%hq
+      if (b == 0.0_wp) then
+         q = dd(0.0_wp)
+         y = dd(0.0_wp)
+         lp = dd(0.0_wp)
+         return
+      end if
+      n = model%n
+      np1 = model%np1
+      h = hq%hi
+      qd = np1 * b * h / n
+      do it = 1, 100
+         u = h_over_square_dd(dd(b * qd))
+         hu = u%hi
+         step = (n * qd + np1 * b * (qd * qd * hu - h)) / (n + np1 * b * qd / (1.0_wp + b * qd))
+         qd = qd - step
+         if (.not. abs(step) > 4.0_wp * epsilon(1.0_wp) * qd) exit
+      end do
+      q = dd(qd)
+      do it = 1, 2
+         u = beta * q
+         fq = n * q + np1 * (beta * (q * q * h_over_square_dd(u) - hq))
+         dfq = n + np1 * (beta * q) / (u + 1.0_wp)
+         q = q - fq / dfq
+      end do
+      u = beta * q
+      y = q * q * h_over_square_dd(u) / hq
+      lp = q - beta * q * q * h_over_square_dd(u)
+   end subroutine power_peak
+
+   !> Velocity (m/s) at the compression x on the compression or the restitution branch:
+   !> V(x) = u(h(beta) (1 - (x/x_max)^(n+1)))/b (MODEL.md), u from Lambert W (seed
+   !> eq. 14), or its series when the argument is small (then b -> 0 is smooth and
+   !> gives +-sqrt(V^2 - 2 Pi(x)/m)).
+   !>
+   !> Errors: those of `impact`, and hcimpact_err_not_finite for a NaN or infinite x,
+   !> hcimpact_err_domain for x < 0 or x > x_max (beyond 4 ulps) or another branch.
+   elemental subroutine velocity_at_depth(contact, x, branch, v, stat)
+      !> The contact
+      type(contact_type), intent(in) :: contact
+      !> Compression in m, 0 <= x <= x_max
+      real(wp), intent(in) :: x
+      !> compression_branch or restitution_branch
+      integer, intent(in) :: branch
+      !> Velocity x' in m/s: >= 0 on the compression branch, <= 0 on restitution
+      real(wp), intent(out) :: v
+      !> Status
+      integer, intent(out) :: stat
+      type(power_model) :: model
+      type(dd_real) :: yd, t
+      real(wp) :: y, xi, s, b, w
+
+      v = nan
+      stat = check_contact(contact)
+      if (stat /= hcimpact_ok) return
+      if (.not. ieee_is_finite(x)) then
+         stat = hcimpact_err_not_finite
+         return
+      end if
+      if (x < 0.0_wp .or. (branch /= compression_branch .and. branch /= restitution_branch)) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      call new_power_model(contact, model, stat)
+      if (stat /= hcimpact_ok) return
+      if (x > model%x_max%hi * (1.0_wp + 4.0_wp * epsilon(1.0_wp))) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      ! y = 1 - (x/x_max)^(n+1), in double-double
+      if (x > 0.0_wp) then
+         yd = 1.0_wp - dd_exp((dd_log(dd(x)) - model%ln_x_max) * two_sum(model%n, 1.0_wp))
+      else
+         yd = dd(1.0_wp)
+      end if
+      if (yd%hi < 0.0_wp) yd = dd(0.0_wp)
+      y = yd%hi
+      b = model%f%tr%beta%hi
+      ! velocity/V = u/beta; with xi = sqrt(2 H y) and s = beta xi = sqrt(2 t):
+      ! u+/beta = xi (1 + s/3 + s^2/36 - s^3/270 + ...),
+      ! u-/beta = -xi (1 - s/3 + s^2/36 + s^3/270 + ...)   (MODEL.md series of 1 + W)
+      xi = sqrt(2.0_wp * model%f%tr%hq%hi * y)
+      s = b * xi
+      if (s < 1.0e-4_wp) then
+         if (branch == compression_branch) then
+            w = xi * (1.0_wp + s * (1.0_wp / 3.0_wp + s * (1.0_wp / 36.0_wp - s / 270.0_wp)))
+         else
+            w = -xi * (1.0_wp - s * (1.0_wp / 3.0_wp - s * (1.0_wp / 36.0_wp + s / 270.0_wp)))
+         end if
+      else
+         t = model%f%tr%hq * model%f%tr%beta * model%f%tr%beta * yd
+         if (branch == compression_branch) then
+            w = -lambert_wm1p1(t%hi) / b
+         else
+            w = -lambert_w0p1(t%hi) / b
+         end if
+      end if
+      v = w * contact%velocity
+   end subroutine velocity_at_depth
+
+   !> Compression x(t), velocity x'(t) and contact force F(t) = c x^n (1 + b x') at the
+   !> times t(:). Before the contact (t <= 0): x = 0, x' = V, F = 0; after it
+   !> (t >= contact time): x = 0, x' = -k V, F = 0.
+   !>
+   !> Each time costs a few quadratures (Newton's method on the time as a function of
+   !> the position, bounded). Near the end of contact x(t) is ill-conditioned: it moves
+   !> by |x'| times the error of the contact time (a few ulps of it).
+   !>
+   !> Errors: those of `impact`; hcimpact_err_not_finite if a t is NaN or infinite;
+   !> hcimpact_err_size if the arrays differ in size.
+   pure subroutine time_law(contact, t, x, v, f, stat)
+      !> The contact
+      type(contact_type), intent(in) :: contact
+      !> Times in s from the start of contact, any order
+      real(wp), intent(in) :: t(:)
+      !> Compression x(t) in m
+      real(wp), intent(out) :: x(:)
+      !> Velocity x'(t) in m/s
+      real(wp), intent(out) :: v(:)
+      !> Contact force F(t) in N
+      real(wp), intent(out) :: f(:)
+      !> Status
+      integer, intent(out) :: stat
+      type(power_model) :: model
+      type(dd_real) :: dur(2)
+      integer(ik) :: ev
+      integer :: i
+
+      x = nan
+      v = nan
+      f = nan
+      if (size(x) /= size(t) .or. size(v) /= size(t) .or. size(f) /= size(t)) then
+         stat = hcimpact_err_size
+         return
+      end if
+      stat = check_contact(contact)
+      if (stat /= hcimpact_ok) return
+      if (.not. all(ieee_is_finite(t))) then
+         stat = hcimpact_err_not_finite
+         return
+      end if
+      call new_power_model(contact, model, stat)
+      if (stat /= hcimpact_ok) return
+      ev = 0_ik
+      call phase_duration(model%f, compression, dur(1), ev, stat)
+      if (stat == hcimpact_ok) call phase_duration(model%f, restitution, dur(2), ev, stat)
+      if (stat /= hcimpact_ok) return
+      do i = 1, size(t)
+         call power_state(model, dur, t(i), x(i), v(i), f(i), stat)
+         if (stat /= hcimpact_ok) then
+            x = nan
+            v = nan
+            f = nan
+            return
+         end if
+      end do
+   end subroutine time_law
+
+   !> The time law on nsamples equally spaced times from 0 to the contact time
+   !> (both included): t(i) = contact_time (i - 1)/(nsamples - 1).
+   !>
+   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2.
+   pure subroutine time_law_samples(contact, nsamples, t, x, v, f, stat)
+      !> The contact
+      type(contact_type), intent(in) :: contact
+      !> Number of samples, >= 2
+      integer, intent(in) :: nsamples
+      !> Times in s
+      real(wp), allocatable, intent(out) :: t(:)
+      !> Compression in m
+      real(wp), allocatable, intent(out) :: x(:)
+      !> Velocity in m/s
+      real(wp), allocatable, intent(out) :: v(:)
+      !> Contact force in N
+      real(wp), allocatable, intent(out) :: f(:)
+      !> Status
+      integer, intent(out) :: stat
+      type(outcome_type) :: outcome
+      integer :: i
+
+      if (nsamples < 2) then
+         stat = hcimpact_err_size
+         return
+      end if
+      allocate(t(nsamples), x(nsamples), v(nsamples), f(nsamples))
+      t = nan
+      x = nan
+      v = nan
+      f = nan
+      call impact(contact, outcome, stat)
+      if (stat /= hcimpact_ok) return
+      do i = 1, nsamples
+         t(i) = outcome%contact_time * (real(i - 1, wp) / real(nsamples - 1, wp))
+      end do
+      t(nsamples) = outcome%contact_time
+      call time_law(contact, t, x, v, f, stat)
+   end subroutine time_law_samples
+
+   !> State at the time t (s) of a power-law impact whose phase durations are known.
+   !>
+   !> The phase and its half nearer in time are found from the durations; the point is
+   !> then located from the turning point (by its l) or from the end of contact (by
+   !> rho = d^(1/(n+1)), d its distance in l from the end, which keeps the relative
+   !> accuracy of x for t -> 0 and near the end of contact).
+   pure subroutine power_state(model, dur, t, x, v, f, stat)
+      type(power_model), intent(inout) :: model
+      type(dd_real), intent(in) :: dur(2)
+      real(wp), intent(in) :: t
+      real(wp), intent(out) :: x, v, f
+      integer, intent(out) :: stat
+      type(dd_real) :: tau, target, l, e, lt, rho, d, length
+      real(wp) :: sigma, sigma_n
+      integer(ik) :: ev
+      integer :: phase
+      logical :: from_turn
+
+      stat = hcimpact_ok
+      ev = 0_ik
+      if (.not. t > 0.0_wp) then
+         x = 0.0_wp
+         v = model%velocity
+         f = 0.0_wp
+         return
+      end if
+      ! time in units of the integrals
+      tau = dd(t) / model%time_unit
+      e = dur(1) + dur(2)
+      if (.not. tau%hi < e%hi) then
+         e = -(model%f%tr%k * model%velocity)
+         x = 0.0_wp
+         v = e%hi
+         f = 0.0_wp
+         return
+      end if
+      if (tau%hi <= dur(1)%hi) then
+         phase = compression
+         from_turn = tau%hi > 0.5_wp * dur(1)%hi
+         if (from_turn) then
+            target = dur(1) - tau
+         else
+            target = tau
+         end if
+      else
+         phase = restitution
+         target = tau - dur(1)
+         from_turn = target%hi <= 0.5_wp * dur(2)%hi
+         if (.not. from_turn) target = (dur(1) + dur(2)) - tau
+      end if
+      if (target%hi < 0.0_wp) target = dd(0.0_wp)
+      length = phase_length(model%f%tr, phase)
+      if (from_turn) then
+         call invert_from_turn(model%f, phase, target, lt, ev, stat)
+         if (stat /= hcimpact_ok) return
+         d = length - lt
+      else
+         call invert_from_end(model%f, phase, model%np1_dd, target, rho, d, ev, stat)
+         if (stat /= hcimpact_ok) return
+         lt = length - d
+      end if
+      ! sigma = x/x_max from the form for the nearer end of the phase (in l)
+      if (lt%hi <= d%hi) then
+         call turn_sigma(model, phase, lt%hi, sigma, sigma_n)
+      else
+         if (from_turn) rho = dd_exp(dd_log(d) / model%np1_dd)
+         call end_sigma(model, phase, rho%hi, d%hi, sigma, sigma_n)
+      end if
+      l = lt
+      if (phase == restitution) l = -lt
+      e = model%x_max * sigma
+      x = e%hi
+      v = scaled_velocity(model%f%tr, l) * model%velocity
+      ! F = c x^n (1 + u), 1 + u = exp(beta l)
+      e = model%force_unit * sigma_n * dd_exp(model%f%tr%beta * l)
+      f = e%hi
+   end subroutine power_state
+
+   !> sigma = x/x_max and sigma^n near the turning point: sigma^(n+1) = 1 - q.
+   pure subroutine turn_sigma(model, phase, lt, sigma, sigma_n)
+      type(power_model), intent(in) :: model
+      integer, intent(in) :: phase
+      real(wp), intent(in) :: lt
+      real(wp), intent(out) :: sigma, sigma_n
+      real(wp) :: s
+      s = log1p(-turn_q(model%f%tr, phase, lt)) / model%np1
+      sigma = exp(s)
+      sigma_n = exp(model%n * s)
+   end subroutine turn_sigma
+
+   !> sigma = x/x_max and sigma^n near an end: sigma^(n+1) = d R(d)/H, d = rho^(n+1),
+   !> so sigma = rho (R/H)^(1/(n+1)) keeps its relative accuracy for tiny rho.
+   pure subroutine end_sigma(model, phase, rho, d, sigma, sigma_n)
+      type(power_model), intent(in) :: model
+      integer, intent(in) :: phase
+      real(wp), intent(in) :: rho, d
+      real(wp), intent(out) :: sigma, sigma_n
+      real(wp) :: ratio
+      ratio = end_r(model%f%tr, phase, d) / model%f%tr%hq%hi
+      ratio = ratio - ratio * (model%f%tr%hq%lo / model%f%tr%hq%hi)
+      sigma = rho * ratio**model%f%inv_np1
+      sigma_n = rho**model%n * ratio**(model%n * model%f%inv_np1)
+   end subroutine end_sigma
+
+   !> Damping constant b (s/m) that gives the restitution e at the approach speed V:
+   !> b = beta(e)/V with beta(e) the exact inverse of k(beta) (hcimpact_restitution).
+   !>
+   !> Resting contact: as V -> 0 the exact b grows without bound. Below `min_velocity`
+   !> (default `default_min_velocity` = 1e-3 m/s) b is computed at min_velocity instead,
+   !> so that b stays finite and so does every force; impacts slower than that then
+   !> restitute with k(b V) > e (less dissipation), tending to 1 as V -> 0. V = 0 is
+   !> allowed and gives b = beta(e)/min_velocity.
+   !>
+   !> Errors: hcimpact_err_not_finite (NaN or infinite argument), hcimpact_err_restitution
+   !> (e outside (0, 1]), hcimpact_err_velocity (V < 0, or min_velocity not positive).
+   elemental subroutine damping_for_restitution(e, velocity, damping, stat, min_velocity)
+      !> Target coefficient of restitution, 0 < e <= 1
+      real(wp), intent(in) :: e
+      !> Approach speed V in m/s, >= 0
+      real(wp), intent(in) :: velocity
+      !> Damping b in s/m (0 for e = 1); NaN on error
+      real(wp), intent(out) :: damping
+      !> Status
+      integer, intent(out) :: stat
+      !> Speed below which b is computed at this speed, in m/s (> 0)
+      real(wp), intent(in), optional :: min_velocity
+      real(wp) :: vmin
+
+      damping = nan
+      vmin = default_min_velocity
+      if (present(min_velocity)) vmin = min_velocity
+      if (.not. (ieee_is_finite(e) .and. ieee_is_finite(velocity) .and. ieee_is_finite(vmin))) then
+         stat = hcimpact_err_not_finite
+         return
+      end if
+      if (.not. (e > 0.0_wp .and. e <= 1.0_wp)) then
+         stat = hcimpact_err_restitution
+         return
+      end if
+      if (velocity < 0.0_wp .or. .not. vmin > 0.0_wp) then
+         stat = hcimpact_err_velocity
+         return
+      end if
+      stat = hcimpact_ok
+      damping = restitution_inverse(e) / max(velocity, vmin)
+   end subroutine damping_for_restitution
+
+end module hcimpact_impact
