@@ -7,7 +7,18 @@ module hcimpact
    use hcimpact_kinds, only : wp
    use hcimpact_version, only : hcimpact_version_string, hcimpact_version_compact, &
       & get_hcimpact_version
-   use hcimpact_lambertw, only : lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1
+   use hcimpact_lambertw, only : lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1, &
+      & lambert_w0p1_dd, lambert_wm1p1_dd
+   use hcimpact_restitution_law, only : u_minus_log1p, restitution, one_minus_restitution, &
+      & energy_loss_ratio, restitution_derivative, restitution_inverse
+   use hcimpact_status, only : status_message, hcimpact_ok, hcimpact_err_not_finite, &
+      & hcimpact_err_mass, hcimpact_err_stiffness, hcimpact_err_exponent, &
+      & hcimpact_err_velocity, hcimpact_err_damping, hcimpact_err_restitution, &
+      & hcimpact_err_domain, hcimpact_err_no_convergence, hcimpact_err_null, &
+      & hcimpact_err_solver, hcimpact_err_unavailable, hcimpact_err_elastic_law, &
+      & hcimpact_err_size
+   use hcimpact_quadrature, only : integrand_type, quadrature_result, tanh_sinh, &
+      & quadrature_status_message
    implicit none
    public
 

@@ -52,8 +52,17 @@ module hcimpact_lambertw
    !> Up to this z, W0 comes from the p and q tables (p < 64.24; the index is clamped
    !> too, so a rounding of p at the edge stays inside the table)
    real(wp), parameter :: w0_table_zmax = 758.0_wp
-   !> Relative size of a Fritsch correction after which one more step is exact (quartic order)
-   real(wp), parameter :: fritsch_done = 2.0_wp**(-20)
+   !> Relative size of a Fritsch correction below which that step is exact to far below an
+   !> ulp: the step's own error is of order eps**4 (measured: the region tests stay
+   !> below 0.75 ulp with this threshold)
+   real(wp), parameter :: fritsch_done = 2.0_wp**(-15)
+   !> Below this p (and s), the Taylor series at the branch point in plain double
+   !> arithmetic is accurate to 0.52 ulp: p's own rounding moves W by < 0.01 ulp
+   real(wp), parameter :: fast_max = 2.0_wp**(-6)
+   !> z + 1/e below which p = sqrt(2 e (z + 1/e)) < fast_max
+   real(wp), parameter :: fast_dmax = fast_max**2 / (2.0_wp * e_hi)
+   !> t below which s = sqrt(2t) < fast_max (plain Taylor series at the branch point)
+   real(wp), parameter :: fast_tmax = 0.5_wp * fast_max**2
    !> Bound on the number of iterations of every loop in this module
    integer, parameter :: max_iter = 8
 
@@ -79,6 +88,8 @@ contains
          w = ieee_value(z, ieee_quiet_nan)
       else if (z <= -inv_e_hi) then
          w = -1.0_wp
+      else if ((z + inv_e_hi) + inv_e_lo < fast_dmax) then
+         w = branch_series(sqrt((2.0_wp * e_hi) * ((z + inv_e_hi) + inv_e_lo)))
       else if (abs(z) <= w0_series_max) then
          w = w0_taylor(z)
       else if (z <= w0_table_zmax) then
@@ -119,6 +130,8 @@ contains
          w = ieee_value(z, ieee_negative_inf)
       else if (z <= -inv_e_hi) then
          w = -1.0_wp
+      else if ((z + inv_e_hi) + inv_e_lo < fast_dmax) then
+         w = branch_series(-sqrt((2.0_wp * e_hi) * ((z + inv_e_hi) + inv_e_lo)))
       else
          call branch_p(z, ph, pl)
          i = -nearest_index(ph, p_step_inv)
@@ -183,6 +196,9 @@ contains
          vh = ieee_value(th, ieee_quiet_nan)
       else if (th <= 0.0_wp) then
          vh = 0.0_wp
+      else if (th < fast_tmax) then
+         call sqrt_2t(th, tl, sh, sl)
+         call fast_two_sum(sh, sl + s_tail(sh), vh, vl)
       else if (th < s_table_tmax) then
          call sqrt_2t(th, tl, sh, sl)
          ! The clamp keeps an s rounded up to the table's edge inside the table (the
@@ -220,6 +236,9 @@ contains
          vh = 0.0_wp
       else if (th > huge(th)) then
          vh = ieee_value(th, ieee_negative_inf)
+      else if (th < fast_tmax) then
+         call sqrt_2t(th, tl, sh, sl)
+         call fast_two_sum(-sh, s_tail(-sh) - sl, vh, vl)
       else if (th < s_table_tmax) then
          call sqrt_2t(th, tl, sh, sl)
          i = -min(nearest_index(sh, s_step_inv), s_last)
@@ -234,6 +253,31 @@ contains
    ! ---------------------------------------------------------------------------------
    ! Building blocks
    ! ---------------------------------------------------------------------------------
+
+   !> W = -1 + p + c2 p**2 + ... + c8 p**8 at the branch point for |p| < 2**-6 (DLMF 4.13.6;
+   !> the coefficients are row 0 of the p table). The first omitted term is below 2**-64
+   !> and p + p**2 T(p) is summed before the -1, so the result is rounded essentially once.
+   elemental function branch_series(p) result(w)
+      real(wp), intent(in) :: p
+      real(wp) :: w
+      w = -1.0_wp + (p + p * p * series_tail(p_coef(2:8, 0), p))
+   end function branch_series
+
+   !> The part s**2 (c2 + c3 s + ...) of V(s) = s + ... for |s| < 2**-6 (row 0 of the s table)
+   elemental function s_tail(s) result(r)
+      real(wp), intent(in) :: s
+      real(wp) :: r
+      r = s * s * series_tail(s_coef(2:8, 0), s)
+   end function s_tail
+
+   !> c(1) + c(2) x + ... + c(7) x**6 by Estrin's scheme (short dependency chain)
+   pure function series_tail(c, x) result(r)
+      real(wp), intent(in) :: c(7), x
+      real(wp) :: r
+      real(wp) :: x2
+      x2 = x * x
+      r = ((c(1) + c(2)*x) + x2*(c(3) + c(4)*x)) + (x2*x2)*((c(5) + c(6)*x) + x2*c(7))
+   end function series_tail
 
    !> Taylor series of W0 at 0 for |z| <= 0.05: W0 = z + sum_{k=2..19} a_k z**k with
    !> a_k = (-k)**(k-1)/k!; the first omitted term is below 2**-61 relative. The sum
@@ -328,16 +372,18 @@ contains
       end do
    end function fritsch
 
-   !> Starting value for W0(z), z > 759: de Bruijn's asymptotic series in L1 = ln z,
-   !> L2 = ln L1 (relative error below 1e-4 here).
+   !> Starting value for W0(z), z > 758: de Bruijn's asymptotic series in L1 = ln z,
+   !> L2 = ln L1, five terms (relative error below 2.5e-5 here, so one Fritsch step).
    elemental function w0_guess(z) result(w)
       real(wp), intent(in) :: z
       real(wp) :: w
-      real(wp) :: l1, l2
+      real(wp) :: l1, l2, r
 
       l1 = log(z)
       l2 = log(l1)
-      w = l1 - l2 + l2/l1 + l2*(l2 - 2.0_wp)/(2.0_wp*l1*l1)
+      r = 1.0_wp / l1
+      w = l1 - l2 + l2*r*(1.0_wp + r*(0.5_wp*(l2 - 2.0_wp) &
+         & + r*(l2*(6.0_wp + l2*(2.0_wp*l2 - 9.0_wp))/6.0_wp)))
    end function w0_guess
 
    !> Starting value for W-1(z), -0.289 < z < 0 (away from the branch point).

@@ -96,11 +96,11 @@ contains
          k = 1.0_wp + beta*(-2.0_wp/3.0_wp + beta*(4.0_wp/9.0_wp + beta*(-44.0_wp/135.0_wp &
             & + beta*(104.0_wp/405.0_wp))))
       else if (beta < k_table_max) then
-         i = nearest_index(beta, k_step_inv)
-         call taylor_dd(k_coef(:, i), k_lo(:, i), i / k_step_inv, beta, 0.0_wp, k, ql)
+         i = int(beta * k_step_inv + 0.5_wp)
+         k = taylor_plain(k_coef(:, i), k_lo(0, i), beta - i / k_step_inv)
       else if (beta < m_table_max) then
-         i = nearest_index(beta, m_step_inv)
-         call taylor_dd(m_coef(:, i), m_lo(:, i), i / m_step_inv, beta, 0.0_wp, k, ql)
+         i = int(beta * m_step_inv + 0.5_wp)
+         k = taylor_plain(m_coef(:, i), m_lo(0, i), beta - i / m_step_inv)
       else if (beta <= huge_beta) then
          ! z = -(1 + beta) exp(-(1 + beta)), |z| < 7e-17: W0(z) = z - z**2 + ... = z to
          ! 2**-100 relative. 1 + beta = ah + al is kept exact. (Underflow of exp for
@@ -323,6 +323,25 @@ contains
          call fast_two_sum(sh, sl - ll, hh, hl)
       end if
    end subroutine h_dd
+
+   !> c0 + c1 d + ... + c13 d**13 with c0 extended by c0_lo, for the k tables.
+   !>
+   !> On these tables |c1 d| is at most 2% of k (spacing 1/16 near beta = 0, where
+   !> k' = -2/3), so the polynomial part can be summed in plain double and added to c0
+   !> last: the result is rounded once up to ~0.01 ulp. Estrin's scheme keeps the
+   !> dependency chain short; the rounding of d = beta - xc is negligible for the same
+   !> reason, so the index needs no exact rounding.
+   pure function taylor_plain(c, c0_lo, d) result(y)
+      real(wp), intent(in) :: c(0:13), c0_lo, d
+      real(wp) :: y
+      real(wp) :: d2, d4, d8, p
+      d2 = d * d
+      d4 = d2 * d2
+      d8 = d4 * d4
+      p = ((c(1) + c(2)*d) + d2*(c(3) + c(4)*d)) + d4*((c(5) + c(6)*d) + d2*(c(7) + c(8)*d)) &
+         & + d8*(((c(9) + c(10)*d) + d2*(c(11) + c(12)*d)) + d4*c(13))
+      y = c(0) + (c0_lo + d * p)
+   end function taylor_plain
 
    !> (ah + al) / b as a double-double (b a nonzero double of moderate size)
    elemental subroutine div_dd(ah, al, b, qh, ql)

@@ -59,15 +59,15 @@ module hcimpact_trajectory
    private
 
    public :: trajectory_type, new_trajectory, phase_integrand, phase_density, phase_end_time
-   public :: compression, restitution
+   public :: compression_phase, restitution_phase
    public :: h_over_square_dd, g2, turn_q, end_r
    public :: phase_duration, duration_from_turn, duration_from_end
    public :: invert_from_turn, invert_from_end, scaled_velocity, phase_length
 
    !> Index of the compression phase (impact to turning point)
-   integer, parameter :: compression = 1
+   integer, parameter :: compression_phase = 1
    !> Index of the restitution phase (turning point to end of contact)
-   integer, parameter :: restitution = 2
+   integer, parameter :: restitution_phase = 2
 
    !> Below this beta, k(beta) is its Taylor series (MODEL.md): the first omitted term,
    !> 40 beta^5/189, is below 3e-26
@@ -115,13 +115,15 @@ module hcimpact_trajectory
       !> The trajectory
       type(trajectory_type) :: tr
       !> compression or restitution
-      integer :: phase = compression
+      integer :: phase = compression_phase
       !> Distance from the turning point to the interval end next to it
       real(wp) :: turn_gap = 0.0_wp
       !> Distance from the other interval end to the end of contact
       real(wp) :: end_gap = 0.0_wp
       !> Constant part of the time per unit l (the density is what the quadrature adds)
       real(wp) :: flat = 0.0_wp
+      !> Relative tolerance of the quadratures (epsilon: full precision)
+      real(wp) :: rtol = epsilon(1.0_wp)
    contains
       !> Integrand at a node, from its distances to the interval ends
       procedure :: eval => phase_eval
@@ -215,7 +217,7 @@ contains
       real(wp) :: q
       real(wp) :: l
       l = lt
-      if (phase == restitution) l = -lt
+      if (phase == restitution_phase) l = -lt
       q = (l * l * g2(tr%beta%hi * l)) / tr%hq%hi
       ! the trailing part of H: q H_hi/(H_hi + H_lo)
       q = q - q * (tr%hq%lo / tr%hq%hi)
@@ -233,7 +235,7 @@ contains
       real(wp) :: r
       real(wp) :: beta, z, t
       beta = tr%beta%hi
-      if (phase == compression) then
+      if (phase == compression_phase) then
          ! 1 - (1 + beta) d G2(-beta d)
          t = d * g2(-beta * d)
          r = (1.0_wp - t * tr%one_plus_beta%hi) - t * tr%one_plus_beta%lo
@@ -311,19 +313,19 @@ contains
          tr%k = kb / beta
       end if
 
-      tr%l_end(compression) = 1.0_wp - beta * tr%hq
-      tr%l_end(restitution) = -(tr%k + beta * tr%hq)
+      tr%l_end(compression_phase) = 1.0_wp - beta * tr%hq
+      tr%l_end(restitution_phase) = -(tr%k + beta * tr%hq)
       if (b > 0.0_wp) then
-         ea = beta * tr%l_end(restitution)
+         ea = beta * tr%l_end(restitution_phase)
          tr%ln_a = ea%hi
       end if
       ! the quadrature ends and their offsets from the true ends
-      tr%bound(compression) = tr%l_end(compression)%hi
-      tr%gap(compression) = tr%l_end(compression)%lo
-      tr%bound(restitution) = -tr%l_end(restitution)%hi
-      tr%gap(restitution) = -tr%l_end(restitution)%lo
-      tr%end_speed(compression) = 1.0_wp
-      tr%end_speed(restitution) = tr%k%hi
+      tr%bound(compression_phase) = tr%l_end(compression_phase)%hi
+      tr%gap(compression_phase) = tr%l_end(compression_phase)%lo
+      tr%bound(restitution_phase) = -tr%l_end(restitution_phase)%hi
+      tr%gap(restitution_phase) = -tr%l_end(restitution_phase)%lo
+      tr%end_speed(compression_phase) = 1.0_wp
+      tr%end_speed(restitution_phase) = tr%k%hi
    end function new_trajectory
 
    !> x'/V at the point l of the trajectory: expm1(beta l)/beta (l at beta = 0).
@@ -379,10 +381,10 @@ contains
       integer, intent(in) :: phase
       !> |l_end|
       type(dd_real) :: length
-      if (phase == compression) then
-         length = tr%l_end(compression)
+      if (phase == compression_phase) then
+         length = tr%l_end(compression_phase)
       else
-         length = -tr%l_end(restitution)
+         length = -tr%l_end(restitution_phase)
       end if
    end function phase_length
 
@@ -407,7 +409,8 @@ contains
       ! For the power law the density is a correction to `flat`: its error is measured
       ! against the whole integral, of which flat*width is a part.
       atol = 0.5_wp * epsilon(1.0_wp) * f%flat * width
-      call tanh_sinh(f, 0.0_wp, width, res, atol=atol, max_levels=tanh_sinh_max_levels)
+      call tanh_sinh(f, 0.0_wp, width, res, rtol=f%rtol, atol=atol, &
+         & max_levels=tanh_sinh_max_levels)
       evaluations = evaluations + res%evaluations
       if (res%status /= quadrature_success) then
          stat = hcimpact_err_no_convergence

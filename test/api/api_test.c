@@ -59,6 +59,17 @@ int main(void)
   check_nan("lambert_w0p1(-1)", hcimpact_lambert_w0p1(-1.0));
   check_nan("lambert_wm1p1(NaN)", hcimpact_lambert_wm1p1(NAN));
 
+  /* Restitution (MODEL.md: the seed's steel ball at V = 5 m/s has beta = 0.5) */
+  check_close("restitution(0.5)", hcimpact_restitution(0.5), 0.74843493159743416, rel);
+  check_close("restitution(0)", hcimpact_restitution(0.0), 1.0, 0.0);
+  check_close("restitution_inverse(0.5)", hcimpact_restitution_inverse(0.5), 1.4327505332713750,
+              rel);
+  check_close("restitution_inverse(1)", hcimpact_restitution_inverse(1.0) + 1.0, 1.0, 0.0);
+  check_nan("restitution(-1)", hcimpact_restitution(-1.0));
+  check_nan("restitution(NaN)", hcimpact_restitution(NAN));
+  check_nan("restitution_inverse(0)", hcimpact_restitution_inverse(0.0));
+  check_nan("restitution_inverse(1.5)", hcimpact_restitution_inverse(1.5));
+
   if (failures > 0) {
     printf("%d check(s) failed\n", failures);
     return 1;

@@ -337,6 +337,15 @@ def regions():
         p_max = 1.5 if func == "w0" else 1.40625      # W-1 needs z < 0, p < sqrt(2)
         yield "pgrid", func, double_windows(p_grid(int(p_max * 64), 1 / 64), 8,
                                             double_below_branch())
+        if func == "w0":
+            # seams of the coarser W0 tables (p spacing 1/16 up to 4.34, then 1/2 up to
+            # 64.25: seams at odd multiples of 1/32 and 1/4) and the method switches at
+            # |z| = 0.05 and z = 758
+            with mp.workdps(DPS_Z_CHECK):
+                ps = [k / 32 for k in range(48, 145)] + [k / 4 for k in range(18, 259)]
+                seams = [nearest_double(minus_inv_e() + mpf(q) ** 2 / (2 * mp.e)) for q in ps]
+            yield "pgrid2", func, double_windows(seams + [-0.05, 0.05, 758.0], 8,
+                                                 double_below_branch())
         yield "neg", func, draw(region_rng(func, "neg"), POINTS,
                                 lambda r: r.uniform(-0.358, -1e-3))
         top = 1e-3 if func == "w0" else 1e-1

@@ -43,13 +43,14 @@ module test_lambertw
 
    !> Every (function, region) of the reference file with an accuracy test; a test
    !> checks that the file holds no other (so a new region cannot go untested)
-   character(len=*), parameter :: accuracy_cases(2, 22) = reshape([ character(len=name_len) :: &
-      & "w0", "branch300", "w0", "near16_6", "w0", "near6_2", "w0", "pgrid", "w0", "neg", &
+   character(len=*), parameter :: accuracy_cases(2, 23) = reshape([ character(len=name_len) :: &
+      & "w0", "branch300", "w0", "near16_6", "w0", "near6_2", "w0", "pgrid", "w0", "pgrid2", &
+      & "w0", "neg", &
       & "w0", "negtiny", "w0", "w0mid", "w0", "w0pos", "w0", "subnormal", &
       & "wm1", "branch300", "wm1", "near16_6", "wm1", "near6_2", "wm1", "pgrid", "wm1", "neg", &
       & "wm1", "negtiny", "wm1", "subnormal", &
       & "w0p1", "tlog", "w0p1", "tswitch", "w0p1", "sgrid", &
-      & "wm1p1", "tlog", "wm1p1", "tswitch", "wm1p1", "sgrid"], [2, 22])
+      & "wm1p1", "tlog", "wm1p1", "tswitch", "wm1p1", "sgrid"], [2, 23])
 
    !> The reference file, read once on first use
    type :: reference_table
@@ -88,6 +89,7 @@ contains
          & new_unittest("w0-near16_6", test_w0_near16_6), &
          & new_unittest("w0-near6_2", test_w0_near6_2), &
          & new_unittest("w0-pgrid", test_w0_pgrid), &
+         & new_unittest("w0-pgrid2", test_w0_pgrid2), &
          & new_unittest("w0-neg", test_w0_neg), &
          & new_unittest("w0-negtiny", test_w0_negtiny), &
          & new_unittest("w0-w0mid", test_w0_w0mid), &
@@ -525,6 +527,12 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call check_region(error, "w0", "pgrid")
    end subroutine test_w0_pgrid
+
+   subroutine test_w0_pgrid2(error)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      call check_region(error, "w0", "pgrid2")
+   end subroutine test_w0_pgrid2
 
    !> W0 at z in [-0.358, -1e-3]
    subroutine test_w0_neg(error)
