@@ -2,7 +2,7 @@
 #
 # Script mode (cmake -DSOURCE_DIR=... -DEXPECTED=x.y.z -P this-file): check that
 # the version written in CMakeLists.txt (EXPECTED) is also the one in fpm.toml,
-# src/hcimpact/version.f90 and include/hcimpact.h.
+# src/hcimpact/version_info.f90 and include/hcimpact.h.
 
 if(NOT SOURCE_DIR OR NOT EXPECTED)
   message(FATAL_ERROR "usage: cmake -DSOURCE_DIR=<dir> -DEXPECTED=<x.y.z> -P hcimpact-version-check.cmake")
@@ -31,11 +31,11 @@ function(_hc_expect file regex expected what)
 endfunction()
 
 _hc_expect("fpm.toml" "^version[ \t]*=[ \t]*\"([^\"]*)\"" "${EXPECTED}" "version")
-_hc_expect("src/hcimpact/version.f90" "hcimpact_version_string[ \t]*=[ \t]*\"([^\"]*)\"" "${EXPECTED}"
+_hc_expect("src/hcimpact/version_info.f90" "hcimpact_version_string[ \t]*=[ \t]*\"([^\"]*)\"" "${EXPECTED}"
   "hcimpact_version_string")
-_hc_expect("src/hcimpact/version.f90" "version_major[ \t]*=[ \t]*([0-9]+)" "${_major}" "version_major")
-_hc_expect("src/hcimpact/version.f90" "version_minor[ \t]*=[ \t]*([0-9]+)" "${_minor}" "version_minor")
-_hc_expect("src/hcimpact/version.f90" "version_patch[ \t]*=[ \t]*([0-9]+)" "${_patch}" "version_patch")
+_hc_expect("src/hcimpact/version_info.f90" "version_major[ \t]*=[ \t]*([0-9]+)" "${_major}" "version_major")
+_hc_expect("src/hcimpact/version_info.f90" "version_minor[ \t]*=[ \t]*([0-9]+)" "${_minor}" "version_minor")
+_hc_expect("src/hcimpact/version_info.f90" "version_patch[ \t]*=[ \t]*([0-9]+)" "${_patch}" "version_patch")
 _hc_expect("include/hcimpact.h" "#define[ \t]+HCIMPACT_VERSION_MAJOR[ \t]+([0-9]+)" "${_major}"
   "HCIMPACT_VERSION_MAJOR")
 _hc_expect("include/hcimpact.h" "#define[ \t]+HCIMPACT_VERSION_MINOR[ \t]+([0-9]+)" "${_minor}"
@@ -48,4 +48,4 @@ _hc_expect("include/hcimpact.h" "#define[ \t]+HCIMPACT_VERSION[ \t]+([0-9]+)" "$
 if(_errors)
   message(FATAL_ERROR "Version numbers disagree with CMakeLists.txt (${EXPECTED}):${_errors}")
 endif()
-message(STATUS "hcimpact ${EXPECTED}: fpm.toml, version.f90 and hcimpact.h agree")
+message(STATUS "hcimpact ${EXPECTED}: fpm.toml, version_info.f90 and hcimpact.h agree")

@@ -5,7 +5,7 @@
 !> also be used one by one.
 module hcimpact
    use hcimpact_kinds, only : wp
-   use hcimpact_version, only : hcimpact_version_string, hcimpact_version_compact, &
+   use hcimpact_version_info, only : hcimpact_version_string, hcimpact_version_compact, &
       & get_hcimpact_version
    use hcimpact_lambertw, only : lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1, &
       & lambert_w0p1_dd, lambert_wm1p1_dd
@@ -19,6 +19,11 @@ module hcimpact
       & hcimpact_err_size
    use hcimpact_quadrature, only : integrand_type, quadrature_result, tanh_sinh, &
       & quadrature_status_message
+   use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &
+      & velocity_at_depth, time_law, time_law_samples, damping_for_restitution, &
+      & default_min_velocity, compression_branch, restitution_branch
+   use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
+   use hcimpact_elastic, only : elastic_law, power_law
    implicit none
    public
 

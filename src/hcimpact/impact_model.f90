@@ -31,12 +31,12 @@
 !> NaN outputs when it is not hcimpact_ok.
 module hcimpact_impact_model
    use, intrinsic :: iso_fortran_env, only : int64
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp, ik
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
       & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
-      & hcimpact_err_no_convergence, hcimpact_err_size, hcimpact_err_elastic_law
+      & hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), dd_exp, dd_log
@@ -44,7 +44,8 @@ module hcimpact_impact_model
    use hcimpact_restitution_law, only : restitution_inverse
    use hcimpact_elastic, only : elastic_law
    use hcimpact_trajectory, only : trajectory_type, new_trajectory, phase_integrand, &
-      & compression_phase, restitution_phase, h_over_square_dd, turn_q, end_r, phase_duration, &
+      & compression_phase, restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, &
+      & phase_duration, &
       & duration_from_turn, duration_from_end, invert_from_turn, invert_from_end, &
       & scaled_velocity, phase_length
    implicit none
@@ -285,8 +286,8 @@ contains
    !>
    !> Errors: hcimpact_err_not_finite (NaN or infinite field), _mass, _stiffness,
    !> _exponent, _velocity (not positive), _damping (negative), _domain (results
-   !> outside the double range), _no_convergence (a quadrature failed: does not happen
-   !> for beta = b V up to 1e6 at least).
+   !> outside the double range), _no_convergence (a quadrature failed: not seen for
+   !> 0.1 <= n <= 10 and beta = b V up to 1e12).
    elemental subroutine impact_power(contact, outcome, stat)
       !> The contact
       type(contact_type), intent(in) :: contact
@@ -380,8 +381,7 @@ contains
       h = hq%hi
       qd = np1 * b * h / n
       do it = 1, 100
-         u = h_over_square_dd(dd(b * qd))
-         hu = u%hi
+         hu = h_over_square(b * qd)
          step = (n * qd + np1 * b * (qd * qd * hu - h)) / (n + np1 * b * qd / (1.0_wp + b * qd))
          qd = qd - step
          if (.not. abs(step) > 4.0_wp * epsilon(1.0_wp) * qd) exit
@@ -529,7 +529,8 @@ contains
    !> The time law on nsamples equally spaced times from 0 to the contact time
    !> (both included): t(i) = contact_time (i - 1)/(nsamples - 1).
    !>
-   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2.
+   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2. The outputs are
+   !> allocated with max(nsamples, 0) elements in every case, NaN on error.
    pure subroutine time_law_samples(contact, nsamples, t, x, v, f, stat)
       !> The contact
       type(contact_type), intent(in) :: contact
@@ -548,15 +549,16 @@ contains
       type(outcome_type) :: outcome
       integer :: i
 
-      if (nsamples < 2) then
-         stat = hcimpact_err_size
-         return
-      end if
-      allocate(t(nsamples), x(nsamples), v(nsamples), f(nsamples))
+      allocate(t(max(nsamples, 0)), x(max(nsamples, 0)), v(max(nsamples, 0)), &
+         & f(max(nsamples, 0)))
       t = nan
       x = nan
       v = nan
       f = nan
+      if (nsamples < 2) then
+         stat = hcimpact_err_size
+         return
+      end if
       call impact(contact, outcome, stat)
       if (stat /= hcimpact_ok) return
       do i = 1, nsamples

@@ -12,7 +12,8 @@ module hcimpact_status
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
       & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
       & hcimpact_err_no_convergence, hcimpact_err_null, hcimpact_err_solver, &
-      & hcimpact_err_unavailable, hcimpact_err_elastic_law, hcimpact_err_size
+      & hcimpact_err_unavailable, hcimpact_err_elastic_law, hcimpact_err_size, &
+      & hcimpact_err_underdetermined
 
    !> Success
    integer, parameter :: hcimpact_ok = 0
@@ -44,6 +45,9 @@ module hcimpact_status
    integer, parameter :: hcimpact_err_elastic_law = 13
    !> An array argument has the wrong size
    integer, parameter :: hcimpact_err_size = 14
+   !> The data cannot determine the parameters of a fit (too few points, or points
+   !> that do not vary enough, e.g. all at one speed)
+   integer, parameter :: hcimpact_err_underdetermined = 15
 
 contains
 
@@ -85,6 +89,8 @@ contains
          message = "the elastic law returned an invalid value"
       case (hcimpact_err_size)
          message = "an array argument has the wrong size"
+      case (hcimpact_err_underdetermined)
+         message = "the data cannot determine the parameters (too few or too similar points)"
       case default
          message = "unknown status code"
       end select

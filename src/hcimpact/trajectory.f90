@@ -44,9 +44,10 @@
 !> `bound` as the distance to the true end: that part of the trajectory is shifted by
 !> gap = |l_end| - bound (a few 1e-17) against the part near the turning point. When an
 !> interval contains the seam between the two forms, the shift costs the time
-!> gap*f(seam), which is added back (`seam_correction`).
+!> gap*f(seam), which is added back (in `integrate_part`). (Stopping short of the true
+!> end instead would leave the singularity just outside the interval, which slows the
+!> tanh-sinh rule six-fold.)
 module hcimpact_trajectory
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp, ik
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
@@ -60,7 +61,7 @@ module hcimpact_trajectory
 
    public :: trajectory_type, new_trajectory, phase_integrand, phase_density, phase_end_time
    public :: compression_phase, restitution_phase
-   public :: h_over_square_dd, g2, turn_q, end_r
+   public :: h_over_square_dd, h_over_square, g2, turn_q, end_r
    public :: phase_duration, duration_from_turn, duration_from_end
    public :: invert_from_turn, invert_from_end, scaled_velocity, phase_length
 
@@ -172,16 +173,41 @@ contains
       type(dd_real), intent(in) :: u
       !> h(u)/u^2
       type(dd_real) :: hq
+      ! 1/(j + 2) as two doubles, folded at compile time in quadruple precision
+      integer, parameter :: qp = selected_real_kind(30)
       integer :: j
+      real(wp), parameter :: inv_hi(0:39) = real(1.0_qp / real([(j + 2, j = 0, 39)], qp), wp)
+      real(wp), parameter :: inv_lo(0:39) = real(1.0_qp / real([(j + 2, j = 0, 39)], qp) &
+         & - real(inv_hi, qp), wp)
       if (abs(u%hi) < h_series_max) then
-         hq = dd(1.0_wp) / 41.0_wp
+         hq = dd_real(inv_hi(39), inv_lo(39))
          do j = 38, 0, -1
-            hq = dd(1.0_wp) / real(j + 2, wp) - u * hq
+            hq = dd_real(inv_hi(j), inv_lo(j)) - u * hq
          end do
       else
          hq = ((u - dd_log(u + 1.0_wp)) / u) / u
       end if
    end function h_over_square_dd
+
+   !> h(u)/u^2 with h(u) = u - ln(1 + u), for u > -1, in double precision (for the
+   !> double-precision stages of Newton iterations; about 1e-15 relative).
+   !>
+   !> Series sum_j (-u)^j/(j + 2) for |u| < 1/8 (18 terms), else (u - ln(1 + u))/u^2.
+   elemental function h_over_square(u) result(hq)
+      !> Argument, u > -1
+      real(wp), intent(in) :: u
+      !> h(u)/u^2
+      real(wp) :: hq
+      integer :: j
+      if (abs(u) < h_series_max) then
+         hq = 1.0_wp / 20.0_wp
+         do j = 17, 0, -1
+            hq = 1.0_wp / real(j + 2, wp) - u * hq
+         end do
+      else
+         hq = ((u - log1p(u)) / u) / u
+      end if
+   end function h_over_square
 
    !> G2(z) = (e^z - 1 - z)/z^2 for z <= 709 (G2(0) = 1/2).
    !>
@@ -192,14 +218,22 @@ contains
       real(wp), intent(in) :: z
       !> G2(z) > 0
       real(wp) :: r
+      ! 1/(j + 2)! for j = 0, ..., 23, computed at compile time
       integer :: j
+      real(wp), parameter :: inv_factorial(0:23) = 1.0_wp / gamma(real([(j, j = 0, 23)], wp) &
+         & + 3.0_wp)
+      real(wp) :: z2, even, odd
       if (abs(z) <= 2.0_wp) then
-         ! 1/2 (1 + z/3 (1 + z/4 (1 + ...)))
-         r = 1.0_wp
-         do j = 25, 3, -1
-            r = 1.0_wp + z * r / real(j, wp)
+         ! sum_j z^j/(j + 2)!, split in even and odd powers (two short Horner chains
+         ! without divisions)
+         z2 = z * z
+         even = inv_factorial(22)
+         odd = inv_factorial(23)
+         do j = 20, 0, -2
+            even = even * z2 + inv_factorial(j)
+            odd = odd * z2 + inv_factorial(j + 1)
          end do
-         r = 0.5_wp * r
+         r = even + z * odd
       else
          r = (expm1(z) - z) / (z * z)
       end if

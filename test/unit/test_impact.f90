@@ -851,7 +851,8 @@ contains
          & rel=4.0_wp * epsilon(1.0_wp), message="c = (2/3) E sqrt(R)/(1 - nu^2)")
       if (allocated(error)) return
       ! symmetric in the bodies; two equal spheres: R* = R/2
-      call check_close(error, hertz_constant(1.0e9_wp, 0.3_wp, 0.01_wp, 2.0e11_wp, 0.25_wp, 0.02_wp), &
+      call check_close(error, &
+         & hertz_constant(1.0e9_wp, 0.3_wp, 0.01_wp, 2.0e11_wp, 0.25_wp, 0.02_wp), &
          & hertz_constant(2.0e11_wp, 0.25_wp, 0.02_wp, 1.0e9_wp, 0.3_wp, 0.01_wp), &
          & rel=2.0_wp * epsilon(1.0_wp), message="symmetry")
       if (allocated(error)) return

@@ -1,6 +1,10 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> Version of the library, kept in step with fpm.toml, CMakeLists.txt and include/hcimpact.h.
-module hcimpact_version
+!>
+!> The module is not called hcimpact_version: that is the C function
+!> `hcimpact_version()`, and gfortran miscompiles a binding label equal to a module
+!> name (doc/c-api.md).
+module hcimpact_version_info
    implicit none
    private
 
@@ -33,4 +37,4 @@ contains
       if (present(patch)) patch = version_patch
    end subroutine get_hcimpact_version
 
-end module hcimpact_version
+end module hcimpact_version_info

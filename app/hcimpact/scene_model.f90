@@ -1,0 +1,157 @@
+! SPDX-License-Identifier: Apache-2.0
+!> A scene: what the runner is asked to compute (bodies, contact, damping, approach
+!> speeds and the outputs wanted), after reading and validation.
+!>
+!> The outputs are named in scene files and on the command line by the words of
+!> `output_names`; `figures` and `all` stand for sets of them.
+module hcimpact_scene_model
+   use, intrinsic :: iso_fortran_env, only : int64
+   use hcimpact_kinds, only : wp
+   implicit none
+   private
+
+   public :: body_type, scene_type, nan
+   public :: n_outputs, output_names, output_files, output_descriptions, output_index
+   public :: out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
+      & out_lambertw, out_legacy, out_cvode
+   public :: figure_outputs, default_scene_lines, max_speeds
+
+   !> Quiet NaN
+   real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
+
+   !> Most approach speeds a scene may list
+   integer, parameter :: max_speeds = 1000
+
+   !> The outputs a scene can ask for
+   integer, parameter :: out_summary = 1, out_sweep = 2, out_histories = 3, &
+      & out_phase = 4, out_loops = 5, out_restitution = 6, out_lambertw = 7, &
+      & out_legacy = 8, out_cvode = 9
+   !> Number of outputs
+   integer, parameter :: n_outputs = 9
+   !> Their names in scene files and on the command line
+   character(len=*), parameter :: output_names(n_outputs) = [character(len=11) :: &
+      & "summary", "sweep", "histories", "phase", "loops", "restitution", "lambertw", &
+      & "legacy", "cvode"]
+   !> The files each writes in the results directory
+   character(len=*), parameter :: output_files(n_outputs) = [character(len=36) :: &
+      & "summary.csv", "sweep.csv", "histories.csv", "phase.csv", "loops.csv", &
+      & "restitution.csv", "lambertw.csv velocity_z.csv", "legacy.csv", &
+      & "cvode.csv"]
+   !> What each is
+   character(len=*), parameter :: output_descriptions(n_outputs) = [character(len=100) :: &
+      & "table per speed: restitution, energy lost, x_max, peak force and its time, times", &
+      & "the summary's columns on a fine grid of speeds (sweep_from .. sweep_to)", &
+      & "time histories x(t), V(t), F(t) during contact, per speed", &
+      & "phase trajectories V(x) on both branches, per speed", &
+      & "force against deformation F(x) (hysteresis loops), per speed", &
+      & "restitution k and energy loss 1 - k^2 against beta = b V", &
+      & "both real branches of Lambert W, and V against z = -exp(g) (seed eq. 14)", &
+      & "damping rules of multibody codes against the exact beta(e), per speed", &
+      & "SUNDIALS CVODE against the closed form: errors, time, counters"]
+   !> The outputs behind the seed's figures 1-8 (`figures`)
+   logical, parameter :: figure_outputs(n_outputs) = [.true., .true., .true., .true., &
+      & .true., .true., .true., .false., .false.]
+
+   !> One body. Unset reals are NaN.
+   type :: body_type
+      !> Whether the scene has this body (group present)
+      logical :: present = .false.
+      !> Mass in kg (given, or (4/3) pi R^3 rho)
+      real(wp) :: mass = nan
+      !> Radius of curvature at the contact in m (+inf: flat)
+      real(wp) :: radius = nan
+      !> Density in kg/m^3 (for the mass of a sphere)
+      real(wp) :: density = nan
+      !> Young's modulus in Pa
+      real(wp) :: young = nan
+      !> Poisson's ratio
+      real(wp) :: poisson = nan
+      !> Whether the mass was computed from radius and density
+      logical :: mass_from_density = .false.
+   end type body_type
+
+   !> A validated scene
+   type :: scene_type
+      !> Short name (the file's stem): the default results directory
+      character(len=:), allocatable :: name
+      !> Title for the console and the figures
+      character(len=:), allocatable :: title
+      !> Where it came from (a path, or "the built-in default scene")
+      character(len=:), allocatable :: source
+      !> The moving body, and the other body (absent: a massive flat wall)
+      type(body_type) :: body1, body2
+      !> Material of the wall (young, poisson), when body2 is absent
+      type(body_type) :: wall
+      !> Whether two bodies collide (else body 1 strikes a wall)
+      logical :: two_bodies = .false.
+      !> Effective mass in kg
+      real(wp) :: mass = nan
+      !> Contact constant c in N/m^n and exponent n
+      real(wp) :: stiffness = nan, exponent = nan
+      !> How c was obtained
+      character(len=:), allocatable :: stiffness_origin
+      !> Damping b in s/m
+      real(wp) :: damping = nan
+      !> How b was obtained
+      character(len=:), allocatable :: damping_origin
+      !> Target restitution and its reference speed (m/s), when b was derived from them
+      real(wp) :: target_restitution = nan, reference_speed = nan
+      !> Approach speeds (relative speeds for two bodies) in m/s
+      real(wp), allocatable :: speeds(:)
+      !> Outputs wanted
+      logical :: wanted(n_outputs) = .false.
+      !> Samples per curve (histories, phase, loops) and per branch of W
+      integer :: samples = 201
+      !> The sweep's speeds in m/s
+      real(wp), allocatable :: sweep(:)
+      !> Largest beta of the restitution curves
+      real(wp) :: beta_max = 10.0_wp
+      !> Relative tolerances of the CVODE runs
+      real(wp), allocatable :: tolerances(:)
+   end type scene_type
+
+contains
+
+   !> Index of an output name, or 0.
+   pure function output_index(name) result(k)
+      character(len=*), intent(in) :: name
+      integer :: k
+      character(len=len(name)) :: low
+      integer :: i, c
+      low = adjustl(name)
+      do i = 1, len(low)
+         c = iachar(low(i:i))
+         if (c >= iachar("A") .and. c <= iachar("Z")) low(i:i) = achar(c + 32)
+      end do
+      do k = 1, n_outputs
+         if (trim(low) == trim(output_names(k))) return
+      end do
+      k = 0
+   end function output_index
+
+   !> The built-in default scene, as the text of a scene file: the seed's steel ball
+   !> (MODEL.md). example/scenes/steel_ball.nml holds the same text.
+   pure function default_scene_lines() result(lines)
+      character(len=80), allocatable :: lines(:)
+      lines = [character(len=80) :: &
+         & "! The seed's worked example (MODEL.md): a steel ball of 0.1 kg strikes a", &
+         & "! massive steel plate; Hertz contact with the seed's printed constant, and", &
+         & "! the damping of hardened steel.", &
+         & "&scene", &
+         & "  title = ""Steel ball on a massive steel plate (the seed's example)""", &
+         & "  speeds = 0.5, 1, 2, 3, 4, 5          ! approach speeds, m/s", &
+         & "  outputs = ""summary""", &
+         & "/", &
+         & "&body1", &
+         & "  mass = 0.1                           ! kg", &
+         & "/", &
+         & "&contact", &
+         & "  stiffness = 1.7135e10                ! c, N/m^n", &
+         & "  exponent = 1.5                       ! n (Hertz)", &
+         & "/", &
+         & "&damping", &
+         & "  b = 0.1                              ! s/m", &
+         & "/"]
+   end function default_scene_lines
+
+end module hcimpact_scene_model

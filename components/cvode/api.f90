@@ -1,0 +1,81 @@
+! SPDX-License-Identifier: Apache-2.0
+!> C interface of the CVODE component: `hcimpact_simulate`.
+!>
+!> It lives in libhcimpact_cvode (hcimpact::cvode), not in the core library: a C
+!> program that calls it must link the component, and one that links only the core
+!> gets an undefined reference at link time rather than a status at run time. The
+!> declaration is in include/hcimpact.h (text in doc/cvode-c-api.h.txt); the
+!> structures are those of hcimpact_impact (hcimpact_api_impact).
+module hcimpact_cvode_api
+   use, intrinsic :: iso_c_binding, only : c_double, c_int, c_ptr, c_associated, c_f_pointer
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
+   use hcimpact_kinds, only : wp
+   use hcimpact_status, only : hcimpact_err_null, hcimpact_err_not_finite, hcimpact_err_domain
+   use hcimpact_impact_model, only : contact_type, outcome_type
+   use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome
+   use hcimpact_cvode_solver, only : cvode_options, simulation_type, simulate_power, &
+      & cvode_bdf
+   implicit none
+   private
+
+   public :: c_simulate
+
+contains
+
+   !> int hcimpact_simulate(const hcimpact_contact *contact, double rtol,
+   !>                       hcimpact_outcome *outcome);
+   !>
+   !> The impact integrated by CVODE (BDF, analytic Jacobian, relative tolerance rtol
+   !> and the absolute tolerances rtol * natural scale, hcimpact_cvode_solver).
+   !> Returns 0 on success; HCIMPACT_ERR_NULL (10) if a pointer is NULL (nothing is
+   !> written); otherwise a status and NaN in every field of *outcome: the input
+   !> errors of hcimpact_impact, HCIMPACT_ERR_NOT_FINITE (1) for a NaN or infinite
+   !> rtol, HCIMPACT_ERR_DOMAIN (8) for rtol outside (0, 1) or b V above about 1e140,
+   !> HCIMPACT_ERR_SOLVER (11) when CVODE fails, HCIMPACT_ERR_NO_CONVERGENCE (9)
+   !> when the contact does not end.
+   function c_simulate(contact, rtol, outcome) result(stat) bind(C, name="hcimpact_simulate")
+      !> const hcimpact_contact *
+      type(c_ptr), value :: contact
+      !> Relative tolerance of CVODE, 0 < rtol < 1
+      real(c_double), value :: rtol
+      !> hcimpact_outcome *
+      type(c_ptr), value :: outcome
+      !> Status
+      integer(c_int) :: stat
+      type(hcimpact_contact), pointer :: c_in
+      type(hcimpact_outcome), pointer :: c_out
+      type(simulation_type) :: simulation
+      type(outcome_type) :: result
+      integer :: status
+
+      if (.not. (c_associated(contact) .and. c_associated(outcome))) then
+         stat = int(hcimpact_err_null, c_int)
+         return
+      end if
+      call c_f_pointer(contact, c_in)
+      call c_f_pointer(outcome, c_out)
+      if (ieee_is_nan(rtol)) then
+         status = hcimpact_err_not_finite
+         result = outcome_type()
+      else if (.not. (rtol > 0.0_c_double .and. rtol < 1.0_c_double)) then
+         status = hcimpact_err_domain
+         result = outcome_type()
+      else
+         call simulate_power(contact_type(mass=real(c_in%mass, wp), &
+            & stiffness=real(c_in%stiffness, wp), exponent=real(c_in%exponent, wp), &
+            & damping=real(c_in%damping, wp), velocity=real(c_in%velocity, wp)), &
+            & simulation, status, cvode_options(method=cvode_bdf, rtol=real(rtol, wp)))
+         result = simulation%outcome
+      end if
+      c_out%restitution = result%restitution
+      c_out%energy_loss_ratio = result%energy_loss_ratio
+      c_out%rebound_velocity = result%rebound_velocity
+      c_out%max_compression = result%max_compression
+      c_out%peak_force = result%peak_force
+      c_out%compression_at_peak_force = result%compression_at_peak_force
+      c_out%compression_time = result%compression_time
+      c_out%contact_time = result%contact_time
+      stat = int(status, c_int)
+   end function c_simulate
+
+end module hcimpact_cvode_api

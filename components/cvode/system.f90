@@ -1,0 +1,453 @@
+! SPDX-License-Identifier: Apache-2.0
+!> The impact as a first-order system for an ODE solver, in scaled variables: the
+!> right-hand side, its Jacobian, the event functions and the stiffness measure.
+!>
+!> Nothing here knows about SUNDIALS: the CVODE callbacks (hcimpact_cvode_solver) unpack
+!> their vectors and call these procedures, which are pure.
+!>
+!> Scaling (MODEL.md). With a length L, the time T = L/V and s = x/L, tau = t/T,
+!> sigma = x'/V = ds/dtau, the equation m x'' = -f(x)(1 + b x') + g(t, x, x') reads
+!>
+!>     s' = sigma,
+!>     sigma' = p [ -f(L s)(1 + beta sigma) + g(T tau, L s, V sigma) ],   p = L/(m V^2),
+!>
+!> with beta = b V, s(0) = 0, sigma(0) = 1. For the power law f = c x^n and
+!> L = X = [(n+1) m V^2/(2c)]^(1/(n+1)) this is s'' = -((n+1)/2) s^n (1 + beta s'):
+!> it depends on (n, beta) alone, so an absolute tolerance means the same thing for a
+!> bead and for a hammer.
+!>
+!> The state is never modified here. The elastic force is evaluated at a clamped copy
+!> max(s, 0) (a step may overshoot the end of contact slightly, and s^n is NaN for
+!> s < 0); after the end of contact the body flies freely. A state for which a value
+!> would overflow is reported as a recoverable failure (the solver then retries with a
+!> smaller step) instead of producing Inf or NaN.
+!>
+!> Events (the solver locates their zeros, each crossed downwards):
+!>   1. sigma = 0: maximum compression;
+!>   2. dF/dtau = 0 with F = f(x)(1 + b x'): a peak of the contact force. For the power
+!>      law dF/dtau = s^(n-1) (1 + beta sigma) [n sigma - ((n+1)/2) beta s^(n+1)] and the
+!>      bracket alone is used (the other factors are positive during contact; MODEL.md:
+!>      the peak is where n m V = b c x^(n+1));
+!>   3. s = 0 (the state itself, not the clamped copy): the end of contact.
+module hcimpact_cvode_system
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use hcimpact_kinds, only : wp
+   use hcimpact_elastic, only : elastic_law
+   implicit none
+   private
+
+   public :: external_force, external_force_value
+   public :: impact_system, power_system, law_system
+   public :: system_rhs, system_jacobian, system_events, system_force
+   public :: largest_eigenvalue, scaled_energy, guarded_product
+   public :: rhs_ok, rhs_recoverable, rhs_law_failure
+   public :: n_events, event_max_compression, event_peak_force, event_end_of_contact
+
+   !> Number of event functions
+   integer, parameter :: n_events = 3
+   !> Index of the event x' = 0 (maximum compression)
+   integer, parameter :: event_max_compression = 1
+   !> Index of the event dF/dt = 0 (peak of the contact force)
+   integer, parameter :: event_peak_force = 2
+   !> Index of the event x = 0, downwards (end of contact)
+   integer, parameter :: event_end_of_contact = 3
+
+   !> Kind of system: the power law, evaluated in its own scaled form
+   integer, parameter :: power_system = 1
+   !> Kind of system: a user's elastic law and an optional external force
+   integer, parameter :: law_system = 2
+
+   !> Status of an evaluation: success
+   integer, parameter :: rhs_ok = 0
+   !> Status of an evaluation: the state is too far out for finite values (retry)
+   integer, parameter :: rhs_recoverable = 1
+   !> Status of an evaluation: the user's law or force returned a non-finite value
+   integer, parameter :: rhs_law_failure = 2
+
+   !> Natural log of the largest value we let a product reach (a margin below huge)
+   real(wp), parameter :: log_limit = 700.0_wp
+
+   !> An external force g(t, x, x') in N acting on the body besides the contact force:
+   !> m x'' = -f(x)(1 + b x') + g(t, x, x'). Extend it and implement `force`; override
+   !> `derivatives` to give the solver dg/dx and dg/dx' (the default returns zeros,
+   !> which only slows the Newton iteration down when g depends on the state).
+   !> The procedures must be pure; parameters are components of the extending type.
+   type, abstract :: external_force
+   contains
+      !> The force g(t, x, v) in N (positive: pushes into the obstacle)
+      procedure(external_force_value), deferred :: force
+      !> Its partial derivatives dg/dx (N/m) and dg/dv (N s/m)
+      procedure :: derivatives => external_force_no_derivatives
+   end type external_force
+
+   abstract interface
+      !> g(t, x, v): the external force at the time t (s), deformation x (m) and
+      !> velocity v (m/s), in N.
+      pure function external_force_value(self, t, x, v) result(g)
+         import :: external_force, wp
+         !> The force and its parameters
+         class(external_force), intent(in) :: self
+         !> Time since the start of contact in s
+         real(wp), intent(in) :: t
+         !> Deformation in m (negative after the end of contact)
+         real(wp), intent(in) :: x
+         !> Velocity x' in m/s
+         real(wp), intent(in) :: v
+         !> Force in N
+         real(wp) :: g
+      end function external_force_value
+   end interface
+
+   !> Everything the solver callbacks need, reached through the solver's user data.
+   type :: impact_system
+      !> power_system or law_system
+      integer :: kind = power_system
+      !> beta = b V (dimensionless damping)
+      real(wp) :: beta = 0.0_wp
+      !> Power law: exponent n and (n+1)/2
+      real(wp) :: n = 1.5_wp, half_np1 = 1.25_wp
+      !> Power law: s^n, s^(n-1) and the products stay finite without guards for
+      !> 0 <= s <= 2, |sigma| <= 2 (and s >= small_s when n < 1)
+      logical :: unguarded = .true.
+      !> Power law with n < 1: below this s the Jacobian takes the guarded path
+      real(wp) :: small_s = 0.0_wp
+      !> User law and external force (law_system only)
+      class(elastic_law), allocatable :: law
+      class(external_force), allocatable :: external
+      !> Mass (kg), damping (s/m), approach speed (m/s)
+      real(wp) :: mass = 0.0_wp, damping = 0.0_wp, velocity = 0.0_wp
+      !> Length L (m) and time T = L/V (s) of the scaled variables
+      real(wp) :: length = 0.0_wp, time = 0.0_wp
+      !> p = L/(m V^2) in 1/N (law_system)
+      real(wp) :: accel = 0.0_wp
+      !> Power law: newtons per unit of s^n (1 + beta sigma): ((n+1)/2) m V^2 / X
+      real(wp) :: force_unit = 0.0_wp
+      !> Set by the callbacks: the last evaluation failure of the user's procedures
+      logical :: law_failed = .false.
+      !> Set by the solver's error handler: its last message and code
+      character(len=:), allocatable :: solver_message
+      integer :: solver_code = 0
+   end type impact_system
+
+contains
+
+   !> Default derivatives of an external force: none known (zeros).
+   pure subroutine external_force_no_derivatives(self, t, x, v, dg_dx, dg_dv)
+      !> The force
+      class(external_force), intent(in) :: self
+      !> Time (s), deformation (m), velocity (m/s)
+      real(wp), intent(in) :: t, x, v
+      !> dg/dx in N/m and dg/dv in N s/m
+      real(wp), intent(out) :: dg_dx, dg_dv
+      dg_dx = 0.0_wp
+      dg_dv = 0.0_wp
+   end subroutine external_force_no_derivatives
+
+   !> a*b, or +-huge when the product would overflow (exponents add up too far).
+   elemental function guarded_product(a, b) result(c)
+      !> Factors (finite)
+      real(wp), intent(in) :: a, b
+      !> Product
+      real(wp) :: c
+      if (a == 0.0_wp .or. b == 0.0_wp) then
+         c = 0.0_wp
+      else if (exponent(a) + exponent(b) >= maxexponent(a) - 1) then
+         c = sign(huge(a), a) * sign(1.0_wp, b)
+      else
+         c = a * b
+      end if
+   end function guarded_product
+
+   !> s^e for s >= 0 with ln(result) checked against log_limit; ok false if it is not.
+   elemental subroutine guarded_power(s, e, y, ok)
+      real(wp), intent(in) :: s, e
+      real(wp), intent(out) :: y
+      logical, intent(out) :: ok
+      ok = .true.
+      if (s == 0.0_wp) then
+         if (e > 0.0_wp) then
+            y = 0.0_wp
+         else if (e == 0.0_wp) then
+            y = 1.0_wp
+         else
+            y = huge(1.0_wp)
+            ok = .false.
+         end if
+      else if (e * log(s) > log_limit) then
+         y = huge(1.0_wp)
+         ok = .false.
+      else
+         y = s**e
+      end if
+   end subroutine guarded_power
+
+   !> Right-hand side (s', sigma') of the scaled system at the time tau.
+   pure subroutine system_rhs(sys, tau, y, dy, stat)
+      !> The system
+      type(impact_system), intent(in) :: sys
+      !> Scaled time
+      real(wp), intent(in) :: tau
+      !> State (s, sigma)
+      real(wp), intent(in) :: y(2)
+      !> Derivative
+      real(wp), intent(out) :: dy(2)
+      !> rhs_ok, rhs_recoverable or rhs_law_failure
+      integer, intent(out) :: stat
+      real(wp) :: s, sigma, w, sn, f, g
+      logical :: ok
+
+      stat = rhs_ok
+      dy(1) = y(1)
+      dy(2) = 0.0_wp
+      if (.not. (ieee_is_finite(y(1)) .and. ieee_is_finite(y(2)))) then
+         stat = rhs_recoverable
+         return
+      end if
+      s = max(y(1), 0.0_wp)
+      sigma = y(2)
+      dy(1) = sigma
+
+      select case (sys%kind)
+      case (power_system)
+         if (sys%unguarded .and. s <= 2.0_wp .and. abs(sigma) <= 2.0_wp) then
+            dy(2) = -sys%half_np1 * s**sys%n * (1.0_wp + sys%beta * sigma)
+            return
+         end if
+         w = guarded_product(sys%beta, sigma)
+         if (abs(w) >= huge(w)) then
+            stat = rhs_recoverable
+            return
+         end if
+         w = 1.0_wp + w
+         call guarded_power(s, sys%n, sn, ok)
+         if (.not. ok) then
+            stat = rhs_recoverable
+            return
+         end if
+         dy(2) = -guarded_product(sys%half_np1 * sn, w)
+         if (abs(dy(2)) >= huge(w)) stat = rhs_recoverable
+      case default
+         f = sys%law%force(sys%length * s)
+         g = 0.0_wp
+         if (allocated(sys%external)) then
+            g = sys%external%force(sys%time * tau, sys%length * y(1), sys%velocity * sigma)
+         end if
+         if (.not. (ieee_is_finite(f) .and. ieee_is_finite(g))) then
+            stat = rhs_law_failure
+            return
+         end if
+         w = guarded_product(sys%beta, sigma)
+         if (abs(w) >= huge(w)) then
+            stat = rhs_recoverable
+            return
+         end if
+         f = guarded_product(f, 1.0_wp + w)
+         dy(2) = guarded_product(sys%accel, g - f)
+         if (abs(f) >= huge(f) .or. abs(dy(2)) >= huge(f)) stat = rhs_recoverable
+      end select
+   end subroutine system_rhs
+
+   !> Jacobian d(s', sigma')/d(s, sigma) of the scaled system (column-major 2x2).
+   !> Entries that would overflow are capped at +-huge: the solver uses the Jacobian
+   !> only in its Newton iteration, where an approximation costs iterations, not
+   !> accuracy.
+   pure subroutine system_jacobian(sys, tau, y, jac, stat)
+      !> The system
+      type(impact_system), intent(in) :: sys
+      !> Scaled time
+      real(wp), intent(in) :: tau
+      !> State (s, sigma)
+      real(wp), intent(in) :: y(2)
+      !> jac(i, j) = d(dy_i)/d(y_j)
+      real(wp), intent(out) :: jac(2, 2)
+      !> rhs_ok, rhs_recoverable or rhs_law_failure
+      integer, intent(out) :: stat
+      real(wp) :: s, sigma, w, snm1, sn, f, df, gx, gv
+      logical :: ok
+
+      stat = rhs_ok
+      jac = 0.0_wp
+      jac(1, 2) = 1.0_wp
+      if (.not. (ieee_is_finite(y(1)) .and. ieee_is_finite(y(2)))) then
+         stat = rhs_recoverable
+         return
+      end if
+      s = max(y(1), 0.0_wp)
+      sigma = y(2)
+
+      select case (sys%kind)
+      case (power_system)
+         if (sys%unguarded .and. s <= 2.0_wp .and. abs(sigma) <= 2.0_wp &
+            & .and. s >= sys%small_s) then
+            w = 1.0_wp + sys%beta * sigma
+            if (sys%n == 1.0_wp) then
+               jac(2, 1) = -sys%half_np1 * w
+               jac(2, 2) = -sys%half_np1 * sys%beta * s
+            else
+               snm1 = s**(sys%n - 1.0_wp)
+               jac(2, 1) = -sys%half_np1 * sys%n * snm1 * w
+               jac(2, 2) = -sys%half_np1 * sys%beta * (snm1 * s)
+            end if
+            return
+         end if
+         w = 1.0_wp + guarded_product(sys%beta, sigma)
+         call guarded_power(s, sys%n - 1.0_wp, snm1, ok)
+         call guarded_power(s, sys%n, sn, ok)
+         jac(2, 1) = -guarded_product(sys%half_np1 * sys%n, guarded_product(snm1, w))
+         jac(2, 2) = -guarded_product(sys%half_np1 * sys%beta, sn)
+      case default
+         f = sys%law%force(sys%length * s)
+         df = sys%law%force_derivative(sys%length * s)
+         gx = 0.0_wp
+         gv = 0.0_wp
+         if (allocated(sys%external)) then
+            call sys%external%derivatives(sys%time * tau, sys%length * y(1), &
+               & sys%velocity * sigma, gx, gv)
+         end if
+         if (.not. (ieee_is_finite(f) .and. ieee_is_finite(df) .and. ieee_is_finite(gx) &
+            & .and. ieee_is_finite(gv))) then
+            stat = rhs_law_failure
+            return
+         end if
+         w = 1.0_wp + guarded_product(sys%beta, sigma)
+         ! p L [ -f'(L s)(1 + beta sigma) + g_x ]  and  p [ -f(L s) beta + V g_v ]
+         jac(2, 1) = guarded_product(sys%accel * sys%length, gx - guarded_product(df, w))
+         jac(2, 2) = guarded_product(sys%accel, guarded_product(sys%velocity, gv) &
+            & - guarded_product(f, sys%beta))
+      end select
+   end subroutine system_jacobian
+
+   !> The event functions (see the module header) at the state y.
+   pure subroutine system_events(sys, tau, y, events, stat)
+      !> The system
+      type(impact_system), intent(in) :: sys
+      !> Scaled time
+      real(wp), intent(in) :: tau
+      !> State (s, sigma)
+      real(wp), intent(in) :: y(2)
+      !> The three event functions
+      real(wp), intent(out) :: events(n_events)
+      !> rhs_ok, rhs_recoverable or rhs_law_failure
+      integer, intent(out) :: stat
+      real(wp) :: s, sigma, snp1, f, df, w, dy(2)
+      logical :: ok
+
+      stat = rhs_ok
+      events = 0.0_wp
+      if (.not. (ieee_is_finite(y(1)) .and. ieee_is_finite(y(2)))) then
+         stat = rhs_recoverable
+         return
+      end if
+      s = max(y(1), 0.0_wp)
+      sigma = y(2)
+      events(event_max_compression) = sigma
+      events(event_end_of_contact) = y(1)
+
+      select case (sys%kind)
+      case (power_system)
+         call guarded_power(s, sys%n + 1.0_wp, snp1, ok)
+         events(event_peak_force) = sys%n * sigma &
+            & - guarded_product(sys%half_np1 * sys%beta, snp1)
+      case default
+         ! p dF/dtau = p [ f'(L s) L sigma (1 + beta sigma) + f(L s) beta sigma' ]
+         call system_rhs(sys, tau, y, dy, stat)
+         if (stat /= rhs_ok) return
+         f = sys%law%force(sys%length * s)
+         df = sys%law%force_derivative(sys%length * s)
+         if (.not. (ieee_is_finite(f) .and. ieee_is_finite(df))) then
+            stat = rhs_law_failure
+            return
+         end if
+         w = 1.0_wp + guarded_product(sys%beta, sigma)
+         events(event_peak_force) = guarded_product(sys%accel, &
+            & guarded_product(guarded_product(df, sys%length * sigma), w) &
+            & + guarded_product(f, guarded_product(sys%beta, dy(2))))
+      end select
+   end subroutine system_events
+
+   !> Contact force F = f(x)(1 + b x') in N at the scaled state y; +huge if it
+   !> overflows (ok false then).
+   pure subroutine system_force(sys, y, force, ok)
+      !> The system
+      type(impact_system), intent(in) :: sys
+      !> State (s, sigma)
+      real(wp), intent(in) :: y(2)
+      !> Force in N
+      real(wp), intent(out) :: force
+      !> Whether the force is finite
+      logical, intent(out) :: ok
+      real(wp) :: s, w, lf
+
+      ok = .true.
+      s = max(y(1), 0.0_wp)
+      w = 1.0_wp + guarded_product(sys%beta, y(2))
+      select case (sys%kind)
+      case (power_system)
+         ! F = force_unit s^n (1 + beta sigma), formed in logarithms
+         if (s == 0.0_wp .or. w == 0.0_wp) then
+            force = 0.0_wp
+            return
+         end if
+         lf = log(sys%force_unit) + sys%n * log(s) + log(abs(w))
+         if (lf > log(huge(1.0_wp))) then
+            force = huge(1.0_wp)
+            ok = .false.
+         else
+            force = sign(exp(lf), w)
+         end if
+      case default
+         force = guarded_product(sys%law%force(sys%length * s), w)
+         ok = ieee_is_finite(force) .and. abs(force) < huge(force)
+      end select
+   end subroutine system_force
+
+   !> Largest modulus of the eigenvalues of [[0, 1], [j21, j22]], without overflow:
+   !> lambda^2 - j22 lambda - j21 = 0.
+   pure function largest_eigenvalue(jac) result(lambda)
+      !> The Jacobian of the scaled system
+      real(wp), intent(in) :: jac(2, 2)
+      !> max |lambda|
+      real(wp) :: lambda
+      real(wp) :: p, q, scale, pn, qn, d
+
+      p = 0.5_wp * jac(2, 2)
+      q = jac(2, 1)
+      scale = max(abs(p), sqrt(abs(q)))
+      if (scale == 0.0_wp .or. .not. ieee_is_finite(scale)) then
+         lambda = scale
+         return
+      end if
+      pn = p / scale
+      qn = (q / scale) / scale
+      d = pn * pn + qn
+      if (d >= 0.0_wp) then
+         lambda = scale * (abs(pn) + sqrt(d))
+      else
+         lambda = scale * sqrt(-qn)
+      end if
+   end function largest_eigenvalue
+
+   !> H(beta) = h(beta)/beta^2 = (beta - ln(1 + beta))/beta^2, so that the maximum
+   !> compression of the scaled power-law problem is (2 H)^(1/(n+1)) (MODEL.md);
+   !> 1/2 at beta = 0.
+   elemental function scaled_energy(beta) result(h)
+      !> beta = b V >= 0
+      real(wp), intent(in) :: beta
+      !> H(beta)
+      real(wp) :: h
+      real(wp) :: x
+      integer :: i
+      if (beta < 0.05_wp) then
+         ! sum_{j>=2} (-1)^j beta^(j-2)/j, to below an ulp for beta < 0.05
+         h = 0.0_wp
+         x = 1.0_wp
+         do i = 2, 16
+            h = h + x / real(i, wp)
+            x = -x * beta
+         end do
+      else
+         h = ((beta - log(1.0_wp + beta)) / beta) / beta
+      end if
+   end function scaled_energy
+
+end module hcimpact_cvode_system

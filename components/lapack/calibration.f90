@@ -1,0 +1,949 @@
+! SPDX-License-Identifier: Apache-2.0
+!> Calibration: fit the Hunt-Crossley contact model to measured data (issue #7).
+!>
+!> The fits, and what they return in `fit_type%parameters`:
+!>
+!> | procedure            | data                                   | parameters      |
+!> |----------------------|----------------------------------------|-----------------|
+!> | `fit_damping`        | restitution e_i at approach speeds V_i | b               |
+!> | `fit_damping_linear` | the same, with the linear law e = 1 - (2b/3) V | b       |
+!> | `fit_static`         | static force F_i at deflections x_i    | c, n            |
+!> | `fit_elastic`        | contact time and/or peak force at V_i, b known | c, n    |
+!> | `fit_impact`         | contact time, peak force, restitution at V_i | c, n, b   |
+!>
+!> Units: b in s/m, c in N/m^n, n dimensionless; V in m/s, x in m, F in N, times in s,
+!> mass in kg.
+!>
+!> Models (doc/calibration.md has the derivations):
+!> - Restitution: e = k(b V), the exact k of hcimpact_restitution_law (seed eq. 21).
+!> - Static: ln F = ln c + n ln x, solved as weighted linear least squares (dgelsy).
+!> - Impact: with X = [(n+1) m V^2/(2c)]^(1/(n+1)) and beta = b V,
+!>       t_c = (X/V) tau(n, beta),   F_max = (m V^2/X) phi(n, beta),
+!>   where tau and phi are the contact time and the peak force of the dimensionless
+!>   impact (m = V = 1, c = (n+1)/2, so that X = 1), computed by hcimpact_impact_model.
+!>   The derivatives in ln c are exact (-1/(n+1) and +1/(n+1)); those in n and beta are
+!>   forward differences of tau and phi. Nonlinear least squares by Levenberg-Marquardt
+!>   (hcimpact_least_squares) in the parameters (ln c, n, b), with b >= 0 and
+!>   n >= min_exponent kept as bounds.
+!>
+!> Residuals, weights and uncertainties:
+!> - Residuals are ln(observed) - ln(model) for times and forces (static and impact),
+!>   observed - model for restitution. `fit%residuals` holds them unweighted, one block
+!>   per series in the order time, force, restitution (only the series given).
+!> - A series given with its standard deviations sigma_i (in the units of the data)
+!>   is weighted by 1/sigma_i, converted to the residual's scale (sigma_i/y_i for a
+!>   logarithm). A series given without them has one common sigma, estimated from its
+!>   own residuals (leverage-corrected) and refined by refitting until it settles: a
+!>   fit of several series then weighs each by its own scatter.
+!> - covariance = (J^T W J)^-1 chi^2/(N - p) (the residual scatter sets the scale), or
+!>   (J^T W J)^-1 alone with absolute_sigma = .true. (the sigmas are the true ones).
+!>   For c the covariance is propagated from ln c to first order (sigma_c = c sigma_ln c).
+!>
+!> Errors (status codes of hcimpact_status; on error the fit holds no parameters):
+!> hcimpact_err_size (arrays of different lengths), hcimpact_err_underdetermined (fewer
+!> observations than parameters + 1, or data that cannot determine the parameters, such
+!> as a contact-time-only fit at a single speed or a static curve at a single
+!> deflection), hcimpact_err_not_finite, hcimpact_err_mass, hcimpact_err_velocity (a
+!> speed <= 0), hcimpact_err_restitution (a restitution <= 0), hcimpact_err_domain
+!> (another non-positive value: a deflection, force, time or sigma),
+!> hcimpact_err_damping (a given b < 0), hcimpact_err_no_convergence.
+module hcimpact_calibration
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use hcimpact_kinds, only : wp
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
+      & hcimpact_err_velocity, hcimpact_err_damping, hcimpact_err_restitution, &
+      & hcimpact_err_domain, hcimpact_err_size, hcimpact_err_underdetermined
+   use hcimpact_restitution_law, only : restitution, restitution_derivative, &
+      & restitution_inverse
+   use hcimpact_impact_model, only : contact_type, outcome_type, impact
+   use hcimpact_least_squares, only : least_squares_model, levenberg_marquardt, &
+      & linear_least_squares, jacobian_analysis
+   implicit none
+   private
+
+   public :: fit_type
+   public :: fit_damping, fit_damping_linear, fit_static, fit_elastic, fit_impact
+   public :: min_exponent
+   public :: hcimpact_err_underdetermined
+
+   !> Smallest exponent n a fit may return (a lower bound of the iteration)
+   real(wp), parameter :: min_exponent = 0.01_wp
+
+   !> The result of a fit.
+   type :: fit_type
+      !> Fitted parameters: (b) for fit_damping and fit_damping_linear; (c, n) for
+      !> fit_static and fit_elastic; (c, n, b) for fit_impact. b in s/m, c in N/m^n
+      real(wp), allocatable :: parameters(:)
+      !> Standard errors of the parameters (square roots of the covariance diagonal)
+      real(wp), allocatable :: standard_errors(:)
+      !> Covariance matrix of the parameters (first order in c)
+      real(wp), allocatable :: covariance(:, :)
+      !> Residuals per observation, unweighted: ln(observed/model) for times and forces,
+      !> observed - model for restitution; series in the order time, force, restitution
+      real(wp), allocatable :: residuals(:)
+      !> Scatter of each series' residuals: sqrt(sum r^2 / (N_k - leverage)), in the
+      !> units of the residuals (relative for times and forces)
+      real(wp), allocatable :: scatter(:)
+      !> Weighted sum of squared residuals at the optimum
+      real(wp) :: chi_square = 0.0_wp
+      !> Observations minus parameters
+      integer :: degrees_of_freedom = 0
+      !> Levenberg-Marquardt steps taken (0 for the linear fits)
+      integer :: iterations = 0
+      !> Condition number of the column-scaled weighted Jacobian (or design matrix)
+      real(wp) :: condition_number = 0.0_wp
+   end type fit_type
+
+   !> Series of an impact data set, in the order of the residual blocks
+   integer, parameter :: time_series = 1, force_series = 2, restitution_series = 3
+   !> Parameters of the impact model, in the order of theta
+   integer, parameter :: log_stiffness_index = 1, exponent_index = 2, damping_index = 3
+
+   !> Impact data (contact time, peak force, restitution against speed) and the model
+   !> of them, in the parameters (ln c, n, b) of which a subset is fitted.
+   type, extends(least_squares_model) :: impact_data_model
+      !> Mass in kg
+      real(wp) :: mass = 1.0_wp
+      !> Approach speeds (m/s) and their logarithms
+      real(wp), allocatable :: velocity(:), log_velocity(:)
+      !> Which series are present (time, force, restitution)
+      logical :: has(3) = .false.
+      !> ln(contact time / s), ln(peak force / N), restitution
+      real(wp), allocatable :: log_time(:), log_force(:), restitution(:)
+      !> Which of (ln c, n, b) are fitted, and the values of those that are not
+      logical :: free(3) = .true.
+      real(wp) :: fixed(3) = 0.0_wp
+      !> ln tau and ln phi of the dimensionless impacts at (cache_n, cache_b)
+      logical :: cached = .false.
+      real(wp) :: cache_n = 0.0_wp, cache_b = 0.0_wp
+      real(wp), allocatable :: log_tau(:), log_phi(:)
+   contains
+      procedure :: evaluate => evaluate_impact_data
+   end type impact_data_model
+
+contains
+
+   !> Fit the damping b to restitution measured at several approach speeds, with the
+   !> exact law e = k(b V) (nonlinear least squares, Levenberg-Marquardt).
+   !>
+   !> Needs at least two points; they may all be at one speed. Measured e > 1 (noise
+   !> on nearly elastic impacts) is accepted; the fitted b is kept >= 0.
+   subroutine fit_damping(velocity, restitution, fit, stat, sigma, absolute_sigma)
+      !> Approach speeds V_i in m/s, > 0
+      real(wp), intent(in) :: velocity(:)
+      !> Measured coefficients of restitution e_i, > 0
+      real(wp), intent(in) :: restitution(:)
+      !> The fit: parameters = (b) in s/m
+      type(fit_type), intent(out) :: fit
+      !> Status
+      integer, intent(out) :: stat
+      !> Standard deviations of the e_i, > 0 (default: estimated from the scatter)
+      real(wp), intent(in), optional :: sigma(:)
+      !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
+      logical, intent(in), optional :: absolute_sigma
+      type(impact_data_model) :: model
+      real(wp), allocatable :: theta(:), sigma_obs(:)
+      logical :: given(1)
+      integer :: n
+
+      n = size(velocity)
+      stat = check_series(velocity, restitution, restitution_series, sigma)
+      if (stat /= hcimpact_ok) return
+      stat = check_count(n, 1, 1)
+      if (stat /= hcimpact_ok) return
+
+      model%velocity = velocity
+      model%log_velocity = log(velocity)
+      model%has = [.false., .false., .true.]
+      model%restitution = restitution
+      model%free = [.false., .false., .true.]
+      model%fixed = [0.0_wp, 1.0_wp, 0.0_wp]
+      theta = [median(damping_estimates(velocity, restitution))]
+      sigma_obs = series_sigma(restitution, restitution_series, sigma, given(1))
+      call run_fit(model, theta, [0.0_wp], [restitution_series], sigma_obs, given, &
+         & flag(absolute_sigma), fit, stat)
+      if (stat /= hcimpact_ok) return
+      fit%parameters = theta
+      call finish_errors(fit)
+   end subroutine fit_damping
+
+   !> Fit the linear law e = 1 - alpha V, common practice for small damping, and
+   !> return b = 3 alpha/2 (the slope of the exact k at beta = 0 is -2/3): linear least
+   !> squares through e = 1 at V = 0 (dgelsy). For comparison with `fit_damping`: on
+   !> data that follow the exact law this b is biased low (doc/calibration.md).
+   subroutine fit_damping_linear(velocity, restitution, fit, stat, sigma, absolute_sigma)
+      !> Approach speeds V_i in m/s, > 0
+      real(wp), intent(in) :: velocity(:)
+      !> Measured coefficients of restitution e_i, > 0
+      real(wp), intent(in) :: restitution(:)
+      !> The fit: parameters = (b) in s/m, b = 3 alpha/2
+      type(fit_type), intent(out) :: fit
+      !> Status
+      integer, intent(out) :: stat
+      !> Standard deviations of the e_i, > 0 (default: estimated from the scatter)
+      real(wp), intent(in), optional :: sigma(:)
+      !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
+      logical, intent(in), optional :: absolute_sigma
+      real(wp) :: a(size(velocity), 1), w(size(velocity)), coef(1), cov(1, 1)
+      real(wp) :: alpha, factor
+      integer :: n, rank
+      logical :: given
+
+      n = size(velocity)
+      stat = check_series(velocity, restitution, restitution_series, sigma)
+      if (stat /= hcimpact_ok) return
+      stat = check_count(n, 1, 1)
+      if (stat /= hcimpact_ok) return
+
+      w = 1.0_wp / series_sigma(restitution, restitution_series, sigma, given)
+      a(:, 1) = w * velocity
+      call linear_least_squares(a, w * (1.0_wp - restitution), coef, rank, stat)
+      if (stat /= hcimpact_ok) return
+      alpha = coef(1)
+      fit%residuals = restitution - (1.0_wp - alpha * velocity)
+      fit%chi_square = sum((w * fit%residuals)**2)
+      fit%degrees_of_freedom = n - 1
+      call jacobian_analysis(a, cov, stat, fit%condition_number)
+      if (stat /= hcimpact_ok) return
+      factor = 1.0_wp
+      if (.not. (given .and. flag(absolute_sigma))) &
+         & factor = fit%chi_square / fit%degrees_of_freedom
+      fit%parameters = [1.5_wp * alpha]
+      fit%covariance = 2.25_wp * factor * cov
+      fit%scatter = [sqrt(sum(fit%residuals**2) / (n - 1))]
+      call finish_errors(fit)
+   end subroutine fit_damping_linear
+
+   !> Fit the elastic law F = c x^n to a static force-deflection curve: weighted linear
+   !> least squares on ln F = ln c + n ln x (dgelsy), with ln x centred on its weighted
+   !> mean (so that the two columns are orthogonal).
+   !>
+   !> Without sigma all points weigh the same in ln F: equal relative errors. Needs at
+   !> least three points at no fewer than two different deflections.
+   subroutine fit_static(deflection, force, fit, stat, sigma, absolute_sigma)
+      !> Deflections x_i in m, > 0
+      real(wp), intent(in) :: deflection(:)
+      !> Static forces F_i in N, > 0
+      real(wp), intent(in) :: force(:)
+      !> The fit: parameters = (c, n), c in N/m^n
+      type(fit_type), intent(out) :: fit
+      !> Status
+      integer, intent(out) :: stat
+      !> Standard deviations of the forces in N, > 0 (default: equal relative errors,
+      !> their size estimated from the scatter)
+      real(wp), intent(in), optional :: sigma(:)
+      !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
+      logical, intent(in), optional :: absolute_sigma
+      real(wp) :: a(size(deflection), 2), w(size(deflection)), lx(size(deflection)), &
+         & lf(size(deflection)), coef(2), cov(2, 2)
+      real(wp) :: mean_lx, log_c, factor, t(2, 2)
+      integer :: n, rank
+      logical :: given
+
+      n = size(deflection)
+      if (size(force) /= n) then
+         stat = hcimpact_err_size
+         return
+      end if
+      stat = check_positive(deflection, hcimpact_err_domain)
+      if (stat == hcimpact_ok) stat = check_series(deflection, force, force_series, sigma)
+      if (stat /= hcimpact_ok) return
+      stat = check_count(n, 2, 1)
+      if (stat /= hcimpact_ok) return
+      if (count_distinct(deflection) < 2) then
+         stat = hcimpact_err_underdetermined
+         return
+      end if
+
+      w = 1.0_wp / series_sigma(force, force_series, sigma, given)
+      lx = log(deflection)
+      lf = log(force)
+      mean_lx = sum(w**2 * lx) / sum(w**2)
+      a(:, 1) = w
+      a(:, 2) = w * (lx - mean_lx)
+      call linear_least_squares(a, w * lf, coef, rank, stat)
+      if (stat /= hcimpact_ok) return
+      log_c = coef(1) - coef(2) * mean_lx
+      fit%residuals = lf - (coef(1) + coef(2) * (lx - mean_lx))
+      fit%chi_square = sum((w * fit%residuals)**2)
+      fit%degrees_of_freedom = n - 2
+      call jacobian_analysis(a, cov, stat, fit%condition_number)
+      if (stat /= hcimpact_ok) return
+      factor = 1.0_wp
+      if (.not. (given .and. flag(absolute_sigma))) &
+         & factor = fit%chi_square / fit%degrees_of_freedom
+      ! from (ln c + n mean, n) to (ln c, n), then to (c, n) at first order
+      t = reshape([1.0_wp, 0.0_wp, -mean_lx, 1.0_wp], [2, 2])
+      cov = factor * matmul(t, matmul(cov, transpose(t)))
+      fit%parameters = [exp(log_c), coef(2)]
+      if (.not. ieee_is_finite(fit%parameters(1))) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      fit%covariance = log_to_linear(cov, fit%parameters, [.true., .false.])
+      fit%scatter = [sqrt(sum(fit%residuals**2) / (n - 2))]
+      call finish_errors(fit)
+   end subroutine fit_static
+
+   !> Fit the elastic law (c, n) to impact data, the damping b being known: contact
+   !> times and/or peak forces measured at several approach speeds.
+   !>
+   !> Either series may be absent, not both. With one series the speeds must differ
+   !> (at a single speed it cannot separate c from n); contact time and peak force
+   !> together determine (c, n) even at one speed (F t/(m V) depends on n and b V only).
+   subroutine fit_elastic(mass, damping, velocity, fit, stat, contact_time, peak_force, &
+         & sigma_time, sigma_force, absolute_sigma, guess)
+      !> Mass in kg (the effective mass for two bodies), > 0
+      real(wp), intent(in) :: mass
+      !> Damping b in s/m, >= 0 (0: elastic impacts)
+      real(wp), intent(in) :: damping
+      !> Approach speeds V_i in m/s, > 0
+      real(wp), intent(in) :: velocity(:)
+      !> The fit: parameters = (c, n), c in N/m^n
+      type(fit_type), intent(out) :: fit
+      !> Status
+      integer, intent(out) :: stat
+      !> Measured contact times in s, > 0
+      real(wp), intent(in), optional :: contact_time(:)
+      !> Measured peak forces in N, > 0
+      real(wp), intent(in), optional :: peak_force(:)
+      !> Standard deviations of the contact times in s (default: estimated)
+      real(wp), intent(in), optional :: sigma_time(:)
+      !> Standard deviations of the peak forces in N (default: estimated)
+      real(wp), intent(in), optional :: sigma_force(:)
+      !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
+      logical, intent(in), optional :: absolute_sigma
+      !> Starting values (c, n) (default: from the data)
+      real(wp), intent(in), optional :: guess(:)
+
+      if (.not. ieee_is_finite(damping)) then
+         stat = hcimpact_err_not_finite
+         return
+      end if
+      if (damping < 0.0_wp) then
+         stat = hcimpact_err_damping
+         return
+      end if
+      call fit_impact_data(mass, velocity, .false., damping, fit, stat, contact_time, &
+         & peak_force, sigma_time=sigma_time, sigma_force=sigma_force, &
+         & absolute_sigma=absolute_sigma, guess=guess)
+   end subroutine fit_elastic
+
+   !> Fit the contact law and the damping (c, n, b) jointly to impact data: contact
+   !> times, peak forces and restitution measured at several approach speeds.
+   !>
+   !> Any of the three series may be absent as long as the rest determine the three
+   !> parameters (e.g. restitution alone determines b only: status
+   !> hcimpact_err_underdetermined).
+   subroutine fit_impact(mass, velocity, fit, stat, contact_time, peak_force, &
+         & restitution, sigma_time, sigma_force, sigma_restitution, absolute_sigma, guess)
+      !> Mass in kg (the effective mass for two bodies), > 0
+      real(wp), intent(in) :: mass
+      !> Approach speeds V_i in m/s, > 0
+      real(wp), intent(in) :: velocity(:)
+      !> The fit: parameters = (c, n, b), c in N/m^n, b in s/m
+      type(fit_type), intent(out) :: fit
+      !> Status
+      integer, intent(out) :: stat
+      !> Measured contact times in s, > 0
+      real(wp), intent(in), optional :: contact_time(:)
+      !> Measured peak forces in N, > 0
+      real(wp), intent(in), optional :: peak_force(:)
+      !> Measured coefficients of restitution, > 0
+      real(wp), intent(in), optional :: restitution(:)
+      !> Standard deviations of the contact times in s (default: estimated)
+      real(wp), intent(in), optional :: sigma_time(:)
+      !> Standard deviations of the peak forces in N (default: estimated)
+      real(wp), intent(in), optional :: sigma_force(:)
+      !> Standard deviations of the restitution (default: estimated)
+      real(wp), intent(in), optional :: sigma_restitution(:)
+      !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
+      logical, intent(in), optional :: absolute_sigma
+      !> Starting values (c, n, b) (default: from the data)
+      real(wp), intent(in), optional :: guess(:)
+
+      call fit_impact_data(mass, velocity, .true., 0.0_wp, fit, stat, contact_time, &
+         & peak_force, restitution, sigma_time, sigma_force, sigma_restitution, &
+         & absolute_sigma, guess)
+   end subroutine fit_impact
+
+   !> The impact fits: (ln c, n) and, when fit_b, b.
+   subroutine fit_impact_data(mass, velocity, fit_b, damping, fit, stat, contact_time, &
+         & peak_force, restitution, sigma_time, sigma_force, sigma_restitution, &
+         & absolute_sigma, guess)
+      real(wp), intent(in) :: mass, damping
+      real(wp), intent(in) :: velocity(:)
+      logical, intent(in) :: fit_b
+      type(fit_type), intent(out) :: fit
+      integer, intent(out) :: stat
+      real(wp), intent(in), optional :: contact_time(:), peak_force(:), restitution(:)
+      real(wp), intent(in), optional :: sigma_time(:), sigma_force(:), sigma_restitution(:)
+      logical, intent(in), optional :: absolute_sigma
+      real(wp), intent(in), optional :: guess(:)
+      type(impact_data_model) :: model
+      real(wp), allocatable :: theta(:), lower(:), sigma_obs(:), r(:), estimate(:)
+      integer, allocatable :: series(:)
+      logical, allocatable :: given(:)
+      integer :: n, p, nseries, offset
+      real(wp) :: b0, n0
+
+      n = size(velocity)
+      p = merge(3, 2, fit_b)
+      if (.not. ieee_is_finite(mass)) then
+         stat = hcimpact_err_not_finite
+         return
+      end if
+      if (.not. mass > 0.0_wp) then
+         stat = hcimpact_err_mass
+         return
+      end if
+      if (.not. (present(contact_time) .or. present(peak_force) .or. &
+         & (fit_b .and. present(restitution)))) then
+         stat = hcimpact_err_underdetermined
+         return
+      end if
+      if (present(guess)) then
+         if (size(guess) /= p) then
+            stat = hcimpact_err_size
+            return
+         end if
+         if (.not. all(ieee_is_finite(guess))) then
+            stat = hcimpact_err_not_finite
+            return
+         end if
+         if (.not. (guess(1) > 0.0_wp .and. guess(2) > 0.0_wp)) then
+            stat = hcimpact_err_domain
+            return
+         end if
+         if (fit_b) then
+            if (guess(3) < 0.0_wp) then
+               stat = hcimpact_err_damping
+               return
+            end if
+         end if
+      end if
+
+      model%mass = mass
+      allocate(series(0), given(0), sigma_obs(0))
+      stat = hcimpact_ok
+      if (present(contact_time)) then
+         call add_series(time_series, contact_time, sigma_time)
+         if (stat /= hcimpact_ok) return
+         model%log_time = log(contact_time)
+      end if
+      if (present(peak_force)) then
+         call add_series(force_series, peak_force, sigma_force)
+         if (stat /= hcimpact_ok) return
+         model%log_force = log(peak_force)
+      end if
+      if (present(restitution) .and. fit_b) then
+         call add_series(restitution_series, restitution, sigma_restitution)
+         if (stat /= hcimpact_ok) return
+         model%restitution = restitution
+      end if
+      nseries = size(series)
+      stat = check_count(n * nseries, p, 1)
+      if (stat /= hcimpact_ok) return
+      if (n < 1) then
+         stat = hcimpact_err_underdetermined
+         return
+      end if
+
+      model%velocity = velocity
+      model%log_velocity = log(velocity)
+      model%free = [.true., .true., fit_b]
+      model%fixed = [0.0_wp, 0.0_wp, damping]
+
+      ! starting values: b from the restitution, n from the slopes, then ln c
+      if (present(guess)) then
+         theta = [log(guess(1)), guess(2:p)]
+      else
+         b0 = damping
+         if (fit_b) then
+            b0 = 0.0_wp
+            if (model%has(restitution_series)) &
+               & b0 = median(damping_estimates(velocity, restitution))
+         end if
+         n0 = exponent_estimate(model)
+         theta = [0.0_wp, n0]
+         if (fit_b) theta = [theta, b0]
+         allocate(r(n * nseries))
+         call model%evaluate(theta, r, stat)
+         if (stat /= hcimpact_ok) return
+         ! residual of ln t falls by ln c/(n+1), that of ln F rises by it
+         allocate(estimate(0))
+         offset = 0
+         if (model%has(time_series)) then
+            estimate = [estimate, -(n0 + 1.0_wp) * r(1:n)]
+            offset = n
+         end if
+         if (model%has(force_series)) &
+            & estimate = [estimate, (n0 + 1.0_wp) * r(offset+1:offset+n)]
+         if (size(estimate) > 0) theta(1) = sum(estimate) / size(estimate)
+      end if
+
+      allocate(lower(p))
+      lower(1:2) = [-huge(1.0_wp), min_exponent]
+      if (fit_b) lower(3) = 0.0_wp
+      theta(2) = max(theta(2), min_exponent)
+      call run_fit(model, theta, lower, series, sigma_obs, given, flag(absolute_sigma), &
+         & fit, stat)
+      if (stat /= hcimpact_ok) return
+      fit%parameters = [exp(theta(1)), theta(2:p)]
+      if (.not. ieee_is_finite(fit%parameters(1))) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      fit%covariance = log_to_linear(fit%covariance, fit%parameters, &
+         & [.true., spread(.false., 1, p - 1)])
+      call finish_errors(fit)
+
+   contains
+
+      !> Check one series and append it to the model's list.
+      subroutine add_series(kind, values, sigma)
+         integer, intent(in) :: kind
+         real(wp), intent(in) :: values(:)
+         real(wp), intent(in), optional :: sigma(:)
+         logical :: has_sigma
+         stat = check_series(velocity, values, kind, sigma)
+         if (stat /= hcimpact_ok) return
+         model%has(kind) = .true.
+         series = [series, kind]
+         sigma_obs = [sigma_obs, series_sigma(values, kind, sigma, has_sigma)]
+         given = [given, has_sigma]
+      end subroutine add_series
+
+   end subroutine fit_impact_data
+
+   !> The exponent n from the slopes of ln t and ln F against ln V in the elastic
+   !> limit (t ~ V^((1-n)/(n+1)), F ~ V^(2n/(n+1))); 3/2 when the speeds do not vary
+   !> or the slopes are implausible.
+   function exponent_estimate(model) result(n0)
+      type(impact_data_model), intent(in) :: model
+      real(wp) :: n0
+      real(wp) :: s, total
+      integer :: count_ok
+
+      n0 = 1.5_wp
+      if (count_distinct(model%velocity) < 2) return
+      total = 0.0_wp
+      count_ok = 0
+      if (model%has(time_series)) then
+         s = slope(model%log_velocity, model%log_time)
+         if (1.0_wp + s > 0.0_wp) call take((1.0_wp - s) / (1.0_wp + s))
+      end if
+      if (model%has(force_series)) then
+         s = slope(model%log_velocity, model%log_force)
+         if (2.0_wp - s > 0.0_wp) call take(s / (2.0_wp - s))
+      end if
+      if (count_ok > 0) n0 = total / count_ok
+   contains
+      subroutine take(value)
+         real(wp), intent(in) :: value
+         if (value >= 0.1_wp .and. value <= 10.0_wp) then
+            total = total + value
+            count_ok = count_ok + 1
+         end if
+      end subroutine take
+   end function exponent_estimate
+
+   !> Least-squares slope of y against x (x not all equal).
+   pure function slope(x, y) result(s)
+      real(wp), intent(in) :: x(:), y(:)
+      real(wp) :: s
+      real(wp) :: dx(size(x))
+      dx = x - sum(x) / size(x)
+      s = sum(dx * y) / sum(dx**2)
+   end function slope
+
+   !> Fit `theta` of `model`, weighting each series by its given sigmas or by its own
+   !> estimated scatter, and fill the statistics of `fit` for theta (covariance in
+   !> theta's own coordinates).
+   subroutine run_fit(model, theta, lower, series, sigma_obs, given, absolute, fit, stat)
+      class(impact_data_model), intent(inout) :: model
+      real(wp), intent(inout) :: theta(:)
+      real(wp), intent(in) :: lower(:)
+      !> Kind of each series present, in the order of the residual blocks
+      integer, intent(in) :: series(:)
+      !> Given sigma of each observation, in residual units (ignored where not given)
+      real(wp), intent(in) :: sigma_obs(:)
+      !> Whether each series came with sigmas
+      logical, intent(in) :: given(:)
+      logical, intent(in) :: absolute
+      type(fit_type), intent(inout) :: fit
+      integer, intent(out) :: stat
+      integer, parameter :: max_passes = 10
+      real(wp), parameter :: settled = 1.0e-3_wp
+      real(wp), allocatable :: weight(:), scale(:), new_scale(:), r(:), jac(:, :), &
+         & leverage(:), cov(:, :)
+      integer :: m, p, nk, k, pass, iterations
+      real(wp) :: change
+
+      m = size(sigma_obs)
+      p = size(theta)
+      nk = m / size(series)
+      allocate(scale(size(series)), source=1.0_wp)
+      allocate(new_scale(size(series)), r(m), jac(m, p), leverage(m), cov(p, p))
+      weight = observation_weights()
+      fit%iterations = 0
+      do pass = 1, max_passes
+         call levenberg_marquardt(model, theta, weight, lower, stat, iterations)
+         fit%iterations = fit%iterations + iterations
+         if (stat /= hcimpact_ok) return
+         if (size(series) < 2 .or. all(given)) exit
+         call statistics()
+         if (stat /= hcimpact_ok) return
+         change = 0.0_wp
+         do k = 1, size(series)
+            if (.not. given(k)) change = max(change, abs(new_scale(k) / scale(k) - 1.0_wp))
+         end do
+         scale = new_scale
+         weight = observation_weights()
+         if (change <= settled) exit
+      end do
+      call statistics()
+      if (stat /= hcimpact_ok) return
+      fit%residuals = r
+      fit%scatter = new_scale
+      fit%chi_square = sum((weight * r)**2)
+      fit%degrees_of_freedom = m - p
+      fit%covariance = cov
+      if (.not. (absolute .and. all(given))) &
+         & fit%covariance = cov * (fit%chi_square / fit%degrees_of_freedom)
+
+   contains
+
+      !> 1/sigma of each observation: the given one, or the series' estimated scale.
+      function observation_weights() result(w)
+         real(wp) :: w(m)
+         integer :: kk
+         do kk = 1, size(series)
+            if (given(kk)) then
+               w((kk-1)*nk+1:kk*nk) = 1.0_wp / sigma_obs((kk-1)*nk+1:kk*nk)
+            else
+               w((kk-1)*nk+1:kk*nk) = 1.0_wp / scale(kk)
+            end if
+         end do
+      end function observation_weights
+
+      !> Residuals, covariance, leverages and each series' scatter at theta.
+      subroutine statistics()
+         integer :: kk, j
+         real(wp) :: dof
+         call model%evaluate(theta, r, stat, jac)
+         if (stat /= hcimpact_ok) return
+         do j = 1, p
+            jac(:, j) = weight * jac(:, j)
+         end do
+         call jacobian_analysis(jac, cov, stat, fit%condition_number, leverage)
+         if (stat /= hcimpact_ok) return
+         do kk = 1, size(series)
+            dof = nk - sum(leverage((kk-1)*nk+1:kk*nk))
+            new_scale(kk) = sqrt(sum(r((kk-1)*nk+1:kk*nk)**2) / max(dof, 0.5_wp))
+            new_scale(kk) = max(new_scale(kk), epsilon(1.0_wp))
+         end do
+      end subroutine statistics
+
+   end subroutine run_fit
+
+   !> Residuals of the impact data at theta (the free ones of ln c, n, b) and, on
+   !> request, their Jacobian.
+   subroutine evaluate_impact_data(self, theta, residual, stat, jacobian)
+      !> The data and model
+      class(impact_data_model), intent(inout) :: self
+      !> Free parameters, in the order (ln c, n, b)
+      real(wp), intent(in) :: theta(:)
+      !> Residuals: ln t - ln t_model, ln F - ln F_model, e - k, per series present
+      real(wp), intent(out) :: residual(:)
+      !> Status
+      integer, intent(out) :: stat
+      !> d residual / d theta
+      real(wp), intent(out), optional :: jacobian(:, :)
+      real(wp) :: lt(size(self%velocity)), lf(size(self%velocity)), &
+         & log_x(size(self%velocity)), dlogx_dn(size(self%velocity)), &
+         & dlt_dn(size(self%velocity)), dlf_dn(size(self%velocity)), &
+         & dlt_db(size(self%velocity)), dlf_db(size(self%velocity))
+      real(wp), allocatable :: full_jac(:, :)
+      real(wp) :: p(3), log_c, n, b, np1, hn, hb, beta, lt_h, lf_h
+      integer :: nv, i, row, j
+      logical :: dynamic
+
+      nv = size(self%velocity)
+      p = unpack(theta, self%free, self%fixed)
+      log_c = p(log_stiffness_index)
+      n = p(exponent_index)
+      b = p(damping_index)
+      np1 = n + 1.0_wp
+      dynamic = self%has(time_series) .or. self%has(force_series)
+      stat = hcimpact_ok
+      if (.not. (n > 0.0_wp .and. b >= 0.0_wp)) then
+         stat = hcimpact_err_domain
+         return
+      end if
+
+      if (dynamic) then
+         if (.not. (self%cached .and. n == self%cache_n .and. b == self%cache_b)) then
+            self%cached = .false.
+            if (allocated(self%log_tau)) deallocate(self%log_tau, self%log_phi)
+            allocate(self%log_tau(nv), self%log_phi(nv))
+            do i = 1, nv
+               call scaled_impact(n, b * self%velocity(i), self%log_tau(i), &
+                  & self%log_phi(i), stat)
+               if (stat /= hcimpact_ok) return
+            end do
+            self%cached = .true.
+            self%cache_n = n
+            self%cache_b = b
+         end if
+         ! ln X = ln((n+1) m V^2/(2c))/(n+1)
+         log_x = (log(0.5_wp * np1) + log(self%mass) + 2.0_wp * self%log_velocity &
+            & - log_c) / np1
+         lt = log_x - self%log_velocity + self%log_tau
+         lf = log(self%mass) + 2.0_wp * self%log_velocity - log_x + self%log_phi
+      end if
+
+      row = 0
+      if (self%has(time_series)) then
+         residual(row+1:row+nv) = self%log_time - lt
+         row = row + nv
+      end if
+      if (self%has(force_series)) then
+         residual(row+1:row+nv) = self%log_force - lf
+         row = row + nv
+      end if
+      if (self%has(restitution_series)) then
+         residual(row+1:row+nv) = self%restitution - restitution(b * self%velocity)
+         row = row + nv
+      end if
+      if (.not. present(jacobian)) return
+
+      allocate(full_jac(row, 3), source=0.0_wp)
+      dlt_dn = 0.0_wp
+      dlf_dn = 0.0_wp
+      dlt_db = 0.0_wp
+      dlf_db = 0.0_wp
+      dlogx_dn = 0.0_wp
+      if (dynamic) then
+         ! d ln X/d n = (1 - (n+1) ln X)/(n+1)^2, d ln X/d ln c = -1/(n+1)
+         dlogx_dn = (1.0_wp - np1 * log_x) / np1**2
+         if (self%free(exponent_index)) then
+            hn = sqrt(epsilon(1.0_wp)) * max(1.0_wp, n)
+            hn = (n + hn) - n
+            do i = 1, nv
+               call scaled_impact(n + hn, b * self%velocity(i), lt_h, lf_h, stat)
+               if (stat /= hcimpact_ok) return
+               dlt_dn(i) = (lt_h - self%log_tau(i)) / hn
+               dlf_dn(i) = (lf_h - self%log_phi(i)) / hn
+            end do
+         end if
+         if (self%free(damping_index)) then
+            do i = 1, nv
+               beta = b * self%velocity(i)
+               hb = sqrt(epsilon(1.0_wp)) * max(1.0_wp, beta)
+               hb = (beta + hb) - beta
+               call scaled_impact(n, beta + hb, lt_h, lf_h, stat)
+               if (stat /= hcimpact_ok) return
+               dlt_db(i) = self%velocity(i) * (lt_h - self%log_tau(i)) / hb
+               dlf_db(i) = self%velocity(i) * (lf_h - self%log_phi(i)) / hb
+            end do
+         end if
+      end if
+      row = 0
+      if (self%has(time_series)) then
+         full_jac(row+1:row+nv, 1) = 1.0_wp / np1
+         full_jac(row+1:row+nv, 2) = -(dlogx_dn + dlt_dn)
+         full_jac(row+1:row+nv, 3) = -dlt_db
+         row = row + nv
+      end if
+      if (self%has(force_series)) then
+         full_jac(row+1:row+nv, 1) = -1.0_wp / np1
+         full_jac(row+1:row+nv, 2) = -(-dlogx_dn + dlf_dn)
+         full_jac(row+1:row+nv, 3) = -dlf_db
+         row = row + nv
+      end if
+      if (self%has(restitution_series)) then
+         full_jac(row+1:row+nv, 3) = -self%velocity * restitution_derivative(b * self%velocity)
+      end if
+      jacobian = full_jac(:, pack([(j, j = 1, 3)], self%free))
+   end subroutine evaluate_impact_data
+
+   !> ln tau and ln phi: contact time and peak force of the dimensionless impact
+   !> (m = 1, V = 1, c = (n+1)/2, hence X = 1) with exponent n and damping beta.
+   subroutine scaled_impact(n, beta, log_tau, log_phi, stat)
+      real(wp), intent(in) :: n, beta
+      real(wp), intent(out) :: log_tau, log_phi
+      integer, intent(out) :: stat
+      type(contact_type) :: contact
+      type(outcome_type) :: outcome
+
+      contact = contact_type(mass=1.0_wp, stiffness=0.5_wp * (n + 1.0_wp), exponent=n, &
+         & damping=beta, velocity=1.0_wp)
+      call impact(contact, outcome, stat)
+      log_tau = 0.0_wp
+      log_phi = 0.0_wp
+      if (stat /= hcimpact_ok) return
+      if (.not. (outcome%contact_time > 0.0_wp .and. outcome%peak_force > 0.0_wp)) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      log_tau = log(outcome%contact_time)
+      log_phi = log(outcome%peak_force)
+   end subroutine scaled_impact
+
+   !> b_i = beta(e_i)/V_i from each point (e >= 1 gives 0).
+   function damping_estimates(velocity, restitution) result(b)
+      real(wp), intent(in) :: velocity(:), restitution(:)
+      real(wp) :: b(size(velocity))
+      b = restitution_inverse(min(restitution, 1.0_wp)) / velocity
+      where (.not. ieee_is_finite(b)) b = 0.0_wp
+   end function damping_estimates
+
+   !> Validate a data series against the speeds (or deflections) it goes with: sizes,
+   !> finiteness, positivity, and the sigmas if given.
+   function check_series(abscissa, values, kind, sigma) result(stat)
+      real(wp), intent(in) :: abscissa(:), values(:)
+      integer, intent(in) :: kind
+      real(wp), intent(in), optional :: sigma(:)
+      integer :: stat
+
+      stat = hcimpact_ok
+      if (size(values) /= size(abscissa)) then
+         stat = hcimpact_err_size
+      else if (present(sigma)) then
+         if (size(sigma) /= size(values)) stat = hcimpact_err_size
+      end if
+      if (stat /= hcimpact_ok) return
+      if (.not. (all(ieee_is_finite(abscissa)) .and. all(ieee_is_finite(values)))) then
+         stat = hcimpact_err_not_finite
+         return
+      end if
+      if (present(sigma)) then
+         if (.not. all(ieee_is_finite(sigma))) then
+            stat = hcimpact_err_not_finite
+            return
+         end if
+      end if
+      stat = check_positive(abscissa, hcimpact_err_velocity)
+      if (stat /= hcimpact_ok) return
+      if (kind == restitution_series) then
+         stat = check_positive(values, hcimpact_err_restitution)
+      else
+         stat = check_positive(values, hcimpact_err_domain)
+      end if
+      if (stat /= hcimpact_ok) return
+      if (present(sigma)) stat = check_positive(sigma, hcimpact_err_domain)
+   end function check_series
+
+   !> hcimpact_ok if every value is > 0, else `code`.
+   pure function check_positive(values, code) result(stat)
+      real(wp), intent(in) :: values(:)
+      integer, intent(in) :: code
+      integer :: stat
+      if (all(values > 0.0_wp)) then
+         stat = hcimpact_ok
+      else
+         stat = code
+      end if
+   end function check_positive
+
+   !> hcimpact_ok if `observations` >= parameters + extra, else underdetermined.
+   pure function check_count(observations, parameters, extra) result(stat)
+      integer, intent(in) :: observations, parameters, extra
+      integer :: stat
+      if (observations >= parameters + extra) then
+         stat = hcimpact_ok
+      else
+         stat = hcimpact_err_underdetermined
+      end if
+   end function check_count
+
+   !> Sigma of each observation on the residual's scale: sigma_i/y_i for a logarithm
+   !> (times and forces), sigma_i for restitution; ones when not given.
+   function series_sigma(values, kind, sigma, given) result(s)
+      real(wp), intent(in) :: values(:)
+      integer, intent(in) :: kind
+      real(wp), intent(in), optional :: sigma(:)
+      logical, intent(out) :: given
+      real(wp) :: s(size(values))
+      given = present(sigma)
+      s = 1.0_wp
+      if (.not. given) return
+      if (kind == restitution_series) then
+         s = sigma
+      else
+         s = sigma / values
+      end if
+   end function series_sigma
+
+   !> Covariance of parameters of which some were fitted as logarithms: first-order
+   !> propagation, cov(p_i, p_j) = cov(ln p_i, ln p_j) p_i p_j for the logarithmic ones.
+   pure function log_to_linear(cov, parameters, is_log) result(out)
+      real(wp), intent(in) :: cov(:, :), parameters(:)
+      logical, intent(in) :: is_log(:)
+      real(wp) :: out(size(cov, 1), size(cov, 2))
+      real(wp) :: factor(size(parameters))
+      integer :: i, j
+      factor = merge(parameters, 1.0_wp, is_log)
+      do j = 1, size(cov, 2)
+         do i = 1, size(cov, 1)
+            out(i, j) = cov(i, j) * factor(i) * factor(j)
+         end do
+      end do
+   end function log_to_linear
+
+   !> Standard errors from the covariance diagonal.
+   pure subroutine finish_errors(fit)
+      type(fit_type), intent(inout) :: fit
+      integer :: i
+      fit%standard_errors = [(sqrt(max(fit%covariance(i, i), 0.0_wp)), &
+         & i = 1, size(fit%parameters))]
+   end subroutine finish_errors
+
+   !> Number of distinct values.
+   pure function count_distinct(x) result(count_x)
+      real(wp), intent(in) :: x(:)
+      integer :: count_x
+      integer :: i
+      count_x = 0
+      do i = 1, size(x)
+         if (.not. any(x(1:i-1) == x(i))) count_x = count_x + 1
+      end do
+   end function count_distinct
+
+   !> Median of a small array (insertion sort of a copy).
+   pure function median(x) result(med)
+      real(wp), intent(in) :: x(:)
+      real(wp) :: med
+      real(wp) :: s(size(x)), v
+      integer :: i, j, n
+      n = size(x)
+      s = x
+      do i = 2, n
+         v = s(i)
+         j = i - 1
+         do while (j >= 1)
+            if (.not. s(j) > v) exit
+            s(j+1) = s(j)
+            j = j - 1
+         end do
+         s(j+1) = v
+      end do
+      if (n == 0) then
+         med = 0.0_wp
+      else if (mod(n, 2) == 1) then
+         med = s((n + 1) / 2)
+      else
+         med = 0.5_wp * (s(n / 2) + s(n / 2 + 1))
+      end if
+   end function median
+
+   !> The value of an optional logical flag (default .false.).
+   pure function flag(value) result(on)
+      logical, intent(in), optional :: value
+      logical :: on
+      on = .false.
+      if (present(value)) on = value
+   end function flag
+
+end module hcimpact_calibration
