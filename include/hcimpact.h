@@ -3,8 +3,27 @@
  * @file hcimpact.h
  * @brief C interface of hcimpact, the Hunt-Crossley model of a collinear impact.
  *
- * All quantities are in SI units. Functions that return a double answer NaN
- * for an argument outside their domain or for NaN; they never abort.
+ * The model: m x'' = -c x^n (1 + b x'), x(0) = 0, x'(0) = V > 0 (a body of mass m
+ * strikes a fixed obstacle with the speed V; x is the compression). Everything is in
+ * SI units: kg, m, s, N, Pa. See doc/c-api.md for a tour and the link lines.
+ *
+ * Conventions (the same for every function below):
+ *  - A function that returns a double answers NaN for an argument outside its domain
+ *    or for NaN; it has no other way to fail and never aborts.
+ *  - Every other function returns an int status: HCIMPACT_OK (0) or one of the
+ *    HCIMPACT_ERR_* codes below (hcimpact_status_message() gives its text).
+ *    A NULL pointer gives HCIMPACT_ERR_NULL and a size below 1 (below 2 for
+ *    hcimpact_time_law_samples) HCIMPACT_ERR_SIZE; then nothing is written.
+ *    On any other error every output is NaN.
+ *  - Array ("_array") forms take the number of elements n and plain arrays of n
+ *    elements; an output array may be the input array itself (computed in place),
+ *    other overlaps are not allowed.
+ *  - The library keeps no state: every function may be called from several threads
+ *    at once, and no function allocates memory that the caller must free.
+ *
+ * Link: -lhcimpact (pkg-config --libs hcimpact); hcimpact_simulate is in the
+ * optional component library -lhcimpact_cvode, the calibration functions in
+ * -lhcimpact_lapack.
  */
 #ifndef HCIMPACT_H
 #define HCIMPACT_H
@@ -12,12 +31,59 @@
 #define HCIMPACT_VERSION_MAJOR 0
 #define HCIMPACT_VERSION_MINOR 1
 #define HCIMPACT_VERSION_PATCH 0
-/** Version as one integer: 10000*major + 100*minor + patch */
+/** Version as one integer: 10000*major + 100*minor + patch
+ *  (hcimpact_version_number() returns that of the library at run time) */
 #define HCIMPACT_VERSION 100
+
+/* ------------------------------------------------------------------------
+ * Status codes (src/hcimpact/status.f90)
+ * ------------------------------------------------------------------------ */
+
+#define HCIMPACT_OK 0                   /**< success */
+#define HCIMPACT_ERR_NOT_FINITE 1       /**< an argument is NaN or infinite */
+#define HCIMPACT_ERR_MASS 2             /**< mass is zero or negative */
+#define HCIMPACT_ERR_STIFFNESS 3        /**< stiffness (contact constant c) is not positive */
+#define HCIMPACT_ERR_EXPONENT 4         /**< exponent n of the elastic law is not positive */
+#define HCIMPACT_ERR_VELOCITY 5         /**< approach velocity is zero or negative */
+#define HCIMPACT_ERR_DAMPING 6          /**< damping b is negative */
+#define HCIMPACT_ERR_RESTITUTION 7      /**< target restitution outside (0, 1] */
+#define HCIMPACT_ERR_DOMAIN 8           /**< another argument outside the domain, or a
+                                             result would leave the double range */
+#define HCIMPACT_ERR_NO_CONVERGENCE 9   /**< an iteration or quadrature did not converge */
+#define HCIMPACT_ERR_NULL 10            /**< a required pointer argument is NULL */
+#define HCIMPACT_ERR_SOLVER 11          /**< the ODE solver (CVODE) failed */
+#define HCIMPACT_ERR_UNAVAILABLE 12     /**< the component is not part of this build */
+#define HCIMPACT_ERR_ELASTIC_LAW 13     /**< an elastic law returned an invalid value */
+#define HCIMPACT_ERR_SIZE 14            /**< an array size is wrong (below 1, ...) */
+#define HCIMPACT_ERR_UNDERDETERMINED 15 /**< the data cannot determine a fit's parameters */
+
+/** Branches of hcimpact_velocity_at_depth: compression (x' >= 0) and restitution
+ *  (x' <= 0). */
+#define HCIMPACT_COMPRESSION_BRANCH 1
+#define HCIMPACT_RESTITUTION_BRANCH 2
+
+/** Default min_velocity of hcimpact_damping_for_restitution, in m/s. */
+#define HCIMPACT_DEFAULT_MIN_VELOCITY 1.0e-3
 
 #ifdef __cplusplus
 extern "C" {
 #endif
+
+/* ------------------------------------------------------------------------
+ * Library, status messages
+ * ------------------------------------------------------------------------ */
+
+/** Text of a status code, e.g. "mass must be positive". A pointer to constant
+ *  storage: never NULL, never to be freed or written, valid for the life of the
+ *  program; unknown codes give "unknown status code". Thread-safe. */
+const char *hcimpact_status_message(int status);
+
+/** Version of the library as "major.minor.patch" (constant storage, do not free). */
+const char *hcimpact_version(void);
+
+/** Version of the library as 10000*major + 100*minor + patch; compare it with the
+ *  header's HCIMPACT_VERSION to detect a mismatch between header and library. */
+int hcimpact_version_number(void);
 
 /* ------------------------------------------------------------------------
  * Lambert W, real branches
@@ -44,6 +110,14 @@ double hcimpact_lambert_w0p1(double t);
  *  NaN; t = +inf: -inf. */
 double hcimpact_lambert_wm1p1(double t);
 
+/** Array forms: w[i] = hcimpact_lambert_w0(z[i]) etc. for i < n (n >= 1).
+ *  Returns HCIMPACT_OK, HCIMPACT_ERR_NULL or HCIMPACT_ERR_SIZE; an argument outside
+ *  the domain gives NaN in its element only. */
+int hcimpact_lambert_w0_array(int n, const double *z, double *w);
+int hcimpact_lambert_wm1_array(int n, const double *z, double *w);
+int hcimpact_lambert_w0p1_array(int n, const double *t, double *v);
+int hcimpact_lambert_wm1p1_array(int n, const double *t, double *v);
+
 /* ------------------------------------------------------------------------
  * Restitution of the Hunt-Crossley impact (depends on beta = b V only)
  * ------------------------------------------------------------------------ */
@@ -57,6 +131,161 @@ double hcimpact_restitution(double beta);
  *  beta(1) = 0; within 4 ulp. e outside (0, 1] or NaN: NaN; e below 1/DBL_MAX
  *  (where beta would exceed DBL_MAX): +inf. */
 double hcimpact_restitution_inverse(double e);
+
+/** 1 - k(beta), accurate also where k is close to 1 (small beta). Domain as
+ *  hcimpact_restitution. */
+double hcimpact_one_minus_restitution(double beta);
+
+/** Share of the kinetic energy lost in the impact, 1 - k(beta)^2 (dimensionless).
+ *  Domain as hcimpact_restitution. */
+double hcimpact_energy_loss_ratio(double beta);
+
+/** Sensitivity dk/dbeta of the restitution (negative; -2/3 at beta = 0, -0 at
+ *  beta = +inf). dk/db = V dk/dbeta, dk/dV = b dk/dbeta. Domain as
+ *  hcimpact_restitution. */
+double hcimpact_restitution_derivative(double beta);
+
+/** h(u) = u - ln(1 + u) >= 0 for u > -1 (the first integral of the motion,
+ *  MODEL.md), accurate near u = 0 where it is u^2/2. u = -1 and u = +inf: +inf;
+ *  u < -1, NaN: NaN. */
+double hcimpact_u_minus_log1p(double u);
+
+/** Array forms of the five functions above (not h): out[i] = f(in[i]) for i < n
+ *  (n >= 1). Returns HCIMPACT_OK, HCIMPACT_ERR_NULL or HCIMPACT_ERR_SIZE; an argument
+ *  outside the domain gives NaN in its element only. */
+int hcimpact_restitution_array(int n, const double *beta, double *k);
+int hcimpact_restitution_inverse_array(int n, const double *e, double *beta);
+int hcimpact_one_minus_restitution_array(int n, const double *beta, double *d);
+int hcimpact_energy_loss_ratio_array(int n, const double *beta, double *r);
+int hcimpact_restitution_derivative_array(int n, const double *beta, double *dk);
+
+/** Damping constant b (s/m) that gives the restitution e (0 < e <= 1) at the
+ *  approach speed velocity (m/s, >= 0): b = beta(e)/max(velocity, min_velocity).
+ *  Below min_velocity (m/s, > 0; HCIMPACT_DEFAULT_MIN_VELOCITY is 1e-3) b is that of
+ *  min_velocity, so that it stays finite as the speed tends to 0.
+ *  Returns HCIMPACT_OK; HCIMPACT_ERR_NOT_FINITE (NaN or infinite argument),
+ *  HCIMPACT_ERR_RESTITUTION (e outside (0, 1]), HCIMPACT_ERR_VELOCITY (velocity < 0
+ *  or min_velocity <= 0): *damping = NaN; HCIMPACT_ERR_NULL (damping is NULL). */
+int hcimpact_damping_for_restitution(double e, double velocity, double min_velocity,
+                                     double *damping);
+
+/* ------------------------------------------------------------------------
+ * Two bodies: Hertz constant, effective mass, velocities after the impact
+ * ------------------------------------------------------------------------ */
+
+/** Hertz's contact constant c in N/m^(3/2) of two elastic spheres:
+ *  1/c = (3/4) ((1 - nu1^2)/E1 + (1 - nu2^2)/E2) sqrt(1/R1 + 1/R2).
+ *  young (Pa) > 0 finite, -1 < poisson <= 1/2, radius (m) > 0 or INFINITY for a
+ *  flat body (a plate; not both). Otherwise NaN. Steel ball R = 1.452 cm on a steel
+ *  plate (E = 2e11 Pa, nu = 0.25): 1.7138e10. */
+double hcimpact_hertz_constant(double young1, double poisson1, double radius1,
+                               double young2, double poisson2, double radius2);
+
+/** Effective mass m1 m2/(m1 + m2) in kg, the mass of the equivalent one-body impact.
+ *  mass1 > 0 finite, mass2 > 0 (INFINITY: an immovable obstacle, gives mass1).
+ *  Otherwise NaN. */
+double hcimpact_effective_mass(double mass1, double mass2);
+
+/** Velocities (m/s) of two bodies after a collinear impact with the coefficient of
+ *  restitution k (e.g. from hcimpact_impact with the effective mass and the relative
+ *  speed velocity1 - velocity2 > 0): momentum is conserved and the relative velocity
+ *  becomes -k (velocity1 - velocity2). Body 1 moves along +x towards body 2.
+ *  mass2 = INFINITY is an immovable obstacle.
+ *  Returns HCIMPACT_OK; HCIMPACT_ERR_NOT_FINITE, HCIMPACT_ERR_MASS (a mass <= 0),
+ *  HCIMPACT_ERR_VELOCITY (velocity1 <= velocity2: no approach),
+ *  HCIMPACT_ERR_RESTITUTION (k outside [0, 1]): outputs NaN; HCIMPACT_ERR_NULL. */
+int hcimpact_two_body_velocities(double mass1, double mass2, double velocity1,
+                                 double velocity2, double restitution,
+                                 double *velocity1_after, double *velocity2_after);
+
+/* ------------------------------------------------------------------------
+ * One impact (issue #3): m x'' = -c x^n (1 + b x'), x(0) = 0, x'(0) = V.
+ * Fortran: src/hcimpact/api_impact.f90 (module hcimpact_api_impact), physics in
+ * hcimpact_impact_model; doc/impact.md.
+ * ------------------------------------------------------------------------ */
+
+/** The contact of one collinear impact (SI units). For two bodies use the
+ *  effective mass m1 m2/(m1 + m2) and the relative approach speed. */
+typedef struct {
+    double mass;      /**< mass m in kg (effective mass for two bodies), > 0 */
+    double stiffness; /**< contact constant c in N/m^n, > 0 (Hertz: see doc/impact.md) */
+    double exponent;  /**< exponent n of the elastic law f = c x^n, > 0 (3/2: Hertz) */
+    double damping;   /**< Hunt-Crossley damping b in s/m, >= 0 (0: elastic) */
+    double velocity;  /**< approach speed V in m/s, > 0 */
+} hcimpact_contact;
+
+/** What hcimpact_impact computes. */
+typedef struct {
+    double restitution;               /**< coefficient of restitution k in (0, 1] */
+    double energy_loss_ratio;         /**< share of kinetic energy lost, 1 - k^2 */
+    double rebound_velocity;          /**< -k V in m/s (negative) */
+    double max_compression;           /**< maximum compression x_max in m */
+    double peak_force;                /**< largest contact force c x^n (1 + b x') in N */
+    double compression_at_peak_force; /**< compression at which it acts, in m */
+    double compression_time;          /**< time from impact to x_max in s */
+    double contact_time;              /**< duration of the contact in s */
+} hcimpact_outcome;
+
+/** One impact with the power law f = c x^n. Every output is the value at the
+ *  doubles given (b V formed exactly); measured errors are within about 1.2 ulp
+ *  (x_max and k within 0.5 ulp) over the reference data, see doc/impact.md.
+ *  Returns 0 (HCIMPACT_OK) on success; otherwise a status and, except for
+ *  HCIMPACT_ERR_NULL, every field of *outcome is NaN:
+ *  HCIMPACT_ERR_NOT_FINITE (1)   a field of *contact is NaN or infinite,
+ *  HCIMPACT_ERR_MASS (2)         mass <= 0,
+ *  HCIMPACT_ERR_STIFFNESS (3)    stiffness <= 0,
+ *  HCIMPACT_ERR_EXPONENT (4)     exponent <= 0,
+ *  HCIMPACT_ERR_VELOCITY (5)     velocity <= 0,
+ *  HCIMPACT_ERR_DAMPING (6)      damping < 0,
+ *  HCIMPACT_ERR_DOMAIN (8)       a result would leave the double range,
+ *  HCIMPACT_ERR_NO_CONVERGENCE (9) a quadrature did not converge (not seen for
+ *                                b V up to 1e6),
+ *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written). */
+int hcimpact_impact(const hcimpact_contact *contact, hcimpact_outcome *outcome);
+
+/** hcimpact_impact for each of n >= 1 contacts: outcomes[i] from contacts[i].
+ *  statuses (may be NULL) receives the status of each; an impact that fails has NaN
+ *  in its outcome and does not stop the others. Returns HCIMPACT_OK when all
+ *  succeeded, otherwise the status of the first that failed; HCIMPACT_ERR_NULL
+ *  (contacts or outcomes NULL) and HCIMPACT_ERR_SIZE (n < 1) write nothing. */
+int hcimpact_impact_array(int n, const hcimpact_contact *contacts,
+                          hcimpact_outcome *outcomes, int *statuses);
+
+/* ------------------------------------------------------------------------
+ * Trajectory: velocity at a depth (phase curves), time law x(t), x'(t), F(t)
+ * ------------------------------------------------------------------------ */
+
+/** Velocity x' in m/s at the compression x (m, 0 <= x <= x_max) on the branch
+ *  HCIMPACT_COMPRESSION_BRANCH (x' >= 0) or HCIMPACT_RESTITUTION_BRANCH (x' <= 0):
+ *  V(x) = u(h(b V) (1 - (x/x_max)^(n+1)))/b through Lambert W (MODEL.md), smooth as
+ *  b -> 0. At x = 0 it is V resp. -k V, at x = x_max 0.
+ *  Returns HCIMPACT_OK; the statuses of hcimpact_impact for the contact;
+ *  HCIMPACT_ERR_NOT_FINITE (x NaN or infinite), HCIMPACT_ERR_DOMAIN (x < 0,
+ *  x > x_max by more than 4 ulp, or another branch): *velocity = NaN;
+ *  HCIMPACT_ERR_NULL. */
+int hcimpact_velocity_at_depth(const hcimpact_contact *contact, double x, int branch,
+                               double *velocity);
+
+/** velocity[i] = the velocity at the compression x[i], for i < n (n >= 1), on one
+ *  branch. On an error every velocity is NaN and the status is that of the first x
+ *  that failed (or of the contact). */
+int hcimpact_velocity_at_depth_array(const hcimpact_contact *contact, int n,
+                                     const double *x, int branch, double *velocity);
+
+/** The time law at n >= 1 times t[i] (s from the start of contact, any order):
+ *  compression x[i] (m), velocity v[i] = x' (m/s) and contact force
+ *  f[i] = c x^n (1 + b x') (N). Before the contact (t <= 0): x = 0, x' = V, F = 0;
+ *  after it: x = 0, x' = -k V, F = 0. Each time costs a few quadratures.
+ *  Returns HCIMPACT_OK; the statuses of hcimpact_impact; HCIMPACT_ERR_NOT_FINITE (a
+ *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE. */
+int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
+                      double *x, double *v, double *f);
+
+/** The time law on n >= 2 equally spaced times t[i] = contact_time i/(n - 1), written
+ *  to t, with x, v and f as in hcimpact_time_law (x[0] = x[n-1] = 0).
+ *  Returns as hcimpact_time_law; n < 2 gives HCIMPACT_ERR_SIZE. */
+int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
+                              double *x, double *v, double *f);
 
 #ifdef __cplusplus
 }

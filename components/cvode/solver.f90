@@ -50,7 +50,7 @@ module hcimpact_cvode_solver
       & context_create, context_free, capture_errors
    use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSetUserData, &
       & FCVodeSVtolerances, FCVodeSetLinearSolver, FCVodeSetJacFn, FCVodeRootInit, &
-      & FCVodeSetRootDirection, FCVodeSetMaxNumSteps, FCVodeSetMaxHnilWarns, &
+      & FCVodeSetRootDirection, FCVodeSetMaxNumSteps, FCVodeSetMaxHnilWarns, FCVodeSetInitStep, &
       & FCVodeSetNoInactiveRootWarn, FCVode, FCVodeGetRootInfo, FCVodeFree, &
       & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
       & FCVodeGetNumGEvals, FCVodeGetNumErrTestFails, FCVodeGetNumNonlinSolvIters, &
@@ -105,6 +105,11 @@ module hcimpact_cvode_solver
       !> Give up when the contact has not ended at this time (s); <= 0: automatic,
       !> 100 times a bound of the contact time from beta alone
       real(wp) :: max_time = -1.0_wp
+      !> First step (s); <= 0: automatic, 0.01 rtol^(1/(n+1)) x_max/V (power law;
+      !> n = 1 for a user's law). CVODE's own estimate is not used: it assumes a
+      !> smooth right-hand side, and s^n (1 + beta s') is not, at s = 0, on the scale
+      !> x_max/X = (2/beta)^(1/(n+1)) of large beta
+      real(wp) :: initial_step = -1.0_wp
       !> simulate_law only: the length unit L (m) of the scaled variables; <= 0:
       !> the maximum compression from the energy balance Pi(L) = m V^2 h(beta)/beta^2
       !> (exact without an external force), which needs the law's potential
@@ -181,7 +186,7 @@ contains
       type(cvode_options), intent(in), optional :: options
       type(cvode_options) :: opts
       type(impact_system), target :: sys
-      real(wp) :: n, a, beta, ln_x, ln_f, s_max, k, atol(2), tau_max, bound
+      real(wp) :: n, a, beta, ln_x, ln_f, s_max, k, atol(2), tau_max, bound, h0
       character(len=:), allocatable :: why
 
       simulation%message = "success"
@@ -245,7 +250,12 @@ contains
       else
          tau_max = 100.0_wp * (1.0_wp + s_max * (1.0_wp + 1.0_wp / k))
       end if
-      call integrate(sys, opts, atol, tau_max, simulation, stat)
+      if (opts%initial_step > 0.0_wp) then
+         h0 = opts%initial_step / sys%time
+      else
+         h0 = 0.01_wp * opts%rtol**(1.0_wp / (n + 1.0_wp)) * s_max
+      end if
+      call integrate(sys, opts, atol, tau_max, h0, simulation, stat)
    end subroutine simulate_power
 
    !> An impact with a user's elastic law f (hcimpact_elastic) and an optional
@@ -285,7 +295,7 @@ contains
       class(external_force), intent(in), optional :: external
       type(cvode_options) :: opts
       type(impact_system), target :: sys
-      real(wp) :: beta, k, length, atol(2), tau_max
+      real(wp) :: beta, k, length, atol(2), tau_max, h0
       character(len=:), allocatable :: why
 
       simulation%message = "success"
@@ -295,11 +305,6 @@ contains
       if (stat == hcimpact_ok) then
          call check_power_input(contact_type(mass=mass, stiffness=1.0_wp, exponent=1.0_wp, &
             & damping=damping, velocity=velocity), stat, why)
-      end if
-      if (stat == hcimpact_ok .and. .not. (ieee_is_finite(opts%length_scale) &
-         & .and. ieee_is_finite(opts%max_time))) then
-         stat = hcimpact_err_not_finite
-         why = "options%length_scale and options%max_time must be finite"
       end if
       if (stat /= hcimpact_ok) then
          simulation%message = why
@@ -354,7 +359,12 @@ contains
       else
          tau_max = 100.0_wp * (2.0_wp + 1.0_wp / k)
       end if
-      call integrate(sys, opts, atol, tau_max, simulation, stat)
+      if (opts%initial_step > 0.0_wp) then
+         h0 = opts%initial_step / sys%time
+      else
+         h0 = 0.01_wp * sqrt(opts%rtol)
+      end if
+      call integrate(sys, opts, atol, tau_max, h0, simulation, stat)
    end subroutine simulate_law
 
    !> Check the options; the defaults of atol are filled in.
@@ -368,6 +378,10 @@ contains
       if (.not. (ieee_is_finite(opts%rtol) .and. ieee_is_finite(opts%atol))) then
          stat = hcimpact_err_not_finite
          why = "the tolerances must be finite"
+      else if (.not. (ieee_is_finite(opts%max_time) .and. ieee_is_finite(opts%initial_step) &
+         & .and. ieee_is_finite(opts%length_scale))) then
+         stat = hcimpact_err_not_finite
+         why = "options%max_time, initial_step and length_scale must be finite"
       else if (.not. (opts%rtol > 0.0_wp .and. opts%rtol < 1.0_wp)) then
          stat = hcimpact_err_domain
          why = "rtol must lie in (0, 1)"
@@ -458,7 +472,7 @@ contains
 
    !> Integrate the system from the impact to the end of contact, and fill in the
    !> simulation (SI units) from the roots located on the way.
-   subroutine integrate(sys, opts, atol, tau_max, simulation, stat)
+   subroutine integrate(sys, opts, atol, tau_max, h0, simulation, stat)
       !> The system; its address is CVODE's user data
       type(impact_system), intent(inout), target :: sys
       !> Settings (checked)
@@ -467,6 +481,8 @@ contains
       real(wp), intent(in) :: atol(2)
       !> Scaled time at which to give up
       real(wp), intent(in) :: tau_max
+      !> Scaled first step
+      real(wp), intent(in) :: h0
       !> The result
       type(simulation_type), intent(inout) :: simulation
       !> Status
@@ -561,6 +577,9 @@ contains
          rootdir = -1_c_int
          where = "CVodeSetRootDirection"
          ierr = FCVodeSetRootDirection(cvode_mem, rootdir)
+         if (ierr /= CV_SUCCESS) exit setup
+         where = "CVodeSetInitStep"
+         ierr = FCVodeSetInitStep(cvode_mem, real(h0, c_double))
          if (ierr /= CV_SUCCESS) exit setup
          where = "CVodeSetMaxNumSteps"
          ierr = FCVodeSetMaxNumSteps(cvode_mem, int(opts%max_steps, c_long))

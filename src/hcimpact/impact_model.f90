@@ -31,7 +31,7 @@
 !> NaN outputs when it is not hcimpact_ok.
 module hcimpact_impact_model
    use, intrinsic :: iso_fortran_env, only : int64
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp, ik
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
@@ -288,13 +288,17 @@ contains
    !> _exponent, _velocity (not positive), _damping (negative), _domain (results
    !> outside the double range), _no_convergence (a quadrature failed: not seen for
    !> 0.1 <= n <= 10 and beta = b V up to 1e12).
-   elemental subroutine impact_power(contact, outcome, stat)
+   elemental subroutine impact_power(contact, outcome, stat, rtol)
       !> The contact
       type(contact_type), intent(in) :: contact
       !> Its outcome; every real field NaN on error
       type(outcome_type), intent(out) :: outcome
       !> Status: hcimpact_ok or an error code of hcimpact_status
       integer, intent(out) :: stat
+      !> Relative tolerance of the time quadratures (default: full double precision;
+      !> values below epsilon are taken as epsilon; NaN or <= 0 is hcimpact_err_domain).
+      !> Only the times depend on it: the other outputs are closed forms.
+      real(wp), intent(in), optional :: rtol
       type(power_model) :: model
       type(dd_real) :: k, t, dur(2), tpeak, q, y, u, lp
       integer(ik) :: ev(3)
@@ -305,6 +309,16 @@ contains
       if (stat /= hcimpact_ok) return
       call new_power_model(contact, model, stat)
       if (stat /= hcimpact_ok) return
+      if (present(rtol)) then
+         if (ieee_is_nan(rtol)) then
+            stat = hcimpact_err_domain
+            return
+         else if (rtol <= 0.0_wp) then
+            stat = hcimpact_err_domain
+            return
+         end if
+         model%f%rtol = max(rtol, epsilon(1.0_wp))
+      end if
 
       ev = 0_ik
       call phase_duration(model%f, compression_phase, dur(1), ev(1), stat)

@@ -1,0 +1,1080 @@
+! SPDX-License-Identifier: Apache-2.0
+!> Reading and validating scene files.
+!>
+!> A scene file is a sequence of Fortran namelist groups (`&name ... /`), in any order:
+!> `&scene` (title, speeds, outputs), `&body1` (the moving body), `&body2` (the other
+!> body; without it body 1 strikes a massive flat wall, whose material may be given in
+!> `&wall`), `&contact` (stiffness and exponent, else Hertz's constant from the
+!> materials), `&damping` (b, or a target restitution at a reference speed) and
+!> `&sampling` (how finely the curves are sampled). `!` starts a comment.
+!>
+!> The file is first scanned as text: every group must be known, appear once, start on
+!> its own line and end with `/`, and nothing else may stand outside the groups (a
+!> compiler's namelist reader silently skips unknown groups). Each group is then read
+!> with the compiler's namelist reader from its own lines. When that fails, the group is
+!> read again line by line to find the line at fault, and the compiler's message
+!> (iomsg) is quoted together with ours. Values are checked after reading. Every message
+!> starts with `file:line:` and names the group.
+module hcimpact_scene_reader
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan, ieee_value, &
+      & ieee_positive_inf
+   use hcimpact_kinds, only : wp
+   use hcimpact_status, only : hcimpact_ok, status_message
+   use hcimpact_hertz, only : hertz_constant, effective_mass
+   use hcimpact_impact_model, only : damping_for_restitution
+   use hcimpact_scene_model, only : scene_type, body_type, nan, n_outputs, output_names, &
+      & output_index, figure_outputs, out_summary, out_sweep, out_histories, out_phase, &
+      & out_loops, out_legacy, out_cvode, out_lambertw, max_speeds, default_scene_lines
+   use hcimpact_scene_text, only : lower, str, real_str, join
+   implicit none
+   private
+
+   public :: read_scene_file, read_scene_lines, read_default_scene, scene_line_length
+   public :: group_names, group_variables
+
+   !> Longest line of a scene file
+   integer, parameter :: scene_line_length = 1024
+   !> Most outputs and tolerances one list may hold
+   integer, parameter :: max_list = 32
+
+   integer, parameter :: g_scene = 1, g_body1 = 2, g_body2 = 3, g_wall = 4, g_contact = 5, &
+      & g_damping = 6, g_sampling = 7, n_groups = 7
+   !> The groups of a scene file
+   character(len=*), parameter :: group_names(n_groups) = [character(len=8) :: "scene", &
+      & "body1", "body2", "wall", "contact", "damping", "sampling"]
+   !> The variables each group takes
+   character(len=*), parameter :: group_variables(n_groups) = [character(len=96) :: &
+      & "title, speeds, outputs", &
+      & "mass, radius, density, young, poisson, flat", &
+      & "mass, radius, density, young, poisson, flat", &
+      & "young, poisson", &
+      & "stiffness, exponent", &
+      & "b, restitution, at_speed", &
+      & "samples, sweep_from, sweep_to, sweep_count, sweep_spacing, beta_max, tolerances"]
+   !> Names whose values are text (they need quotes)
+   character(len=*), parameter :: text_variables(3) = [character(len=13) :: "title", &
+      & "outputs", "sweep_spacing"]
+
+   !> Marks a real or integer the file did not set
+   real(wp), parameter :: unset = -huge(1.0_wp)
+   integer, parameter :: unset_int = -huge(1)
+
+   !> Where a group stands in the source
+   type :: group_place
+      logical :: present = .false.
+      integer :: first = 0, last = 0
+   end type group_place
+
+   !> The text of a scene and where its groups are
+   type :: scene_source
+      character(len=:), allocatable :: name
+      character(len=scene_line_length), allocatable :: lines(:)
+      type(group_place) :: groups(n_groups)
+   end type scene_source
+
+   ! The namelist variables; shared by the groups that take the same names, and reset
+   ! before each read.
+   character(len=200) :: title
+   real(wp) :: speeds(max_speeds)
+   character(len=32) :: outputs(max_list)
+   real(wp) :: mass, radius, density, young, poisson
+   logical :: flat
+   real(wp) :: stiffness, exponent
+   real(wp) :: b, restitution, at_speed
+   integer :: samples, sweep_count
+   real(wp) :: sweep_from, sweep_to, beta_max
+   character(len=16) :: sweep_spacing
+   real(wp) :: tolerances(max_list)
+
+   namelist /scene/ title, speeds, outputs
+   namelist /body1/ mass, radius, density, young, poisson, flat
+   namelist /body2/ mass, radius, density, young, poisson, flat
+   namelist /wall/ young, poisson
+   namelist /contact/ stiffness, exponent
+   namelist /damping/ b, restitution, at_speed
+   namelist /sampling/ samples, sweep_from, sweep_to, sweep_count, sweep_spacing, beta_max, &
+      & tolerances
+
+contains
+
+   !> Read and validate the scene file `path`. On failure `error` holds the message.
+   subroutine read_scene_file(path, sc, error)
+      !> Path of the scene file
+      character(len=*), intent(in) :: path
+      !> The scene
+      type(scene_type), intent(out) :: sc
+      !> Message naming the file, line and group; unallocated on success
+      character(len=:), allocatable, intent(out) :: error
+      character(len=scene_line_length), allocatable :: lines(:)
+      character(len=scene_line_length + 1) :: buffer
+      character(len=512) :: msg
+      integer :: unit, ios, n
+      logical :: exists
+
+      inquire(file=path, exist=exists)
+      if (.not. exists) then
+         error = path // ": no such scene file"
+         return
+      end if
+      open(newunit=unit, file=path, status="old", action="read", form="formatted", &
+         & access="sequential", iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         error = path // ": cannot open the scene file (" // trim(msg) // ")"
+         return
+      end if
+      allocate(lines(0))
+      n = 0
+      do
+         read(unit, '(a)', iostat=ios, iomsg=msg) buffer
+         if (is_iostat_end(ios)) exit
+         if (ios /= 0) then
+            error = path // ":" // str(n + 1) // ": cannot read the line (" // trim(msg) // ")"
+            close(unit)
+            return
+         end if
+         n = n + 1
+         if (len_trim(buffer) > scene_line_length) then
+            error = path // ":" // str(n) // ": line longer than " // str(scene_line_length) &
+               & // " characters"
+            close(unit)
+            return
+         end if
+         lines = [lines, buffer(1:scene_line_length)]
+      end do
+      close(unit)
+      call read_scene_lines(lines, path, stem(path), sc, error)
+   end subroutine read_scene_file
+
+   !> The built-in default scene (`default_scene_lines`).
+   subroutine read_default_scene(sc, error)
+      !> The scene
+      type(scene_type), intent(out) :: sc
+      !> Message; unallocated on success (the built-in scene is valid)
+      character(len=:), allocatable, intent(out) :: error
+      character(len=scene_line_length), allocatable :: lines(:)
+      character(len=80), allocatable :: short(:)
+      integer :: i
+      short = default_scene_lines()
+      allocate(lines(size(short)))
+      do i = 1, size(short)
+         lines(i) = short(i)
+      end do
+      call read_scene_lines(lines, "the built-in default scene", "steel_ball", sc, error)
+   end subroutine read_default_scene
+
+   !> Read and validate a scene given as the lines of a scene file.
+   subroutine read_scene_lines(lines, source_name, name, sc, error)
+      !> The lines
+      character(len=*), intent(in) :: lines(:)
+      !> Name of the source in messages (a path)
+      character(len=*), intent(in) :: source_name
+      !> Short name of the scene (the default results directory)
+      character(len=*), intent(in) :: name
+      !> The scene
+      type(scene_type), intent(out) :: sc
+      !> Message; unallocated on success
+      character(len=:), allocatable, intent(out) :: error
+      type(scene_source) :: src
+      integer :: i
+
+      src%name = source_name
+      allocate(src%lines(size(lines)))
+      do i = 1, size(lines)
+         src%lines(i) = lines(i)
+      end do
+      sc%name = name
+      sc%source = source_name
+      call scan_groups(src, error)
+      if (allocated(error)) return
+      call load_scene_group(src, sc, error)
+      if (allocated(error)) return
+      call load_body(src, g_body1, sc%body1, error)
+      if (allocated(error)) return
+      call load_body(src, g_body2, sc%body2, error)
+      if (allocated(error)) return
+      call load_body(src, g_wall, sc%wall, error)
+      if (allocated(error)) return
+      call load_contact(src, sc, error)
+      if (allocated(error)) return
+      call load_damping(src, sc, error)
+      if (allocated(error)) return
+      call load_sampling(src, sc, error)
+   end subroutine read_scene_lines
+
+   ! ------------------------------------------------------------------------------
+   ! The text scan
+   ! ------------------------------------------------------------------------------
+
+   !> Find the groups: known names, once each, on their own lines, closed by `/`, and
+   !> nothing but comments outside them.
+   subroutine scan_groups(src, error)
+      type(scene_source), intent(inout) :: src
+      character(len=:), allocatable, intent(out) :: error
+      character(len=1) :: ch, quote
+      character(len=:), allocatable :: gname
+      integer :: l, i, j, n, open_group, gid
+      logical :: line_has_text
+
+      open_group = 0
+      quote = " "
+      do l = 1, size(src%lines)
+         n = len_trim(src%lines(l))
+         i = 1
+         line_has_text = .false.
+         do while (i <= n)
+            ch = src%lines(l)(i:i)
+            if (quote /= " ") then
+               if (ch == quote) quote = " "
+               i = i + 1
+               cycle
+            end if
+            if (ch == "!") exit
+            if (open_group == 0) then
+               if (ch == " " .or. ch == achar(9)) then
+                  i = i + 1
+                  cycle
+               end if
+               if (ch /= "&" .and. ch /= "$") then
+                  error = place(src, l) // "text outside a group: '" // clip(src%lines(l)(i:n)) &
+                     & // "' (a group starts with &name and ends with /; ! starts a comment)"
+                  return
+               end if
+               j = i + 1
+               do while (j <= n)
+                  if (.not. is_name_char(src%lines(l)(j:j))) exit
+                  j = j + 1
+               end do
+               gname = lower(src%lines(l)(i + 1:j - 1))
+               if (len(gname) == 0) then
+                  error = place(src, l) // "'" // ch // "' without a group name (groups: " &
+                     & // join(group_names, ", ") // ")"
+                  return
+               end if
+               if (line_has_text) then
+                  error = place(src, l) // "start the group &" // gname // " on a line of its own"
+                  return
+               end if
+               gid = group_id(gname)
+               if (gid == 0) then
+                  error = place(src, l) // "unknown group &" // gname // " (a scene file has " &
+                     & // join(group_names, ", ") // ")"
+                  return
+               end if
+               if (src%groups(gid)%present) then
+                  error = place(src, l) // "a second &" // gname // " group (the first is at line " &
+                     & // str(src%groups(gid)%first) // ")"
+                  return
+               end if
+               src%groups(gid)%present = .true.
+               src%groups(gid)%first = l
+               open_group = gid
+               line_has_text = .true.
+               i = j
+               cycle
+            end if
+            ! inside a group
+            line_has_text = .true.
+            if (ch == '"' .or. ch == "'") then
+               quote = ch
+            else if (ch == "/") then
+               src%groups(open_group)%last = l
+               open_group = 0
+            else if (ch == "&" .or. ch == "$") then
+               j = i + 1
+               do while (j <= n)
+                  if (.not. is_name_char(src%lines(l)(j:j))) exit
+                  j = j + 1
+               end do
+               if (lower(src%lines(l)(i + 1:j - 1)) == "end") then
+                  src%groups(open_group)%last = l
+                  open_group = 0
+                  i = j
+                  cycle
+               end if
+               error = place(src, src%groups(open_group)%first) // "the group &" &
+                  & // trim(group_names(open_group)) // " is not closed with / before line " &
+                  & // str(l)
+               return
+            end if
+            i = i + 1
+         end do
+         if (quote /= " " .and. open_group == 0) then
+            error = place(src, l) // "unbalanced quote " // quote
+            return
+         end if
+      end do
+      if (open_group /= 0) then
+         error = place(src, src%groups(open_group)%first) // "the group &" &
+            & // trim(group_names(open_group)) // " is never closed with /"
+         return
+      end if
+   end subroutine scan_groups
+
+   !> Whether c may appear in a name.
+   elemental function is_name_char(c) result(yes)
+      character(len=1), intent(in) :: c
+      logical :: yes
+      yes = (c >= "a" .and. c <= "z") .or. (c >= "A" .and. c <= "Z") &
+         & .or. (c >= "0" .and. c <= "9") .or. c == "_"
+   end function is_name_char
+
+   !> Index of a group name, or 0.
+   pure function group_id(name) result(gid)
+      character(len=*), intent(in) :: name
+      integer :: gid
+      do gid = 1, n_groups
+         if (trim(group_names(gid)) == name) return
+      end do
+      gid = 0
+   end function group_id
+
+   !> "file:line: " or "file: " (line 0).
+   function place(src, line) result(text)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: line
+      character(len=:), allocatable :: text
+      if (line > 0) then
+         text = src%name // ":" // str(line) // ": "
+      else
+         text = src%name // ": "
+      end if
+   end function place
+
+   !> "file:line: &group: " for the line of `variable` in the group (its first line if
+   !> the variable does not appear).
+   function at(src, gid, variable) result(text)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: variable
+      character(len=:), allocatable :: text
+      integer :: line
+      line = src%groups(gid)%first
+      if (len(variable) > 0) line = variable_line(src, gid, variable)
+      text = place(src, line) // "&" // trim(group_names(gid)) // ": "
+   end function at
+
+   !> The line of the group where `variable =` (or `variable(`) stands, else its first line.
+   function variable_line(src, gid, variable) result(line)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: variable
+      integer :: line
+      integer :: l
+      do l = src%groups(gid)%first, src%groups(gid)%last
+         if (name_position(src%lines(l), variable) > 0) then
+            line = l
+            return
+         end if
+      end do
+      line = src%groups(gid)%first
+   end function variable_line
+
+   !> Position of `name` on the line as a name being assigned (followed by = or (),
+   !> outside quotes and comments; 0 if it is not there.
+   pure function name_position(line, name) result(pos)
+      character(len=*), intent(in) :: line, name
+      integer :: pos
+      character(len=len(line)) :: low
+      integer :: i, j, n
+      logical :: before_ok
+      low = lower(line)
+      n = len_trim(low)
+      call blank_quotes(low)
+      i = index(low, "!")
+      if (i > 0) low(i:) = " "
+      pos = 0
+      i = 1
+      do
+         j = index(low(i:n), lower(name))
+         if (j == 0) return
+         j = i + j - 1
+         before_ok = j == 1
+         if (.not. before_ok) before_ok = .not. is_name_char(low(j - 1:j - 1))
+         i = j + len(name)
+         if (before_ok) then
+            do while (i <= n)
+               if (low(i:i) /= " " .and. low(i:i) /= achar(9)) exit
+               i = i + 1
+            end do
+            if (i <= n) then
+               if (low(i:i) == "=" .or. low(i:i) == "(") then
+                  pos = j
+                  return
+               end if
+            end if
+         end if
+         if (i > n) return
+      end do
+   end function name_position
+
+   !> Replace quoted text by blanks.
+   pure subroutine blank_quotes(line)
+      character(len=*), intent(inout) :: line
+      character(len=1) :: quote
+      integer :: i
+      quote = " "
+      do i = 1, len(line)
+         if (quote /= " ") then
+            if (line(i:i) == quote) then
+               quote = " "
+            else
+               line(i:i) = " "
+            end if
+         else if (line(i:i) == '"' .or. line(i:i) == "'") then
+            quote = line(i:i)
+         end if
+      end do
+   end subroutine blank_quotes
+
+   !> At most 40 characters of a text.
+   pure function clip(text) result(out)
+      character(len=*), intent(in) :: text
+      character(len=:), allocatable :: out
+      if (len_trim(text) > 40) then
+         out = text(1:37) // "..."
+      else
+         out = trim(text)
+      end if
+   end function clip
+
+   !> The stem of a path: the file name without directory and extension.
+   pure function stem(path) result(name)
+      character(len=*), intent(in) :: path
+      character(len=:), allocatable :: name
+      integer :: i, j
+      i = index(path, "/", back=.true.)
+      name = path(i + 1:)
+      j = index(name, ".", back=.true.)
+      if (j > 1) name = name(1:j - 1)
+      if (len(name) == 0) name = "scene"
+   end function stem
+
+   ! ------------------------------------------------------------------------------
+   ! The namelist reads
+   ! ------------------------------------------------------------------------------
+
+   !> Set every namelist variable to "not given".
+   subroutine reset_variables()
+      title = ""
+      speeds = unset
+      outputs = ""
+      mass = unset
+      radius = unset
+      density = unset
+      young = unset
+      poisson = unset
+      flat = .false.
+      stiffness = unset
+      exponent = unset
+      b = unset
+      restitution = unset
+      at_speed = unset
+      samples = unset_int
+      sweep_count = unset_int
+      sweep_from = unset
+      sweep_to = unset
+      beta_max = unset
+      sweep_spacing = ""
+      tolerances = unset
+   end subroutine reset_variables
+
+   !> Read one group from the records `rec` with the compiler's namelist reader.
+   subroutine read_records(gid, rec, ios, msg)
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: rec(:)
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: msg
+      call reset_variables()
+      select case (gid)
+      case (g_scene)
+         read(rec, nml=scene, iostat=ios, iomsg=msg)
+      case (g_body1)
+         read(rec, nml=body1, iostat=ios, iomsg=msg)
+      case (g_body2)
+         read(rec, nml=body2, iostat=ios, iomsg=msg)
+      case (g_wall)
+         read(rec, nml=wall, iostat=ios, iomsg=msg)
+      case (g_contact)
+         read(rec, nml=contact, iostat=ios, iomsg=msg)
+      case (g_damping)
+         read(rec, nml=damping, iostat=ios, iomsg=msg)
+      case default
+         read(rec, nml=sampling, iostat=ios, iomsg=msg)
+      end select
+   end subroutine read_records
+
+   !> Read the group `gid` into the namelist variables (all unset if the group is
+   !> absent); on failure find the line at fault and explain.
+   subroutine read_group(src, gid, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=:), allocatable, intent(out) :: error
+      character(len=scene_line_length), allocatable :: rec(:)
+      character(len=512) :: msg, first_msg
+      integer :: ios, first, last, k, bad
+
+      call reset_variables()
+      if (.not. src%groups(gid)%present) return
+      first = src%groups(gid)%first
+      last = src%groups(gid)%last
+      msg = ""
+      call read_records(gid, src%lines(first:last), ios, msg)
+      if (ios == 0) return
+      first_msg = msg
+      ! the first prefix of the group (closed by an extra "/") that fails holds the fault
+      bad = first
+      do k = first, last
+         rec = [src%lines(first:k), repeat(" ", scene_line_length)]
+         rec(size(rec)) = "/"
+         msg = ""
+         call read_records(gid, rec, ios, msg)
+         if (ios /= 0) then
+            bad = k
+            first_msg = msg
+            exit
+         end if
+      end do
+      error = place(src, bad) // "&" // trim(group_names(gid)) // ": " &
+         & // explain(src%lines(bad), gid, trim(first_msg)) // " (Fortran: " // trim(first_msg) // ")"
+      call reset_variables()
+   end subroutine read_group
+
+   !> Our reading of a namelist error message on a line of group gid.
+   function explain(line, gid, msg) result(text)
+      character(len=*), intent(in) :: line
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: msg
+      character(len=:), allocatable :: text
+      character(len=*), parameter :: no_match = "Cannot match namelist object name "
+      character(len=:), allocatable :: token, owner
+      integer :: p
+
+      p = index(msg, no_match)
+      if (p > 0) then
+         token = trim(msg(p + len(no_match):))
+         if (name_position(line, token) > 0) then
+            text = "unknown name '" // token // "' (&" // trim(group_names(gid)) // " takes " &
+               & // trim(group_variables(gid)) // ")"
+            return
+         end if
+         owner = assigned_name(line, token)
+         if (len(owner) == 0) then
+            text = "'" // token // "' is neither a name of the group nor a value (&" &
+               & // trim(group_names(gid)) // " takes " // trim(group_variables(gid)) // ")"
+         else if (any(lower(owner) == text_variables)) then
+            text = "the text '" // token // "' of " // owner // " must be in quotes, e.g. " &
+               & // owner // " = """ // token // """"
+         else if (is_number(token)) then
+            text = owner // " takes a single value here, '" // token // "' is one too many"
+         else
+            text = "'" // token // "' is not a number (the value of " // owner // ")"
+         end if
+         return
+      end if
+      p = index(msg, "Bad data for namelist object ")
+      if (p > 0) then
+         token = trim(msg(p + len("Bad data for namelist object "):))
+         text = "a value of " // token // " is not of the right kind: " // clip(adjustl(line))
+         return
+      end if
+      p = index(msg, "Bad real number")
+      if (p == 0) p = index(msg, "Bad integer")
+      if (p == 0) p = index(msg, "Bad logical")
+      if (p > 0) then
+         text = "a value on this line is not of the right kind: " // clip(adjustl(line))
+         return
+      end if
+      if (index(msg, "out of range") > 0) then
+         text = "too many values, or an index out of range (at most " // str(max_speeds) &
+            & // " speeds and " // str(max_list) // " outputs or tolerances)"
+         return
+      end if
+      if (index(msg, "End of file") > 0) then
+         text = "the group ends too early (a quote or a value not closed?)"
+         return
+      end if
+      text = "cannot read this line: " // clip(adjustl(line))
+   end function explain
+
+   !> The name assigned on `line` before the value `token` ("" if none).
+   function assigned_name(line, token) result(name)
+      character(len=*), intent(in) :: line, token
+      character(len=:), allocatable :: name
+      character(len=len(line)) :: low
+      integer :: p, e, i, j
+      low = lower(line)
+      p = index(low, lower(token))
+      if (p == 0) p = len_trim(low) + 1
+      e = index(low(1:p - 1), "=", back=.true.)
+      name = ""
+      if (e == 0) return
+      j = e - 1
+      do while (j >= 1)
+         if (low(j:j) /= " ") exit
+         j = j - 1
+      end do
+      if (j >= 1) then
+         if (low(j:j) == ")") j = index(low(1:j), "(", back=.true.) - 1
+      end if
+      i = j
+      do while (i >= 1)
+         if (.not. is_name_char(low(i:i))) exit
+         i = i - 1
+      end do
+      if (j >= i + 1) name = low(i + 1:j)
+   end function assigned_name
+
+   !> Whether the text reads as a number.
+   function is_number(text) result(yes)
+      character(len=*), intent(in) :: text
+      logical :: yes
+      real(wp) :: x
+      integer :: ios
+      read(text, *, iostat=ios) x
+      yes = ios == 0
+   end function is_number
+
+   ! ------------------------------------------------------------------------------
+   ! The groups, checked
+   ! ------------------------------------------------------------------------------
+
+   !> A real the file set: finite (error otherwise); NaN when not given.
+   subroutine take(src, gid, name, value, out, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: value
+      real(wp), intent(out) :: out
+      character(len=:), allocatable, intent(inout) :: error
+      out = nan
+      if (allocated(error)) return
+      if (value == unset) return
+      if (.not. ieee_is_finite(value)) then
+         error = at(src, gid, name) // name // " is not a finite number"
+         return
+      end if
+      out = value
+   end subroutine take
+
+   !> The &scene group: title, speeds, outputs.
+   subroutine load_scene_group(src, sc, error)
+      type(scene_source), intent(in) :: src
+      type(scene_type), intent(inout) :: sc
+      character(len=:), allocatable, intent(out) :: error
+      integer :: i, n, k
+
+      call read_group(src, g_scene, error)
+      if (allocated(error)) return
+      sc%title = trim(title)
+      if (len(sc%title) == 0) sc%title = sc%name
+      ! speeds: the leading given values, without holes
+      n = 0
+      do i = 1, max_speeds
+         if (speeds(i) == unset) exit
+         n = i
+      end do
+      if (n < max_speeds) then
+         if (any(speeds(n + 1:) /= unset)) then
+            error = at(src, g_scene, "speeds") // "speeds has a gap: value " // str(n + 1) &
+               & // " is not given"
+            return
+         end if
+      end if
+      do i = 1, n
+         if (.not. ieee_is_finite(speeds(i))) then
+            error = at(src, g_scene, "speeds") // "speed " // str(i) // " is not a finite number"
+            return
+         end if
+         if (.not. speeds(i) > 0.0_wp) then
+            error = at(src, g_scene, "speeds") // "speed " // str(i) // " = " &
+               & // real_str(speeds(i), 6) // " m/s: approach speeds must be positive"
+            return
+         end if
+      end do
+      sc%speeds = speeds(1:n)
+      ! outputs
+      sc%wanted = .false.
+      do i = 1, max_list
+         if (len_trim(outputs(i)) == 0) cycle
+         select case (lower(trim(adjustl(outputs(i)))))
+         case ("figures")
+            sc%wanted = sc%wanted .or. figure_outputs
+         case ("all")
+            sc%wanted = .true.
+         case default
+            k = output_index(outputs(i))
+            if (k == 0) then
+               error = at(src, g_scene, "outputs") // "unknown output '" // trim(adjustl(outputs(i))) &
+                  & // "' (outputs: " // join(output_names, ", ") // ", or figures, all)"
+               return
+            end if
+            sc%wanted(k) = .true.
+         end select
+      end do
+      if (.not. any(sc%wanted)) sc%wanted(out_summary) = .true.
+   end subroutine load_scene_group
+
+   !> &body1, &body2 or &wall: masses and materials.
+   subroutine load_body(src, gid, body, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      type(body_type), intent(inout) :: body
+      character(len=:), allocatable, intent(out) :: error
+      real(wp), parameter :: pi = acos(-1.0_wp)
+
+      call read_group(src, gid, error)
+      if (allocated(error)) return
+      body%present = src%groups(gid)%present
+      if (.not. body%present) then
+         if (gid == g_body1) then
+            error = src%name // ": no &body1 group: the moving body needs its mass, e.g." &
+               & // " &body1 mass = 0.1 / (kg), or its radius and density"
+         end if
+         return
+      end if
+      call take(src, gid, "mass", mass, body%mass, error)
+      call take(src, gid, "radius", radius, body%radius, error)
+      call take(src, gid, "density", density, body%density, error)
+      call take(src, gid, "young", young, body%young, error)
+      call take(src, gid, "poisson", poisson, body%poisson, error)
+      if (allocated(error)) return
+      if (gid == g_body2 .and. src%groups(g_wall)%present) then
+         error = at(src, gid, "") // "give either &body2 (a second body) or &wall (a massive" &
+            & // " flat obstacle), not both"
+         return
+      end if
+      if (.not. ieee_is_nan(body%young)) then
+         if (.not. body%young > 0.0_wp) then
+            error = at(src, gid, "young") // "young = " // real_str(body%young, 6) &
+               & // ": Young's modulus (Pa) must be positive"
+            return
+         end if
+      end if
+      if (.not. ieee_is_nan(body%poisson)) then
+         if (.not. (body%poisson > -1.0_wp .and. body%poisson <= 0.5_wp)) then
+            error = at(src, gid, "poisson") // "poisson = " // real_str(body%poisson, 6) &
+               & // ": Poisson's ratio must lie in (-1, 0.5]"
+            return
+         end if
+      end if
+      if (gid == g_wall) then
+         body%radius = ieee_value(1.0_wp, ieee_positive_inf)
+         return
+      end if
+      if (.not. ieee_is_nan(body%radius)) then
+         if (.not. body%radius > 0.0_wp) then
+            error = at(src, gid, "radius") // "radius = " // real_str(body%radius, 6) &
+               & // " m: must be positive"
+            return
+         end if
+         if (flat) then
+            error = at(src, gid, "flat") // "give radius or flat = .true., not both"
+            return
+         end if
+      end if
+      if (.not. ieee_is_nan(body%density)) then
+         if (.not. body%density > 0.0_wp) then
+            error = at(src, gid, "density") // "density = " // real_str(body%density, 6) &
+               & // " kg/m^3: must be positive"
+            return
+         end if
+      end if
+      if (.not. ieee_is_nan(body%mass)) then
+         if (.not. body%mass > 0.0_wp) then
+            error = at(src, gid, "mass") // "mass = " // real_str(body%mass, 6) &
+               & // " kg: must be positive"
+            return
+         end if
+         if (.not. ieee_is_nan(body%density)) then
+            error = at(src, gid, "density") // "give mass, or radius and density, not both"
+            return
+         end if
+      else if (.not. ieee_is_nan(body%density)) then
+         if (ieee_is_nan(body%radius)) then
+            error = at(src, gid, "density") // "the mass from the density needs the radius" &
+               & // " (a sphere, m = 4/3 pi R^3 rho): give radius too, or mass"
+            return
+         end if
+         body%mass = 4.0_wp / 3.0_wp * pi * body%radius**3 * body%density
+         body%mass_from_density = .true.
+      else
+         error = at(src, gid, "") // "missing mass: give mass (kg), or radius (m) and density" &
+            & // " (kg/m^3)"
+         return
+      end if
+      if (flat) body%radius = ieee_value(1.0_wp, ieee_positive_inf)
+   end subroutine load_body
+
+   !> &contact: the stiffness c and exponent n, or Hertz's constant from the materials.
+   !> Also sets the effective mass.
+   subroutine load_contact(src, sc, error)
+      type(scene_source), intent(in) :: src
+      type(scene_type), intent(inout) :: sc
+      character(len=:), allocatable, intent(out) :: error
+      character(len=:), allocatable :: missing, other
+      type(body_type) :: obstacle
+
+      sc%two_bodies = sc%body2%present
+      if (sc%two_bodies) then
+         sc%mass = effective_mass(sc%body1%mass, sc%body2%mass)
+         obstacle = sc%body2
+         other = "body2"
+      else
+         sc%mass = sc%body1%mass
+         obstacle = sc%wall
+         obstacle%radius = ieee_value(1.0_wp, ieee_positive_inf)
+         other = "wall"
+      end if
+      call read_group(src, g_contact, error)
+      if (allocated(error)) return
+      call take(src, g_contact, "stiffness", stiffness, sc%stiffness, error)
+      call take(src, g_contact, "exponent", exponent, sc%exponent, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_nan(sc%exponent)) then
+         if (.not. sc%exponent > 0.0_wp) then
+            error = at(src, g_contact, "exponent") // "exponent = " // real_str(sc%exponent, 6) &
+               & // ": the exponent n of f = c x^n must be positive"
+            return
+         end if
+      end if
+      if (.not. ieee_is_nan(sc%stiffness)) then
+         if (.not. sc%stiffness > 0.0_wp) then
+            error = at(src, g_contact, "stiffness") // "stiffness = " &
+               & // real_str(sc%stiffness, 6) // ": the contact constant c (N/m^n) must be positive"
+            return
+         end if
+         if (ieee_is_nan(sc%exponent)) then
+            sc%exponent = 1.5_wp
+            sc%stiffness_origin = "given; n = 3/2 (Hertz) as no exponent is given"
+         else
+            sc%stiffness_origin = "given"
+         end if
+         return
+      end if
+      ! Hertz's constant from the materials and radii
+      if (.not. ieee_is_nan(sc%exponent)) then
+         if (sc%exponent /= 1.5_wp) then
+            error = at(src, g_contact, "exponent") // "without a stiffness, c is Hertz's constant," &
+               & // " which is for n = 1.5; give the stiffness for n = " // real_str(sc%exponent, 6)
+            return
+         end if
+      end if
+      missing = ""
+      if (ieee_is_nan(sc%body1%radius)) missing = missing // " body1 radius (or flat),"
+      if (ieee_is_nan(sc%body1%young)) missing = missing // " body1 young,"
+      if (ieee_is_nan(sc%body1%poisson)) missing = missing // " body1 poisson,"
+      if (ieee_is_nan(obstacle%radius)) missing = missing // " " // other // " radius (or flat),"
+      if (ieee_is_nan(obstacle%young)) missing = missing // " " // other // " young,"
+      if (ieee_is_nan(obstacle%poisson)) missing = missing // " " // other // " poisson,"
+      if (len(missing) > 0) then
+         missing = missing(2:len(missing) - 1)
+         if (src%groups(g_contact)%present) then
+            error = at(src, g_contact, "") // "no stiffness given, and Hertz's constant needs " &
+               & // missing
+         else
+            error = src%name // ": no &contact group: give &contact stiffness = ... (N/m^n)," &
+               & // " exponent = ... /, or the materials for Hertz's constant; missing: " // missing
+         end if
+         return
+      end if
+      sc%exponent = 1.5_wp
+      sc%stiffness = hertz_constant(sc%body1%young, sc%body1%poisson, sc%body1%radius, &
+         & obstacle%young, obstacle%poisson, obstacle%radius)
+      if (ieee_is_nan(sc%stiffness)) then
+         error = src%name // ": Hertz's constant cannot be formed from these radii (two flat" &
+            & // " faces?): give &contact stiffness"
+         return
+      end if
+      sc%stiffness_origin = "Hertz's constant from the radii and materials (n = 3/2)"
+   end subroutine load_contact
+
+   !> &damping: b, or a target restitution at a reference speed.
+   subroutine load_damping(src, sc, error)
+      type(scene_source), intent(in) :: src
+      type(scene_type), intent(inout) :: sc
+      character(len=:), allocatable, intent(out) :: error
+      real(wp) :: bb, e, v
+      integer :: stat
+
+      if (.not. src%groups(g_damping)%present) then
+         error = src%name // ": no &damping group: give &damping b = 0.1 / (s/m; 0 for Hertz's" &
+            & // " elastic impact), or &damping restitution = 0.8, at_speed = 1 /"
+         return
+      end if
+      call read_group(src, g_damping, error)
+      if (allocated(error)) return
+      call take(src, g_damping, "b", b, bb, error)
+      call take(src, g_damping, "restitution", restitution, e, error)
+      call take(src, g_damping, "at_speed", at_speed, v, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_nan(bb)) then
+         if (.not. (ieee_is_nan(e) .and. ieee_is_nan(v))) then
+            error = at(src, g_damping, "restitution") // "give b, or restitution and at_speed," &
+               & // " not both"
+            return
+         end if
+         if (bb < 0.0_wp) then
+            error = at(src, g_damping, "b") // "b = " // real_str(bb, 6) &
+               & // " s/m: the damping must not be negative"
+            return
+         end if
+         sc%damping = bb
+         sc%damping_origin = "given"
+         return
+      end if
+      if (ieee_is_nan(e)) then
+         if (.not. ieee_is_nan(v)) then
+            error = at(src, g_damping, "at_speed") // "at_speed needs the restitution wanted at" &
+               & // " that speed: give restitution too"
+         else
+            error = at(src, g_damping, "") // "missing damping: give b (s/m), or restitution" &
+               & // " and at_speed (m/s)"
+         end if
+         return
+      end if
+      if (.not. (e > 0.0_wp .and. e <= 1.0_wp)) then
+         error = at(src, g_damping, "restitution") // "restitution = " // real_str(e, 6) &
+            & // ": a coefficient of restitution lies in (0, 1]"
+         return
+      end if
+      if (ieee_is_nan(v)) then
+         error = at(src, g_damping, "restitution") // "restitution needs the speed at which it" &
+            & // " holds: give at_speed (m/s)"
+         return
+      end if
+      if (.not. v > 0.0_wp) then
+         error = at(src, g_damping, "at_speed") // "at_speed = " // real_str(v, 6) &
+            & // " m/s: must be positive"
+         return
+      end if
+      call damping_for_restitution(e, v, sc%damping, stat, min_velocity=tiny(1.0_wp))
+      if (stat /= hcimpact_ok) then
+         error = at(src, g_damping, "restitution") // "no damping for this restitution: " &
+            & // status_message(stat)
+         return
+      end if
+      sc%target_restitution = e
+      sc%reference_speed = v
+      sc%damping_origin = "the exact beta(e) for restitution " // real_str(e, 6) // " at " &
+         & // real_str(v, 6) // " m/s: b = beta(e)/V"
+   end subroutine load_damping
+
+   !> &sampling, and the checks that involve several groups.
+   subroutine load_sampling(src, sc, error)
+      type(scene_source), intent(in) :: src
+      type(scene_type), intent(inout) :: sc
+      character(len=:), allocatable, intent(out) :: error
+      real(wp) :: from, to, bmax, x
+      integer :: i, n
+
+      call read_group(src, g_sampling, error)
+      if (allocated(error)) return
+      if (samples /= unset_int) then
+         if (samples < 11 .or. samples > 100001) then
+            error = at(src, g_sampling, "samples") // "samples = " // str(samples) &
+               & // ": between 11 and 100001 points per curve"
+            return
+         end if
+         sc%samples = samples
+      end if
+      call take(src, g_sampling, "beta_max", beta_max, bmax, error)
+      call take(src, g_sampling, "sweep_from", sweep_from, from, error)
+      call take(src, g_sampling, "sweep_to", sweep_to, to, error)
+      if (allocated(error)) return
+      if (.not. ieee_is_nan(bmax)) then
+         if (.not. (bmax > 0.0_wp .and. bmax <= 1.0e6_wp)) then
+            error = at(src, g_sampling, "beta_max") // "beta_max = " // real_str(bmax, 6) &
+               & // ": must lie in (0, 1e6]"
+            return
+         end if
+         sc%beta_max = bmax
+      end if
+
+      ! the sweep: defaults from the speeds
+      if (ieee_is_nan(to) .and. size(sc%speeds) > 0) to = maxval(sc%speeds)
+      if (ieee_is_nan(from) .and. .not. ieee_is_nan(to)) from = to / 100.0_wp
+      n = 100
+      if (sweep_count /= unset_int) n = sweep_count
+      if (sc%wanted(out_sweep)) then
+         if (ieee_is_nan(to)) then
+            error = at(src, g_sampling, "sweep_to") // "the sweep needs its range: give" &
+               & // " sweep_from and sweep_to (m/s) in &sampling, or speeds in &scene"
+            return
+         end if
+         if (.not. from > 0.0_wp) then
+            error = at(src, g_sampling, "sweep_from") // "sweep_from = " // real_str(from, 6) &
+               & // " m/s: must be positive"
+            return
+         end if
+         if (.not. to > from) then
+            error = at(src, g_sampling, "sweep_to") // "sweep_to = " // real_str(to, 6) &
+               & // " m/s must exceed sweep_from = " // real_str(from, 6) // " m/s"
+            return
+         end if
+         if (n < 2 .or. n > 100000) then
+            error = at(src, g_sampling, "sweep_count") // "sweep_count = " // str(n) &
+               & // ": between 2 and 100000 speeds"
+            return
+         end if
+         allocate(sc%sweep(n))
+         select case (lower(trim(adjustl(sweep_spacing))))
+         case ("", "linear")
+            do i = 1, n
+               x = real(i - 1, wp) / real(n - 1, wp)
+               sc%sweep(i) = from + (to - from) * x
+            end do
+         case ("log")
+            do i = 1, n
+               x = real(i - 1, wp) / real(n - 1, wp)
+               sc%sweep(i) = from * exp(log(to / from) * x)
+            end do
+         case default
+            error = at(src, g_sampling, "sweep_spacing") // "sweep_spacing = '" &
+               & // trim(sweep_spacing) // "': use ""linear"" or ""log"""
+            return
+         end select
+         sc%sweep(1) = from
+         sc%sweep(n) = to
+      else
+         allocate(sc%sweep(0))
+      end if
+
+      ! CVODE tolerances
+      n = 0
+      do i = 1, max_list
+         if (tolerances(i) == unset) exit
+         n = i
+      end do
+      if (n == 0) then
+         sc%tolerances = [1.0e-4_wp, 1.0e-6_wp, 1.0e-8_wp, 1.0e-10_wp]
+      else
+         sc%tolerances = tolerances(1:n)
+         do i = 1, n
+            if (.not. ieee_is_finite(sc%tolerances(i))) then
+               error = at(src, g_sampling, "tolerances") // "tolerance " // str(i) &
+                  & // " is not a finite number"
+               return
+            end if
+            if (.not. (sc%tolerances(i) >= 1.0e-14_wp .and. sc%tolerances(i) <= 0.1_wp)) then
+               error = at(src, g_sampling, "tolerances") // "tolerance " // str(i) // " = " &
+                  & // real_str(sc%tolerances(i), 6) // ": relative tolerances lie in [1e-14, 0.1]"
+               return
+            end if
+         end do
+      end if
+
+      ! outputs that need approach speeds
+      if (size(sc%speeds) == 0) then
+         do i = 1, n_outputs
+            if (.not. sc%wanted(i)) cycle
+            if (any(i == [out_summary, out_histories, out_phase, out_loops, out_legacy, &
+               & out_cvode])) then
+               error = at(src, g_scene, "speeds") // "the output '" // trim(output_names(i)) &
+                  & // "' needs approach speeds: give speeds = ... (m/s) in &scene"
+               return
+            end if
+         end do
+      end if
+   end subroutine load_sampling
+
+end module hcimpact_scene_reader
