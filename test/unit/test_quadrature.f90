@@ -111,6 +111,7 @@ contains
       testsuite = [ &
          & new_unittest("polynomial", test_polynomial), &
          & new_unittest("exp", test_exp), &
+         & new_unittest("exp-analytic", test_exp_analytic), &
          & new_unittest("inverse-sqrt-endpoint", test_inverse_sqrt), &
          & new_unittest("sqrt-log", test_sqrt_log), &
          & new_unittest("log-both-ends", test_log_log), &
@@ -353,6 +354,19 @@ contains
       call tanh_sinh(exp_x, 0.0_wp, 1.0_wp, res)
       call check_integral(error, res, ref_exp, 4.0_wp, budget_smooth, "exp")
    end subroutine test_exp
+
+   !> The analytic option: same accuracy on an entire integrand, with fewer evaluations
+   !> (the level that only confirms convergence is saved)
+   subroutine test_exp_analytic(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(quadrature_result) :: res, cautious
+      call tanh_sinh(exp_x, 0.0_wp, 1.0_wp, cautious)
+      call tanh_sinh(exp_x, 0.0_wp, 1.0_wp, res, analytic=.true.)
+      call check_integral(error, res, ref_exp, 4.0_wp, budget_smooth, "exp, analytic")
+      if (allocated(error)) return
+      call check(error, res%evaluations < cautious%evaluations, &
+         & "the analytic estimate must save evaluations on exp")
+   end subroutine test_exp_analytic
 
    subroutine test_inverse_sqrt(error)
       type(error_type), allocatable, intent(out) :: error
