@@ -292,8 +292,15 @@ contains
       integer, parameter :: terms = 10
       ! the reduced argument is divided by 2^squarings, the result squared as often
       integer, parameter :: squarings = 9
+      ! 1/(j+1)! as two doubles, folded at compile time in quadruple precision
+      integer, parameter :: qp = selected_real_kind(30)
+      integer :: j
+      real(wp), parameter :: fact_hi(0:terms - 1) = real(1.0_qp / gamma(real([(j, &
+         & j = 2, terms + 1)], qp)), wp)
+      real(wp), parameter :: fact_lo(0:terms - 1) = real(1.0_qp / gamma(real([(j, &
+         & j = 2, terms + 1)], qp)) - real(fact_hi, qp), wp)
       type(dd_real) :: r, p
-      integer :: k, j
+      integer :: k
 
       if (a%hi > exp_max) then
          c = dd(ieee_value(1.0_wp, ieee_positive_inf))
@@ -305,10 +312,10 @@ contains
       end if
       k = nint(a%hi / ln2%hi)
       r = dd_scale(a - ln2 * real(k, wp), -squarings)
-      ! expm1(r) = r (1 + r/2 (1 + r/3 (1 + ...))) by Horner's rule
-      p = dd(1.0_wp)
-      do j = terms, 2, -1
-         p = 1.0_wp + (r * p) / real(j, wp)
+      ! expm1(r) = r sum_j r^j/(j+1)! by Horner's rule with double-double coefficients
+      p = dd_real(fact_hi(terms - 1), fact_lo(terms - 1))
+      do j = terms - 2, 0, -1
+         p = dd_real(fact_hi(j), fact_lo(j)) + r * p
       end do
       p = r * p
       ! (1 + p)^2 - 1 = p (2 + p), kept in this form so that no digit of p is lost
