@@ -14,13 +14,15 @@ module hcimpact_scene_model
    public :: n_outputs, output_names, output_files, output_descriptions, output_index
    public :: out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
       & out_lambertw, out_legacy, out_cvode
-   public :: figure_outputs, default_scene_lines, max_speeds
+   public :: figure_outputs, default_scene_lines, max_speeds, scene_line_length
 
    !> Quiet NaN
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
 
    !> Most approach speeds a scene may list
    integer, parameter :: max_speeds = 1000
+   !> Longest line of a scene file
+   integer, parameter :: scene_line_length = 1024
 
    !> The outputs a scene can ask for
    integer, parameter :: out_summary = 1, out_sweep = 2, out_histories = 3, &
@@ -28,24 +30,47 @@ module hcimpact_scene_model
       & out_legacy = 8, out_cvode = 9
    !> Number of outputs
    integer, parameter :: n_outputs = 9
+
+   !> The built-in default scene, as the text of a scene file: the seed's steel ball
+   !> (MODEL.md). example/scenes/steel_ball.nml holds the same text.
+   character(len=80), parameter :: default_scene_lines(*) = [character(len=80) :: &
+      & "! The seed's worked example (MODEL.md): a steel ball of 0.1 kg strikes a", &
+      & "! massive steel plate; Hertz contact with the seed's printed constant, and", &
+      & "! the damping of hardened steel.", &
+      & "&scene", &
+      & "  title = ""Steel ball on a massive steel plate (the seed's example)""", &
+      & "  speeds = 0.5, 1, 2, 3, 4, 5          ! approach speeds, m/s", &
+      & "  outputs = ""summary""", &
+      & "/", &
+      & "&body1", &
+      & "  mass = 0.1                           ! kg", &
+      & "/", &
+      & "&contact", &
+      & "  stiffness = 1.7135e10                ! c, N/m^n", &
+      & "  exponent = 1.5                       ! n (Hertz)", &
+      & "/", &
+      & "&damping", &
+      & "  b = 0.1                              ! s/m", &
+      & "/"]
+
    !> Their names in scene files and on the command line
    character(len=*), parameter :: output_names(n_outputs) = [character(len=11) :: &
       & "summary", "sweep", "histories", "phase", "loops", "restitution", "lambertw", &
       & "legacy", "cvode"]
    !> The files each writes in the results directory
-   character(len=*), parameter :: output_files(n_outputs) = [character(len=36) :: &
+   character(len=*), parameter :: output_files(n_outputs) = [character(len=44) :: &
       & "summary.csv", "sweep.csv", "histories.csv", "phase.csv", "loops.csv", &
-      & "restitution.csv", "lambertw.csv velocity_z.csv", "legacy.csv", &
+      & "restitution.csv", "lambertw.csv velocity_z.csv motion_z.csv", "legacy.csv", &
       & "cvode.csv"]
    !> What each is
    character(len=*), parameter :: output_descriptions(n_outputs) = [character(len=100) :: &
-      & "table per speed: restitution, energy lost, x_max, peak force and its time, times", &
+      & "per speed: k, energy lost, x_max, peak force and its time, the times", &
       & "the summary's columns on a fine grid of speeds (sweep_from .. sweep_to)", &
       & "time histories x(t), V(t), F(t) during contact, per speed", &
       & "phase trajectories V(x) on both branches, per speed", &
       & "force against deformation F(x) (hysteresis loops), per speed", &
       & "restitution k and energy loss 1 - k^2 against beta = b V", &
-      & "both real branches of Lambert W, and V against z = -exp(g) (seed eq. 14)", &
+      & "both real branches of Lambert W; V(z) = -(1 + W(z))/b (seed eq. 14)", &
       & "damping rules of multibody codes against the exact beta(e), per speed", &
       & "SUNDIALS CVODE against the closed form: errors, time, counters"]
    !> The outputs behind the seed's figures 1-8 (`figures`)
@@ -78,6 +103,8 @@ module hcimpact_scene_model
       character(len=:), allocatable :: title
       !> Where it came from (a path, or "the built-in default scene")
       character(len=:), allocatable :: source
+      !> The text it was read from
+      character(len=scene_line_length), allocatable :: text(:)
       !> The moving body, and the other body (absent: a massive flat wall)
       type(body_type) :: body1, body2
       !> Material of the wall (young, poisson), when body2 is absent
@@ -128,30 +155,5 @@ contains
       end do
       k = 0
    end function output_index
-
-   !> The built-in default scene, as the text of a scene file: the seed's steel ball
-   !> (MODEL.md). example/scenes/steel_ball.nml holds the same text.
-   pure function default_scene_lines() result(lines)
-      character(len=80), allocatable :: lines(:)
-      lines = [character(len=80) :: &
-         & "! The seed's worked example (MODEL.md): a steel ball of 0.1 kg strikes a", &
-         & "! massive steel plate; Hertz contact with the seed's printed constant, and", &
-         & "! the damping of hardened steel.", &
-         & "&scene", &
-         & "  title = ""Steel ball on a massive steel plate (the seed's example)""", &
-         & "  speeds = 0.5, 1, 2, 3, 4, 5          ! approach speeds, m/s", &
-         & "  outputs = ""summary""", &
-         & "/", &
-         & "&body1", &
-         & "  mass = 0.1                           ! kg", &
-         & "/", &
-         & "&contact", &
-         & "  stiffness = 1.7135e10                ! c, N/m^n", &
-         & "  exponent = 1.5                       ! n (Hertz)", &
-         & "/", &
-         & "&damping", &
-         & "  b = 0.1                              ! s/m", &
-         & "/"]
-   end function default_scene_lines
 
 end module hcimpact_scene_model

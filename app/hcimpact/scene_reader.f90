@@ -24,16 +24,15 @@ module hcimpact_scene_reader
    use hcimpact_impact_model, only : damping_for_restitution
    use hcimpact_scene_model, only : scene_type, body_type, nan, n_outputs, output_names, &
       & output_index, figure_outputs, out_summary, out_sweep, out_histories, out_phase, &
-      & out_loops, out_legacy, out_cvode, out_lambertw, max_speeds, default_scene_lines
+      & out_loops, out_legacy, out_cvode, max_speeds, default_scene_lines, &
+      & scene_line_length
    use hcimpact_scene_text, only : lower, str, real_str, join
    implicit none
    private
 
-   public :: read_scene_file, read_scene_lines, read_default_scene, scene_line_length
+   public :: read_scene_file, read_scene_lines, read_default_scene
    public :: group_names, group_variables
 
-   !> Longest line of a scene file
-   integer, parameter :: scene_line_length = 1024
    !> Most outputs and tolerances one list may hold
    integer, parameter :: max_list = 32
 
@@ -51,6 +50,9 @@ module hcimpact_scene_reader
       & "stiffness, exponent", &
       & "b, restitution, at_speed", &
       & "samples, sweep_from, sweep_to, sweep_count, sweep_spacing, beta_max, tolerances"]
+   !> Names that take a list of values
+   character(len=*), parameter :: array_variables(3) = [character(len=10) :: "speeds", &
+      & "outputs", "tolerances"]
    !> Names whose values are text (they need quotes)
    character(len=*), parameter :: text_variables(3) = [character(len=13) :: "title", &
       & "outputs", "sweep_spacing"]
@@ -98,17 +100,21 @@ module hcimpact_scene_reader
 contains
 
    !> Read and validate the scene file `path`. On failure `error` holds the message.
-   subroutine read_scene_file(path, sc, error)
+   subroutine read_scene_file(path, sc, error, replace, add)
       !> Path of the scene file
       character(len=*), intent(in) :: path
       !> The scene
       type(scene_type), intent(out) :: sc
       !> Message naming the file, line and group; unallocated on success
       character(len=:), allocatable, intent(out) :: error
+      !> Outputs wanted instead of the scene's (command line)
+      logical, intent(in), optional :: replace(n_outputs)
+      !> Outputs wanted besides the scene's (command line)
+      logical, intent(in), optional :: add(n_outputs)
       character(len=scene_line_length), allocatable :: lines(:)
       character(len=scene_line_length + 1) :: buffer
       character(len=512) :: msg
-      integer :: unit, ios, n
+      integer :: unit, ios, n, i
       logical :: exists
 
       inquire(file=path, exist=exists)
@@ -122,7 +128,7 @@ contains
          error = path // ": cannot open the scene file (" // trim(msg) // ")"
          return
       end if
-      allocate(lines(0))
+      ! two passes: count the lines, then read them
       n = 0
       do
          read(unit, '(a)', iostat=ios, iomsg=msg) buffer
@@ -139,31 +145,37 @@ contains
             close(unit)
             return
          end if
-         lines = [lines, buffer(1:scene_line_length)]
+      end do
+      allocate(lines(n))
+      rewind(unit)
+      do i = 1, n
+         read(unit, '(a)') lines(i)
       end do
       close(unit)
-      call read_scene_lines(lines, path, stem(path), sc, error)
+      call read_scene_lines(lines, path, stem(path), sc, error, replace, add)
    end subroutine read_scene_file
 
    !> The built-in default scene (`default_scene_lines`).
-   subroutine read_default_scene(sc, error)
+   subroutine read_default_scene(sc, error, replace, add)
       !> The scene
       type(scene_type), intent(out) :: sc
       !> Message; unallocated on success (the built-in scene is valid)
       character(len=:), allocatable, intent(out) :: error
-      character(len=scene_line_length), allocatable :: lines(:)
-      character(len=80), allocatable :: short(:)
+      !> Outputs wanted instead of the scene's (command line)
+      logical, intent(in), optional :: replace(n_outputs)
+      !> Outputs wanted besides the scene's (command line)
+      logical, intent(in), optional :: add(n_outputs)
+      character(len=scene_line_length) :: lines(size(default_scene_lines))
       integer :: i
-      short = default_scene_lines()
-      allocate(lines(size(short)))
-      do i = 1, size(short)
-         lines(i) = short(i)
+      do i = 1, size(default_scene_lines)
+         lines(i) = default_scene_lines(i)
       end do
-      call read_scene_lines(lines, "the built-in default scene", "steel_ball", sc, error)
+      call read_scene_lines(lines, "the built-in default scene", "steel_ball", sc, error, &
+         & replace, add)
    end subroutine read_default_scene
 
    !> Read and validate a scene given as the lines of a scene file.
-   subroutine read_scene_lines(lines, source_name, name, sc, error)
+   subroutine read_scene_lines(lines, source_name, name, sc, error, replace, add)
       !> The lines
       character(len=*), intent(in) :: lines(:)
       !> Name of the source in messages (a path)
@@ -174,6 +186,10 @@ contains
       type(scene_type), intent(out) :: sc
       !> Message; unallocated on success
       character(len=:), allocatable, intent(out) :: error
+      !> Outputs wanted instead of the scene's (command line)
+      logical, intent(in), optional :: replace(n_outputs)
+      !> Outputs wanted besides the scene's (command line)
+      logical, intent(in), optional :: add(n_outputs)
       type(scene_source) :: src
       integer :: i
 
@@ -184,10 +200,15 @@ contains
       end do
       sc%name = name
       sc%source = source_name
+      sc%text = src%lines
       call scan_groups(src, error)
       if (allocated(error)) return
       call load_scene_group(src, sc, error)
       if (allocated(error)) return
+      if (present(replace)) then
+         if (any(replace)) sc%wanted = replace
+      end if
+      if (present(add)) sc%wanted = sc%wanted .or. add
       call load_body(src, g_body1, sc%body1, error)
       if (allocated(error)) return
       call load_body(src, g_body2, sc%body2, error)
@@ -211,6 +232,7 @@ contains
       type(scene_source), intent(inout) :: src
       character(len=:), allocatable, intent(out) :: error
       character(len=1) :: ch, quote
+      character(len=scene_line_length) :: line
       character(len=:), allocatable :: gname
       integer :: l, i, j, n, open_group, gid
       logical :: line_has_text
@@ -218,11 +240,12 @@ contains
       open_group = 0
       quote = " "
       do l = 1, size(src%lines)
-         n = len_trim(src%lines(l))
+         line = src%lines(l)
+         n = len_trim(line)
          i = 1
          line_has_text = .false.
          do while (i <= n)
-            ch = src%lines(l)(i:i)
+            ch = line(i:i)
             if (quote /= " ") then
                if (ch == quote) quote = " "
                i = i + 1
@@ -535,13 +558,17 @@ contains
          end if
       end do
       error = place(src, bad) // "&" // trim(group_names(gid)) // ": " &
-         & // explain(src%lines(bad), gid, trim(first_msg)) // " (Fortran: " // trim(first_msg) // ")"
+         & // explain(src%lines(bad), group_text(src, first, bad), gid, trim(first_msg)) &
+         & // " (Fortran: " // trim(first_msg) // ")"
       call reset_variables()
    end subroutine read_group
 
    !> Our reading of a namelist error message on a line of group gid.
-   function explain(line, gid, msg) result(text)
+   function explain(line, context, gid, msg) result(text)
+      !> The line at fault
       character(len=*), intent(in) :: line
+      !> The group's text up to and including that line, without comments
+      character(len=*), intent(in) :: context
       integer, intent(in) :: gid
       character(len=*), intent(in) :: msg
       character(len=:), allocatable :: text
@@ -557,8 +584,12 @@ contains
                & // trim(group_variables(gid)) // ")"
             return
          end if
-         owner = assigned_name(line, token)
-         if (len(owner) == 0) then
+         owner = assigned_name(context, token)
+         if (len(owner) > 0 .and. any(lower(owner) == array_variables) &
+            & .and. (is_number(token) .or. token(1:1) == '"' .or. token(1:1) == "'")) then
+            text = "too many values for " // owner // " (at most " // str(max_speeds) &
+               & // " speeds, " // str(max_list) // " outputs or tolerances)"
+         else if (len(owner) == 0) then
             text = "'" // token // "' is neither a name of the group nor a value (&" &
                & // trim(group_names(gid)) // " takes " // trim(group_variables(gid)) // ")"
          else if (any(lower(owner) == text_variables)) then
@@ -596,14 +627,33 @@ contains
       text = "cannot read this line: " // clip(adjustl(line))
    end function explain
 
-   !> The name assigned on `line` before the value `token` ("" if none).
+   !> Lines first..last of the source joined by blanks, comments and quoted text kept
+   !> apart from `!` comments, which are dropped.
+   function group_text(src, first, last) result(text)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: first, last
+      character(len=:), allocatable :: text
+      character(len=scene_line_length) :: line, bare
+      integer :: l, c
+      text = ""
+      do l = first, last
+         line = src%lines(l)
+         bare = line
+         call blank_quotes(bare)
+         c = index(bare, "!")
+         if (c > 0) line(c:) = " "
+         text = text // " " // trim(line)
+      end do
+   end function group_text
+
+   !> The name assigned before the last occurrence of the value `token` ("" if none).
    function assigned_name(line, token) result(name)
       character(len=*), intent(in) :: line, token
       character(len=:), allocatable :: name
       character(len=len(line)) :: low
       integer :: p, e, i, j
       low = lower(line)
-      p = index(low, lower(token))
+      p = index(low, lower(token), back=.true.)
       if (p == 0) p = len_trim(low) + 1
       e = index(low(1:p - 1), "=", back=.true.)
       name = ""
@@ -845,7 +895,7 @@ contains
          end if
          if (ieee_is_nan(sc%exponent)) then
             sc%exponent = 1.5_wp
-            sc%stiffness_origin = "given; n = 3/2 (Hertz) as no exponent is given"
+            sc%stiffness_origin = "c given; n = 3/2 (Hertz) as no exponent is given"
          else
             sc%stiffness_origin = "given"
          end if
@@ -873,7 +923,8 @@ contains
                & // missing
          else
             error = src%name // ": no &contact group: give &contact stiffness = ... (N/m^n)," &
-               & // " exponent = ... /, or the materials for Hertz's constant; missing: " // missing
+               & // " exponent = ... /, or the materials for Hertz's constant (missing: " &
+               & // missing // ")"
          end if
          return
       end if
@@ -885,7 +936,7 @@ contains
             & // " faces?): give &contact stiffness"
          return
       end if
-      sc%stiffness_origin = "Hertz's constant from the radii and materials (n = 3/2)"
+      sc%stiffness_origin = "c: Hertz's constant from the radii and materials"
    end subroutine load_contact
 
    !> &damping: b, or a target restitution at a reference speed.
@@ -955,8 +1006,8 @@ contains
       end if
       sc%target_restitution = e
       sc%reference_speed = v
-      sc%damping_origin = "the exact beta(e) for restitution " // real_str(e, 6) // " at " &
-         & // real_str(v, 6) // " m/s: b = beta(e)/V"
+      sc%damping_origin = "the exact damping for the restitution e = " // real_str(e, 6) &
+         & // " at V = " // real_str(v, 6) // " m/s: b = beta(e)/V"
    end subroutine load_damping
 
    !> &sampling, and the checks that involve several groups.

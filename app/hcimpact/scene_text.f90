@@ -73,7 +73,7 @@ contains
       buffer = adjustl(buffer)
       p = index(buffer, "E")
       read(buffer(p + 1:), *) e
-      if (e >= -4 .and. e < digits) then
+      if (e >= -4 .and. e < min(digits, 6)) then
          write(fmt, '(a, i0, a, i0, a)') "(f", digits + 12, ".", max(digits - 1 - e, 0), ")"
          write(buffer, fmt) x
          buffer = adjustl(buffer)

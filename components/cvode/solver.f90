@@ -201,12 +201,17 @@ contains
 
       n = contact%exponent
       a = 0.5_wp * (n + 1.0_wp)
+      if (.not. product_fits(contact%damping, contact%velocity)) then
+         stat = hcimpact_err_domain
+         simulation%message = "b V overflows"
+         return
+      end if
       beta = contact%damping * contact%velocity
       ! X^(n+1) = (n+1) m V^2/(2 c), force unit c X^n = ((n+1)/2) m V^2/X
       ln_x = (log(a) + log(contact%mass) + 2.0_wp * log(contact%velocity) &
          & - log(contact%stiffness)) / (n + 1.0_wp)
       ln_f = log(a) + log(contact%mass) + 2.0_wp * log(contact%velocity) - ln_x
-      if (.not. ieee_is_finite(beta) .or. abs(ln_x) > 690.0_wp &
+      if (abs(ln_x) > 690.0_wp &
          & .or. abs(ln_x - log(contact%velocity)) > 690.0_wp .or. abs(ln_f) > 690.0_wp) then
          stat = hcimpact_err_domain
          simulation%message = "the scales of this impact (b V, X, X/V or the force) " &
@@ -295,7 +300,7 @@ contains
       class(external_force), intent(in), optional :: external
       type(cvode_options) :: opts
       type(impact_system), target :: sys
-      real(wp) :: beta, k, length, atol(2), tau_max, h0
+      real(wp) :: beta, k, length, atol(2), tau_max, h0, ln_energy
       character(len=:), allocatable :: why
 
       simulation%message = "success"
@@ -311,18 +316,24 @@ contains
          return
       end if
 
-      beta = damping * velocity
-      if (.not. ieee_is_finite(beta)) then
+      if (.not. product_fits(damping, velocity)) then
          stat = hcimpact_err_domain
          simulation%message = "b V overflows"
          return
       end if
+      beta = damping * velocity
       k = restitution(beta)
+      ! m V^2 h(beta)/beta^2, the kinetic energy that goes into compression
+      ln_energy = log(mass) + 2.0_wp * log(velocity) + log(scaled_energy(beta))
+      if (abs(ln_energy) > 690.0_wp) then
+         stat = hcimpact_err_domain
+         simulation%message = "the energy m V^2 h(beta)/beta^2 leaves the double range"
+         return
+      end if
       if (opts%length_scale > 0.0_wp) then
          length = opts%length_scale
       else
-         call energy_length(law, mass * velocity * velocity * scaled_energy(beta), &
-            & length, stat)
+         call energy_length(law, exp(ln_energy), length, stat)
          if (stat /= hcimpact_ok) then
             simulation%message = "no length scale: the law's potential does not reach " &
                & // "m V^2 h(beta)/beta^2 for a finite positive x (give " &
@@ -338,14 +349,15 @@ contains
       sys%damping = damping
       sys%velocity = velocity
       sys%length = length
-      sys%time = length / velocity
-      sys%accel = (length / velocity) / (mass * velocity)
-      if (.not. (ieee_is_finite(sys%time) .and. ieee_is_finite(sys%accel) &
-         & .and. sys%time > 0.0_wp .and. sys%accel > 0.0_wp)) then
+      ! T = L/V and p = L/(m V^2), in logarithms (no overflow before the check)
+      if (abs(log(length) - log(velocity)) > 690.0_wp .or. &
+         & abs(log(length) - log(mass) - 2.0_wp * log(velocity)) > 690.0_wp) then
          stat = hcimpact_err_domain
          simulation%message = "the scales L/V or L/(m V^2) leave the double range"
          return
       end if
+      sys%time = exp(log(length) - log(velocity))
+      sys%accel = exp(log(length) - log(mass) - 2.0_wp * log(velocity))
 
       atol = opts%atol * [1.0_wp, k]
       if (minval(atol) < min_atol) then
@@ -366,6 +378,13 @@ contains
       end if
       call integrate(sys, opts, atol, tau_max, h0, simulation, stat)
    end subroutine simulate_law
+
+   !> Whether a*b (a >= 0, b > 0, both finite) is below the overflow threshold.
+   pure logical function product_fits(a, b)
+      real(wp), intent(in) :: a, b
+      product_fits = .true.
+      if (a > 0.0_wp) product_fits = log(a) + log(b) < log(huge(a))
+   end function product_fits
 
    !> Check the options; the defaults of atol are filled in.
    subroutine check_options(opts, stat, why)
@@ -494,7 +513,7 @@ contains
       real(c_double), target :: y(2), atol_c(2)
       real(c_double) :: tret(1), jac(2, 2)
       integer(c_int) :: ierr, lmm, rootsfound(n_events), rootdir(n_events)
-      integer :: nsamples, ev, jstat
+      integer :: nsamples, ev, jstat, calls
       real(wp) :: lambda_max, tau_comp, tau_peak, tau_end, y_comp(2), y_peak(2), &
          & y_end(2), f_peak, f_here
       logical :: have_comp, have_peak, have_end, ok
@@ -611,7 +630,19 @@ contains
             & // cvode_flag_name(ierr) // solver_detail(sys)
       else
          tret = 0.0_c_double
+         ! CVODE's own limit (CVodeSetMaxNumSteps) counts the steps of one call, and
+         ! in CV_ONE_STEP mode every call is one step: the limit is enforced here.
+         calls = 0
          march: do
+            calls = calls + 1
+            if (calls > opts%max_steps + n_events) then
+               stat = hcimpact_err_solver
+               simulation%message = "CVODE failed at t = " &
+                  & // format_real(tret(1) * sys%time) // " s: " &
+                  & // cvode_flag_name(CV_TOO_MUCH_WORK) // " (options%max_steps = " &
+                  & // format_int(opts%max_steps) // " steps taken before the end of contact)"
+               exit march
+            end if
             ierr = FCVode(cvode_mem, real(tau_max, c_double), y_vec, tret, CV_ONE_STEP)
             if (ierr < 0) then
                stat = hcimpact_err_solver
@@ -947,6 +978,15 @@ contains
       write(number, '(i0)') flag
       name = name // " (" // trim(number) // ")"
    end function cvode_flag_name
+
+   !> An integer as text.
+   pure function format_int(i) result(text)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: text
+      character(len=12) :: buffer
+      write(buffer, '(i0)') i
+      text = trim(buffer)
+   end function format_int
 
    !> A real with 6 significant digits.
    pure function format_real(x) result(text)

@@ -33,8 +33,9 @@
 !> - A series given with its standard deviations sigma_i (in the units of the data)
 !>   is weighted by 1/sigma_i, converted to the residual's scale (sigma_i/y_i for a
 !>   logarithm). A series given without them has one common sigma, estimated from its
-!>   own residuals (leverage-corrected) and refined by refitting until it settles: a
-!>   fit of several series then weighs each by its own scatter.
+!>   own residuals (leverage-corrected): a fit of several series is made with unit
+!>   weights for those, then again with the estimated sigmas (two-step weighted least
+!>   squares), so that each series weighs by its own scatter.
 !> - covariance = (J^T W J)^-1 chi^2/(N - p) (the residual scatter sets the scale), or
 !>   (J^T W J)^-1 alone with absolute_sigma = .true. (the sigmas are the true ones).
 !>   For c the covariance is propagated from ln c to first order (sigma_c = c sigma_ln c).
@@ -117,6 +118,12 @@ module hcimpact_calibration
       logical :: cached = .false.
       real(wp) :: cache_n = 0.0_wp, cache_b = 0.0_wp
       real(wp), allocatable :: log_tau(:), log_phi(:)
+      !> Their derivatives in n and b at (deriv_n, deriv_b): they do not depend on c,
+      !> and the fit asks for them again at the same point after each change of the
+      !> weights
+      logical :: deriv_cached = .false.
+      real(wp) :: deriv_n = 0.0_wp, deriv_b = 0.0_wp
+      real(wp), allocatable :: dlt_dn(:), dlf_dn(:), dlt_db(:), dlf_db(:)
    contains
       procedure :: evaluate => evaluate_impact_data
    end type impact_data_model
@@ -573,12 +580,9 @@ contains
       logical, intent(in) :: absolute
       type(fit_type), intent(inout) :: fit
       integer, intent(out) :: stat
-      integer, parameter :: max_passes = 10
-      real(wp), parameter :: settled = 1.0e-3_wp
       real(wp), allocatable :: weight(:), scale(:), new_scale(:), r(:), jac(:, :), &
          & leverage(:), cov(:, :)
-      integer :: m, p, nk, k, pass, iterations
-      real(wp) :: change
+      integer :: m, p, nk, iterations
 
       m = size(sigma_obs)
       p = size(theta)
@@ -586,22 +590,20 @@ contains
       allocate(scale(size(series)), source=1.0_wp)
       allocate(new_scale(size(series)), r(m), jac(m, p), leverage(m), cov(p, p))
       weight = observation_weights()
-      fit%iterations = 0
-      do pass = 1, max_passes
+      call levenberg_marquardt(model, theta, weight, lower, stat, fit%iterations)
+      if (stat /= hcimpact_ok) return
+      if (size(series) > 1 .and. .not. all(given)) then
+         ! two-step weighting: the scales of the series without sigmas from the first
+         ! fit's residuals, then the fit again with them. (Iterating this to a fixed
+         ! point gains nothing in accuracy and can creep for many passes.)
+         call statistics()
+         if (stat /= hcimpact_ok) return
+         scale = new_scale
+         weight = observation_weights()
          call levenberg_marquardt(model, theta, weight, lower, stat, iterations)
          fit%iterations = fit%iterations + iterations
          if (stat /= hcimpact_ok) return
-         if (size(series) < 2 .or. all(given)) exit
-         call statistics()
-         if (stat /= hcimpact_ok) return
-         change = 0.0_wp
-         do k = 1, size(series)
-            if (.not. given(k)) change = max(change, abs(new_scale(k) / scale(k) - 1.0_wp))
-         end do
-         scale = new_scale
-         weight = observation_weights()
-         if (change <= settled) exit
-      end do
+      end if
       call statistics()
       if (stat /= hcimpact_ok) return
       fit%residuals = r
@@ -661,11 +663,9 @@ contains
       !> d residual / d theta
       real(wp), intent(out), optional :: jacobian(:, :)
       real(wp) :: lt(size(self%velocity)), lf(size(self%velocity)), &
-         & log_x(size(self%velocity)), dlogx_dn(size(self%velocity)), &
-         & dlt_dn(size(self%velocity)), dlf_dn(size(self%velocity)), &
-         & dlt_db(size(self%velocity)), dlf_db(size(self%velocity))
+         & log_x(size(self%velocity)), dlogx_dn(size(self%velocity))
       real(wp), allocatable :: full_jac(:, :)
-      real(wp) :: p(3), log_c, n, b, np1, hn, hb, beta, lt_h, lf_h
+      real(wp) :: p(3), log_c, n, b, np1
       integer :: nv, i, row, j
       logical :: dynamic
 
@@ -717,49 +717,24 @@ contains
          row = row + nv
       end if
       if (.not. present(jacobian)) return
-
       allocate(full_jac(row, 3), source=0.0_wp)
-      dlt_dn = 0.0_wp
-      dlf_dn = 0.0_wp
-      dlt_db = 0.0_wp
-      dlf_db = 0.0_wp
-      dlogx_dn = 0.0_wp
       if (dynamic) then
+         call scaled_derivatives(self, n, b, stat)
+         if (stat /= hcimpact_ok) return
          ! d ln X/d n = (1 - (n+1) ln X)/(n+1)^2, d ln X/d ln c = -1/(n+1)
          dlogx_dn = (1.0_wp - np1 * log_x) / np1**2
-         if (self%free(exponent_index)) then
-            hn = sqrt(epsilon(1.0_wp)) * max(1.0_wp, n)
-            hn = (n + hn) - n
-            do i = 1, nv
-               call scaled_impact(n + hn, b * self%velocity(i), lt_h, lf_h, stat)
-               if (stat /= hcimpact_ok) return
-               dlt_dn(i) = (lt_h - self%log_tau(i)) / hn
-               dlf_dn(i) = (lf_h - self%log_phi(i)) / hn
-            end do
-         end if
-         if (self%free(damping_index)) then
-            do i = 1, nv
-               beta = b * self%velocity(i)
-               hb = sqrt(epsilon(1.0_wp)) * max(1.0_wp, beta)
-               hb = (beta + hb) - beta
-               call scaled_impact(n, beta + hb, lt_h, lf_h, stat)
-               if (stat /= hcimpact_ok) return
-               dlt_db(i) = self%velocity(i) * (lt_h - self%log_tau(i)) / hb
-               dlf_db(i) = self%velocity(i) * (lf_h - self%log_phi(i)) / hb
-            end do
-         end if
       end if
       row = 0
       if (self%has(time_series)) then
          full_jac(row+1:row+nv, 1) = 1.0_wp / np1
-         full_jac(row+1:row+nv, 2) = -(dlogx_dn + dlt_dn)
-         full_jac(row+1:row+nv, 3) = -dlt_db
+         full_jac(row+1:row+nv, 2) = -(dlogx_dn + self%dlt_dn)
+         full_jac(row+1:row+nv, 3) = -self%dlt_db
          row = row + nv
       end if
       if (self%has(force_series)) then
          full_jac(row+1:row+nv, 1) = -1.0_wp / np1
-         full_jac(row+1:row+nv, 2) = -(-dlogx_dn + dlf_dn)
-         full_jac(row+1:row+nv, 3) = -dlf_db
+         full_jac(row+1:row+nv, 2) = -(-dlogx_dn + self%dlf_dn)
+         full_jac(row+1:row+nv, 3) = -self%dlf_db
          row = row + nv
       end if
       if (self%has(restitution_series)) then
@@ -767,6 +742,51 @@ contains
       end if
       jacobian = full_jac(:, pack([(j, j = 1, 3)], self%free))
    end subroutine evaluate_impact_data
+
+   !> d ln tau/d n, d ln phi/d n, and V d ln tau/d beta, V d ln phi/d beta (the
+   !> derivatives in b) at every speed, by forward differences with steps of sqrt(eps)
+   !> relative, for those of n and b that are free. They do not depend on c and are
+   !> kept for the next call at the same (n, b). Needs log_tau and log_phi at (n, b).
+   subroutine scaled_derivatives(self, n, b, stat)
+      type(impact_data_model), intent(inout) :: self
+      real(wp), intent(in) :: n, b
+      integer, intent(out) :: stat
+      real(wp) :: hn, hb, beta, lt_h, lf_h
+      integer :: i, nv
+
+      stat = hcimpact_ok
+      if (self%deriv_cached .and. n == self%deriv_n .and. b == self%deriv_b) return
+      nv = size(self%velocity)
+      self%deriv_cached = .false.
+      if (allocated(self%dlt_dn)) deallocate(self%dlt_dn, self%dlf_dn, self%dlt_db, &
+         & self%dlf_db)
+      allocate(self%dlt_dn(nv), self%dlf_dn(nv), self%dlt_db(nv), self%dlf_db(nv), &
+         & source=0.0_wp)
+      if (self%free(exponent_index)) then
+         hn = sqrt(epsilon(1.0_wp)) * max(1.0_wp, n)
+         hn = (n + hn) - n
+         do i = 1, nv
+            call scaled_impact(n + hn, b * self%velocity(i), lt_h, lf_h, stat)
+            if (stat /= hcimpact_ok) return
+            self%dlt_dn(i) = (lt_h - self%log_tau(i)) / hn
+            self%dlf_dn(i) = (lf_h - self%log_phi(i)) / hn
+         end do
+      end if
+      if (self%free(damping_index)) then
+         do i = 1, nv
+            beta = b * self%velocity(i)
+            hb = sqrt(epsilon(1.0_wp)) * max(1.0_wp, beta)
+            hb = (beta + hb) - beta
+            call scaled_impact(n, beta + hb, lt_h, lf_h, stat)
+            if (stat /= hcimpact_ok) return
+            self%dlt_db(i) = self%velocity(i) * (lt_h - self%log_tau(i)) / hb
+            self%dlf_db(i) = self%velocity(i) * (lf_h - self%log_phi(i)) / hb
+         end do
+      end if
+      self%deriv_cached = .true.
+      self%deriv_n = n
+      self%deriv_b = b
+   end subroutine scaled_derivatives
 
    !> ln tau and ln phi: contact time and peak force of the dimensionless impact
    !> (m = 1, V = 1, c = (n+1)/2, hence X = 1) with exponent n and damping beta.

@@ -45,9 +45,14 @@ module hcimpact_least_squares
    !> Relative size of a step (in the scaled norm ||D delta|| / ||D theta||) below
    !> which the iteration has converged; with the Gauss-Newton step's fast convergence
    !> the remaining error is far smaller still
-   real(wp), parameter :: step_tolerance = 1.0e-10_wp
-   !> Relative decrease of the sum of squares below which the iteration has converged
-   real(wp), parameter :: cost_tolerance = 1.0e-13_wp
+   real(wp), parameter :: step_tolerance = 1.0e-11_wp
+   !> Largest cosine between the residual vector and a column of the Jacobian at a
+   !> minimum (the scaled gradient, MINPACK's gtol): immune to the rounding of the
+   !> sum of squares, it holds noisy fits to about 1e-10 of their standard errors
+   real(wp), parameter :: gradient_tolerance = 1.0e-10_wp
+   !> Relative decrease of the sum of squares, on a Gauss-Newton step, that counts as
+   !> stagnation at the level of rounding
+   real(wp), parameter :: cost_tolerance = 1.0e-15_wp
    !> Damping used after the first rejected Gauss-Newton step, and the largest tried
    real(wp), parameter :: mu_first = 1.0e-3_wp, mu_max = 1.0e20_wp
    !> Below this the damping is dropped (back to Gauss-Newton steps)
@@ -212,9 +217,10 @@ contains
    !> given, keeping theta >= lower.
    !>
    !> Stops when a step changes theta by at most step_tolerance relative (in the scaled
-   !> norm), when the sum of squares falls by at most cost_tolerance relative on a
-   !> Gauss-Newton step, when no step can lower it any more (a minimum to working
-   !> precision), or when it is zero.
+   !> norm), when the residuals are orthogonal to the Jacobian's columns within
+   !> gradient_tolerance, when the sum of squares falls by at most cost_tolerance
+   !> relative on a Gauss-Newton step, when no step can lower it any more (a minimum to
+   !> working precision), or when it is zero.
    !>
    !> Errors: the model's status at the starting point; hcimpact_err_underdetermined
    !> (the starting Jacobian is rank deficient: the data cannot determine theta);
@@ -235,7 +241,8 @@ contains
       integer, intent(out), optional :: iterations
       !> Bound on the accepted steps (default default_max_iterations)
       integer, intent(in), optional :: max_iterations
-      real(wp), allocatable :: r(:), rt(:), jac(:, :), d(:), step(:), trial(:), dx(:)
+      real(wp), allocatable :: r(:), rt(:), jac(:, :), jac_trial(:, :), d(:), step(:), &
+         & trial(:), dx(:)
       logical, allocatable :: frozen(:)
       real(wp) :: cost, cost_trial, mu, reduction
       integer :: m, p, iter, max_iter, j
@@ -250,7 +257,8 @@ contains
          stat = hcimpact_err_size
          return
       end if
-      allocate(r(m), rt(m), jac(m, p), d(p), step(p), trial(p), dx(p), frozen(p))
+      allocate(r(m), rt(m), jac(m, p), jac_trial(m, p), d(p), step(p), trial(p), dx(p), &
+         & frozen(p))
 
       call weighted_evaluation(model, theta, weight, r, stat, jac)
       if (stat /= hcimpact_ok) return
@@ -281,7 +289,12 @@ contains
                   cost_trial = dot_product(rt, rt)
                   accepted = cost_trial < cost
                end if
-               if (accepted) exit
+               if (accepted) then
+                  ! the Jacobian there too; a point where it fails is not taken
+                  call weighted_evaluation(model, trial, weight, rt, stat, jac_trial)
+                  if (stat == hcimpact_ok) exit
+                  accepted = .false.
+               end if
             end if
             mu = max(10.0_wp * mu, mu_first)
             if (mu > mu_max) exit
@@ -292,22 +305,22 @@ contains
             exit
          end if
          iter = iter + 1
+         if (present(iterations)) iterations = iter
          reduction = cost - cost_trial
          theta = trial
          r = rt
          cost = cost_trial
-         call weighted_evaluation(model, theta, weight, r, stat, jac)
-         if (stat /= hcimpact_ok) return
+         jac = jac_trial
          do j = 1, p
             d(j) = max(d(j), norm2(jac(:, j)))
          end do
          converged = cost == 0.0_wp &
             & .or. norm2(d * dx) <= step_tolerance * norm2(d * theta) &
-            & .or. (mu == 0.0_wp .and. reduction <= cost_tolerance * cost)
+            & .or. (mu == 0.0_wp .and. reduction <= cost_tolerance * cost) &
+            & .or. small_gradient(jac, r, theta, lower)
          mu = 0.1_wp * mu
          if (mu < mu_min) mu = 0.0_wp
       end do
-      if (present(iterations)) iterations = iter
       if (converged) then
          stat = hcimpact_ok
       else
@@ -345,6 +358,27 @@ contains
          end do
       end if
    end subroutine weighted_evaluation
+
+   !> Whether every free column of the Jacobian is nearly orthogonal to the residuals:
+   !> |J_j^T r| <= gradient_tolerance ||J_j|| ||r|| (a parameter on its lower bound
+   !> pushed outwards counts as converged).
+   pure function small_gradient(jac, r, theta, lower) result(small)
+      real(wp), intent(in) :: jac(:, :), r(:), theta(:), lower(:)
+      logical :: small
+      real(wp) :: g, rnorm
+      integer :: j
+      rnorm = norm2(r)
+      small = .true.
+      do j = 1, size(jac, 2)
+         ! the gradient of the sum of squares is 2 J^T r; outwards at a bound is g > 0
+         g = dot_product(jac(:, j), r)
+         if (theta(j) <= lower(j) .and. g >= 0.0_wp) cycle
+         if (.not. abs(g) <= gradient_tolerance * norm2(jac(:, j)) * rnorm) then
+            small = .false.
+            return
+         end if
+      end do
+   end function small_gradient
 
    !> Whether the column-scaled matrix has full column rank (singular values).
    function full_rank(jac) result(ok)

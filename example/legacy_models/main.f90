@@ -11,13 +11,11 @@
 program legacy_models
    use hcimpact_kinds, only : wp
    use hcimpact_restitution_law, only : restitution, restitution_inverse
+   use hcimpact_legacy_damping, only : n_models => n_damping_rules, &
+      & names => damping_rule_names, rule => legacy_damping
    implicit none
 
-   integer, parameter :: n_models = 8, n_targets = 5
-   character(len=*), parameter :: names(n_models) = [character(len=24) :: &
-      & "Hunt-Crossley 1975", "Herbert-McWhannell 1977", "Lankarani-Nikravesh 1990", &
-      & "Gonthier et al. 2004", "Zhiying-Qishao 2006", "Flores et al. 2011", &
-      & "Hu-Guo 2015", "Carvalho-Martins 2019"]
+   integer, parameter :: n_targets = 5
    real(wp), parameter :: targets(n_targets) = [0.9_wp, 0.7_wp, 0.5_wp, 0.3_wp, 0.1_wp]
 
    real(wp) :: e, chi, beta, k
@@ -38,32 +36,5 @@ program legacy_models
             & 100.0_wp * (chi / beta - 1.0_wp), "%", k, 100.0_wp * (k - e) / e, "%"
       end do
    end do
-
-contains
-
-   !> chi(e) of rule j (doc/legacy-models.md for the sources)
-   pure function rule(j, e) result(chi)
-      integer, intent(in) :: j
-      real(wp), intent(in) :: e
-      real(wp) :: chi
-      select case (j)
-      case (1)  ! Hunt and Crossley (1975)
-         chi = 1.5_wp * (1.0_wp - e)
-      case (2)  ! Herbert and McWhannell (1977)
-         chi = 6.0_wp * (1.0_wp - e) / ((2.0_wp * e - 1.0_wp)**2 + 3.0_wp)
-      case (3)  ! Lankarani and Nikravesh (1990)
-         chi = 0.75_wp * (1.0_wp - e**2)
-      case (4)  ! Gonthier, McPhee, Lange and Piedboeuf (2004)
-         chi = (1.0_wp - e**2) / e
-      case (5)  ! Zhiying and Qishao (2006)
-         chi = 0.75_wp * (1.0_wp - e**2) * exp(2.0_wp * (1.0_wp - e))
-      case (6)  ! Flores, Machado, Silva and Martins (2011)
-         chi = 8.0_wp * (1.0_wp - e) / (5.0_wp * e)
-      case (7)  ! Hu and Guo (2015), as in MODEL.md
-         chi = 1.5_wp * (1.0_wp - e) / e
-      case default  ! Carvalho and Martins (2019)
-         chi = 1.5_wp * (1.0_wp - e) * (11.0_wp - e) / (1.0_wp + 9.0_wp * e)
-      end select
-   end function rule
 
 end program legacy_models

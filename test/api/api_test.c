@@ -1,79 +1,560 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * Test of the C interface of hcimpact from a plain C program: the header
- * compiles as C99, the version macros agree, and every exported function is
- * reachable and returns the right value (checked loosely here; accuracy is the
- * business of the Fortran unit tests) or NaN outside its domain.
+ * Test of the C interface of hcimpact from a plain C program: every function
+ * declared in hcimpact.h is called with good arguments (values checked against
+ * MODEL.md and mpmath references, loosely: accuracy is the business of the Fortran
+ * unit tests), with arguments outside its domain (NaN or a documented status), and
+ * with NULL pointers and bad sizes (HCIMPACT_ERR_NULL / HCIMPACT_ERR_SIZE, nothing
+ * written). Also: the version macros, the status messages.
  *
- * Exit status 0 on success, 1 if any check failed.
+ * Exit status 0 on success, 1 if any check failed. Run under valgrind by CTest
+ * (hcimpact/valgrind/c-api) as well.
  */
 #include <math.h>
 #include <stdio.h>
+#include <string.h>
 
 #include "hcimpact.h"
 
 static int failures = 0;
+static int checks = 0;
+
+static void fail(const char *what)
+{
+  ++failures;
+  printf("FAIL %s\n", what);
+}
 
 /* |actual - expected| <= rel * |expected|; NaN never passes */
 static void check_close(const char *what, double actual, double expected, double rel)
 {
+  ++checks;
   if (isnan(actual) || !(fabs(actual - expected) <= rel * fabs(expected))) {
-    printf("FAIL %-28s got %.17g, expected %.17g\n", what, actual, expected);
+    printf("FAIL %-44s got %.17g, expected %.17g\n", what, actual, expected);
     ++failures;
-  } else {
-    printf("ok   %-28s %.17g\n", what, actual);
   }
 }
 
 static void check_nan(const char *what, double actual)
 {
+  ++checks;
   if (!isnan(actual)) {
-    printf("FAIL %-28s got %.17g, expected NaN\n", what, actual);
+    printf("FAIL %-44s got %.17g, expected NaN\n", what, actual);
     ++failures;
-  } else {
-    printf("ok   %-28s NaN\n", what);
   }
+}
+
+static void check_status(const char *what, int actual, int expected)
+{
+  ++checks;
+  if (actual != expected) {
+    printf("FAIL %-44s status %d (%s), expected %d (%s)\n", what, actual,
+           hcimpact_status_message(actual), expected, hcimpact_status_message(expected));
+    ++failures;
+  }
+}
+
+static void check_true(const char *what, int condition)
+{
+  ++checks;
+  if (!condition) fail(what);
+}
+
+/* MODEL.md: the seed's steel ball */
+static const double seed_v[6] = {0.5, 1.0, 2.0, 3.0, 4.0, 5.0};
+static const double seed_k[6] = {0.9677385785309325, 0.93747557994990506, 0.88218998624730638,
+                                 0.83286979226560167, 0.78853912590706515, 0.74843493159743416};
+static const double seed_xmax[6] = {1.9893579643308693e-5, 3.4204625278143626e-5,
+                                    5.8156728355576902e-5, 7.8679668816420547e-5,
+                                    9.7008052543829528e-5, 1.1372585556115339e-4};
+static const double seed_fmax[6] = {1521.9160892838993, 3441.1122331638547, 7709.8673680931372,
+                                    12322.929545918441, 17199.324205797322, 22315.267380743067};
+static const double seed_tc[6] = {1.1904584326151915e-4, 1.0399469349496538e-4,
+                                  9.1181013535146273e-5, 8.4701327451018694e-5,
+                                  8.0573545729318647e-5, 7.7655384043269703e-5};
+static const double seed_tcomp[6] = {5.8859751374268991e-5, 5.0856853135224197e-5,
+                                     4.3649774771233254e-5, 3.9721750506275539e-5,
+                                     3.7040161639485758e-5, 3.5014163526885175e-5};
+
+static hcimpact_contact steel_ball(double velocity)
+{
+  hcimpact_contact c;
+  c.mass = 0.1;
+  c.stiffness = 1.7135e10;
+  c.exponent = 1.5;
+  c.damping = 0.1;
+  c.velocity = velocity;
+  return c;
+}
+
+static int outcome_all_nan(const hcimpact_outcome *o)
+{
+  return isnan(o->restitution) && isnan(o->energy_loss_ratio) && isnan(o->rebound_velocity)
+         && isnan(o->max_compression) && isnan(o->peak_force)
+         && isnan(o->compression_at_peak_force) && isnan(o->compression_time)
+         && isnan(o->contact_time);
+}
+
+static void test_version(void)
+{
+  char expected[32];
+  snprintf(expected, sizeof expected, "%d.%d.%d", HCIMPACT_VERSION_MAJOR,
+           HCIMPACT_VERSION_MINOR, HCIMPACT_VERSION_PATCH);
+  check_true("HCIMPACT_VERSION = 10000 major + 100 minor + patch",
+             HCIMPACT_VERSION == 10000 * HCIMPACT_VERSION_MAJOR + 100 * HCIMPACT_VERSION_MINOR
+                                   + HCIMPACT_VERSION_PATCH);
+  check_true("hcimpact_version() == header version",
+             hcimpact_version() != NULL && strcmp(hcimpact_version(), expected) == 0);
+  check_true("hcimpact_version_number() == HCIMPACT_VERSION",
+             hcimpact_version_number() == HCIMPACT_VERSION);
+  printf("hcimpact %s (%d)\n", hcimpact_version(), hcimpact_version_number());
+}
+
+static void test_status_messages(void)
+{
+  int i, j;
+  const char *unknown = hcimpact_status_message(-1);
+  check_true("message(-1) is 'unknown status code'",
+             unknown != NULL && strcmp(unknown, "unknown status code") == 0);
+  check_true("message(16) is unknown", strcmp(hcimpact_status_message(16), unknown) == 0);
+  check_true("message(INT_MAX-ish) is unknown",
+             strcmp(hcimpact_status_message(2147483647), unknown) == 0);
+  check_true("message(INT_MIN-ish) is unknown",
+             strcmp(hcimpact_status_message(-2147483647 - 1), unknown) == 0);
+  check_true("message(0) is 'success'", strcmp(hcimpact_status_message(HCIMPACT_OK), "success") == 0);
+  check_true("message(NULL) mentions NULL",
+             strstr(hcimpact_status_message(HCIMPACT_ERR_NULL), "NULL") != NULL);
+  for (i = HCIMPACT_OK; i <= HCIMPACT_ERR_UNDERDETERMINED; ++i) {
+    const char *m = hcimpact_status_message(i);
+    check_true("message is non-empty and known", m != NULL && m[0] != '\0' && strcmp(m, unknown) != 0);
+    check_true("message is static (same pointer twice)", m == hcimpact_status_message(i));
+    for (j = 0; j < i; ++j) {
+      check_true("messages differ", strcmp(m, hcimpact_status_message(j)) != 0);
+    }
+  }
+}
+
+static void test_lambertw(void)
+{
+  const double rel = 1.0e-14;
+  double z[4] = {1.0, 10.0, -0.1, -1.0};
+  double w[4];
+  double big = 1.0e300;
+
+  /* mpmath at 30 digits */
+  check_close("lambert_w0(1)", hcimpact_lambert_w0(1.0), 0.56714329040978387, rel);
+  check_close("lambert_w0(10)", hcimpact_lambert_w0(10.0), 1.7455280027406994, rel);
+  check_close("lambert_w0(-1/e)", hcimpact_lambert_w0(-0.36787944117144233), -1.0, 0.0);
+  check_close("lambert_wm1(-0.1)", hcimpact_lambert_wm1(-0.1), -3.5771520639572971, rel);
+  check_close("lambert_w0p1(1)", hcimpact_lambert_w0p1(1.0), 0.84140566043696064, rel);
+  check_close("lambert_wm1p1(1)", hcimpact_lambert_wm1p1(1.0), -2.1461932206205826, rel);
+  check_close("lambert_w0p1(1e-20)", hcimpact_lambert_w0p1(1.0e-20), 1.4142135623064284e-10, rel);
+  check_true("lambert_w0p1(0) = 0", hcimpact_lambert_w0p1(0.0) == 0.0);
+  check_true("lambert_w0p1(+inf) = 1", hcimpact_lambert_w0p1(INFINITY) == 1.0);
+  check_true("lambert_wm1p1(+inf) = -inf", hcimpact_lambert_wm1p1(INFINITY) == -INFINITY);
+  check_true("lambert_wm1(-0.0) = -inf", hcimpact_lambert_wm1(-0.0) == -INFINITY);
+  check_true("lambert_w0(huge) finite", isfinite(hcimpact_lambert_w0(big)));
+
+  check_nan("lambert_w0(-1)", hcimpact_lambert_w0(-1.0));
+  check_nan("lambert_w0(NaN)", hcimpact_lambert_w0(NAN));
+  check_nan("lambert_w0(-inf)", hcimpact_lambert_w0(-INFINITY));
+  check_nan("lambert_wm1(0.5)", hcimpact_lambert_wm1(0.5));
+  check_nan("lambert_wm1(-1)", hcimpact_lambert_wm1(-1.0));
+  check_nan("lambert_wm1(NaN)", hcimpact_lambert_wm1(NAN));
+  check_nan("lambert_w0p1(-1)", hcimpact_lambert_w0p1(-1.0));
+  check_nan("lambert_w0p1(NaN)", hcimpact_lambert_w0p1(NAN));
+  check_nan("lambert_wm1p1(-1e-300)", hcimpact_lambert_wm1p1(-1.0e-300));
+  check_nan("lambert_wm1p1(NaN)", hcimpact_lambert_wm1p1(NAN));
+
+  /* array forms */
+  check_status("lambert_w0_array", hcimpact_lambert_w0_array(4, z, w), HCIMPACT_OK);
+  check_close("lambert_w0_array[0]", w[0], hcimpact_lambert_w0(1.0), 0.0);
+  check_close("lambert_w0_array[2]", w[2], hcimpact_lambert_w0(-0.1), 0.0);
+  check_nan("lambert_w0_array[3] (-1)", w[3]);
+  check_status("lambert_wm1_array", hcimpact_lambert_wm1_array(4, z, w), HCIMPACT_OK);
+  check_close("lambert_wm1_array[2]", w[2], -3.5771520639572971, rel);
+  check_nan("lambert_wm1_array[0] (1)", w[0]);
+  check_status("lambert_w0p1_array", hcimpact_lambert_w0p1_array(2, z, w), HCIMPACT_OK);
+  check_close("lambert_w0p1_array[0]", w[0], 0.84140566043696064, rel);
+  check_status("lambert_wm1p1_array", hcimpact_lambert_wm1p1_array(2, z, w), HCIMPACT_OK);
+  check_close("lambert_wm1p1_array[0]", w[0], -2.1461932206205826, rel);
+
+  w[0] = 42.0;
+  check_status("lambert_w0_array(n = 0)", hcimpact_lambert_w0_array(0, z, w), HCIMPACT_ERR_SIZE);
+  check_status("lambert_w0_array(n = -5)", hcimpact_lambert_w0_array(-5, z, w), HCIMPACT_ERR_SIZE);
+  check_status("lambert_w0_array(z = NULL)", hcimpact_lambert_w0_array(4, NULL, w), HCIMPACT_ERR_NULL);
+  check_status("lambert_w0_array(w = NULL)", hcimpact_lambert_w0_array(4, z, NULL), HCIMPACT_ERR_NULL);
+  check_status("lambert_wm1_array(NULL)", hcimpact_lambert_wm1_array(1, NULL, NULL), HCIMPACT_ERR_NULL);
+  check_status("lambert_w0p1_array(NULL)", hcimpact_lambert_w0p1_array(1, z, NULL), HCIMPACT_ERR_NULL);
+  check_status("lambert_wm1p1_array(NULL)", hcimpact_lambert_wm1p1_array(1, NULL, w), HCIMPACT_ERR_NULL);
+  check_true("nothing written on error", w[0] == 42.0);
+
+  /* in place */
+  z[0] = 1.0;
+  check_status("lambert_w0_array in place", hcimpact_lambert_w0_array(1, z, z), HCIMPACT_OK);
+  check_close("lambert_w0_array in place", z[0], 0.56714329040978387, rel);
+}
+
+static void test_restitution(void)
+{
+  const double rel = 1.0e-14;
+  double beta[5] = {0.0, 0.5, 1.4327505332713750, -1.0, NAN};
+  double out[5];
+  double e[4] = {0.5, 1.0, 0.0, 2.0};
+  double damping = 0.0;
+
+  check_close("restitution(0.5)", hcimpact_restitution(0.5), 0.74843493159743416, rel);
+  check_close("restitution(0)", hcimpact_restitution(0.0), 1.0, 0.0);
+  check_true("restitution(+inf) = 0", hcimpact_restitution(INFINITY) == 0.0);
+  check_close("restitution_inverse(0.5)", hcimpact_restitution_inverse(0.5), 1.4327505332713750, rel);
+  check_close("restitution_inverse(0.9)", hcimpact_restitution_inverse(0.9), 0.16648195068530810, 1e-13);
+  check_close("restitution_inverse(0.01)", hcimpact_restitution_inverse(0.01), 100.0, 1e-13);
+  check_true("restitution_inverse(1) = 0", hcimpact_restitution_inverse(1.0) == 0.0);
+  check_true("restitution_inverse(1e-310) = +inf", hcimpact_restitution_inverse(1.0e-310) == INFINITY);
+  check_nan("restitution(-1)", hcimpact_restitution(-1.0));
+  check_nan("restitution(NaN)", hcimpact_restitution(NAN));
+  check_nan("restitution(-inf)", hcimpact_restitution(-INFINITY));
+  check_nan("restitution_inverse(0)", hcimpact_restitution_inverse(0.0));
+  check_nan("restitution_inverse(1.5)", hcimpact_restitution_inverse(1.5));
+  check_nan("restitution_inverse(NaN)", hcimpact_restitution_inverse(NAN));
+
+  /* 1 - k, 1 - k^2, dk/dbeta, h(u) */
+  check_close("one_minus_restitution(0.5)", hcimpact_one_minus_restitution(0.5),
+              1.0 - 0.74843493159743416, 1e-14);
+  check_close("one_minus_restitution(1e-10)", hcimpact_one_minus_restitution(1e-10),
+              2.0e-10 / 3.0, 1e-9);
+  check_close("energy_loss_ratio(0.5)", hcimpact_energy_loss_ratio(0.5),
+              1.0 - 0.74843493159743416 * 0.74843493159743416, 1e-14);
+  check_close("restitution_derivative(0)", hcimpact_restitution_derivative(0.0), -2.0 / 3.0, 1e-15);
+  {
+    /* against a central difference of k */
+    const double h = 1e-5;
+    double fd = (hcimpact_restitution(0.5 + h) - hcimpact_restitution(0.5 - h)) / (2 * h);
+    check_close("restitution_derivative(0.5) ~ finite difference",
+                hcimpact_restitution_derivative(0.5), fd, 1e-8);
+  }
+  check_close("u_minus_log1p(1)", hcimpact_u_minus_log1p(1.0), 1.0 - log(2.0), 1e-15);
+  check_close("u_minus_log1p(1e-8)", hcimpact_u_minus_log1p(1e-8), 0.5e-16, 1e-7);
+  check_true("u_minus_log1p(-1) = +inf", hcimpact_u_minus_log1p(-1.0) == INFINITY);
+  check_nan("u_minus_log1p(-2)", hcimpact_u_minus_log1p(-2.0));
+  check_nan("one_minus_restitution(-1)", hcimpact_one_minus_restitution(-1.0));
+  check_nan("energy_loss_ratio(NaN)", hcimpact_energy_loss_ratio(NAN));
+  check_nan("restitution_derivative(-1)", hcimpact_restitution_derivative(-1.0));
+
+  /* array forms */
+  check_status("restitution_array", hcimpact_restitution_array(5, beta, out), HCIMPACT_OK);
+  check_close("restitution_array[1]", out[1], 0.74843493159743416, rel);
+  check_close("restitution_array[2]", out[2], 0.5, 1e-15);
+  check_nan("restitution_array[3] (-1)", out[3]);
+  check_nan("restitution_array[4] (NaN)", out[4]);
+  check_status("restitution_inverse_array", hcimpact_restitution_inverse_array(4, e, out), HCIMPACT_OK);
+  check_close("restitution_inverse_array[0]", out[0], 1.4327505332713750, rel);
+  check_true("restitution_inverse_array[1] = 0", out[1] == 0.0);
+  check_nan("restitution_inverse_array[2] (0)", out[2]);
+  check_nan("restitution_inverse_array[3] (2)", out[3]);
+  check_status("one_minus_restitution_array", hcimpact_one_minus_restitution_array(2, beta, out), HCIMPACT_OK);
+  check_close("one_minus_restitution_array[1]", out[1], hcimpact_one_minus_restitution(0.5), 0.0);
+  check_status("energy_loss_ratio_array", hcimpact_energy_loss_ratio_array(2, beta, out), HCIMPACT_OK);
+  check_close("energy_loss_ratio_array[1]", out[1], hcimpact_energy_loss_ratio(0.5), 0.0);
+  check_status("restitution_derivative_array", hcimpact_restitution_derivative_array(2, beta, out), HCIMPACT_OK);
+  check_close("restitution_derivative_array[1]", out[1], hcimpact_restitution_derivative(0.5), 0.0);
+
+  check_status("restitution_array(n = 0)", hcimpact_restitution_array(0, beta, out), HCIMPACT_ERR_SIZE);
+  check_status("restitution_array(NULL)", hcimpact_restitution_array(5, NULL, out), HCIMPACT_ERR_NULL);
+  check_status("restitution_inverse_array(NULL)", hcimpact_restitution_inverse_array(1, e, NULL), HCIMPACT_ERR_NULL);
+  check_status("restitution_inverse_array(n = -1)", hcimpact_restitution_inverse_array(-1, e, out), HCIMPACT_ERR_SIZE);
+  check_status("one_minus_restitution_array(NULL)", hcimpact_one_minus_restitution_array(1, NULL, out), HCIMPACT_ERR_NULL);
+  check_status("energy_loss_ratio_array(NULL)", hcimpact_energy_loss_ratio_array(1, beta, NULL), HCIMPACT_ERR_NULL);
+  check_status("restitution_derivative_array(NULL)", hcimpact_restitution_derivative_array(1, NULL, NULL), HCIMPACT_ERR_NULL);
+  check_status("restitution_derivative_array(n = 0)", hcimpact_restitution_derivative_array(0, beta, out), HCIMPACT_ERR_SIZE);
+
+  /* damping for a target restitution */
+  check_status("damping_for_restitution(0.5, 5 m/s)",
+               hcimpact_damping_for_restitution(0.5, 5.0, HCIMPACT_DEFAULT_MIN_VELOCITY, &damping),
+               HCIMPACT_OK);
+  check_close("damping_for_restitution(0.5, 5 m/s)", damping, 1.4327505332713750 / 5.0, rel);
+  check_status("damping_for_restitution(0.5, 0 m/s)",
+               hcimpact_damping_for_restitution(0.5, 0.0, 0.01, &damping), HCIMPACT_OK);
+  check_close("damping_for_restitution at min_velocity", damping, 1.4327505332713750 / 0.01, rel);
+  check_status("damping_for_restitution(e = 0)",
+               hcimpact_damping_for_restitution(0.0, 5.0, 1e-3, &damping), HCIMPACT_ERR_RESTITUTION);
+  check_nan("damping_for_restitution(e = 0) output", damping);
+  check_status("damping_for_restitution(V = -1)",
+               hcimpact_damping_for_restitution(0.5, -1.0, 1e-3, &damping), HCIMPACT_ERR_VELOCITY);
+  check_status("damping_for_restitution(min_velocity = 0)",
+               hcimpact_damping_for_restitution(0.5, 1.0, 0.0, &damping), HCIMPACT_ERR_VELOCITY);
+  check_status("damping_for_restitution(NaN)",
+               hcimpact_damping_for_restitution(NAN, 1.0, 1e-3, &damping), HCIMPACT_ERR_NOT_FINITE);
+  check_status("damping_for_restitution(NULL)",
+               hcimpact_damping_for_restitution(0.5, 1.0, 1e-3, NULL), HCIMPACT_ERR_NULL);
+}
+
+static void test_two_bodies(void)
+{
+  double v1 = 0.0, v2 = 0.0;
+  double c = hcimpact_hertz_constant(2e11, 0.25, 0.01452, 2e11, 0.25, INFINITY);
+
+  check_close("hertz_constant(steel ball on plate)", c, 1.7138e10, 1e-4);
+  check_close("hertz_constant symmetric",
+              hcimpact_hertz_constant(2e11, 0.25, INFINITY, 2e11, 0.25, 0.01452), c, 1e-15);
+  check_nan("hertz_constant(E = 0)", hcimpact_hertz_constant(0.0, 0.25, 0.01, 2e11, 0.25, 0.01));
+  check_nan("hertz_constant(nu = 0.6)", hcimpact_hertz_constant(2e11, 0.6, 0.01, 2e11, 0.25, 0.01));
+  check_nan("hertz_constant(two plates)",
+            hcimpact_hertz_constant(2e11, 0.25, INFINITY, 2e11, 0.25, INFINITY));
+  check_nan("hertz_constant(R = -1)", hcimpact_hertz_constant(2e11, 0.25, -1.0, 2e11, 0.25, 0.01));
+  check_nan("hertz_constant(NaN)", hcimpact_hertz_constant(NAN, 0.25, 0.01, 2e11, 0.25, 0.01));
+
+  check_close("effective_mass(1, 1)", hcimpact_effective_mass(1.0, 1.0), 0.5, 1e-15);
+  check_close("effective_mass(0.1, inf)", hcimpact_effective_mass(0.1, INFINITY), 0.1, 0.0);
+  check_nan("effective_mass(0, 1)", hcimpact_effective_mass(0.0, 1.0));
+  check_nan("effective_mass(1, NaN)", hcimpact_effective_mass(1.0, NAN));
+
+  check_status("two_body_velocities", hcimpact_two_body_velocities(1.0, 1.0, 1.0, -1.0, 0.5, &v1, &v2),
+               HCIMPACT_OK);
+  /* equal masses, V = 2, k = 0.5: exchange (1 + k) V/2 = 1.5 */
+  check_close("two_body_velocities v1'", v1, -0.5, 1e-15);
+  check_close("two_body_velocities v2'", v2, 0.5, 1e-15);
+  check_status("two_body_velocities(m2 = inf)",
+               hcimpact_two_body_velocities(0.1, INFINITY, 5.0, 0.0, 0.75, &v1, &v2), HCIMPACT_OK);
+  check_close("two_body_velocities wall v1'", v1, -3.75, 1e-15);
+  check_true("two_body_velocities wall v2' = 0", v2 == 0.0);
+  check_status("two_body_velocities(no approach)",
+               hcimpact_two_body_velocities(1.0, 1.0, -1.0, 1.0, 0.5, &v1, &v2), HCIMPACT_ERR_VELOCITY);
+  check_nan("two_body_velocities(no approach) v1'", v1);
+  check_status("two_body_velocities(m1 = 0)",
+               hcimpact_two_body_velocities(0.0, 1.0, 1.0, -1.0, 0.5, &v1, &v2), HCIMPACT_ERR_MASS);
+  check_status("two_body_velocities(k = 2)",
+               hcimpact_two_body_velocities(1.0, 1.0, 1.0, -1.0, 2.0, &v1, &v2), HCIMPACT_ERR_RESTITUTION);
+  check_status("two_body_velocities(NaN)",
+               hcimpact_two_body_velocities(1.0, 1.0, NAN, -1.0, 0.5, &v1, &v2), HCIMPACT_ERR_NOT_FINITE);
+  check_status("two_body_velocities(NULL)",
+               hcimpact_two_body_velocities(1.0, 1.0, 1.0, -1.0, 0.5, NULL, &v2), HCIMPACT_ERR_NULL);
+  check_status("two_body_velocities(NULL 2)",
+               hcimpact_two_body_velocities(1.0, 1.0, 1.0, -1.0, 0.5, &v1, NULL), HCIMPACT_ERR_NULL);
+}
+
+static void test_impact(void)
+{
+  const double rel = 1.0e-13;
+  int i;
+  hcimpact_contact contact, contacts[8];
+  hcimpact_outcome outcome, outcomes[8];
+  int statuses[8];
+
+  for (i = 0; i < 6; ++i) {
+    contact = steel_ball(seed_v[i]);
+    check_status("impact(steel ball)", hcimpact_impact(&contact, &outcome), HCIMPACT_OK);
+    check_close("impact k", outcome.restitution, seed_k[i], rel);
+    check_close("impact 1 - k^2", outcome.energy_loss_ratio, 1.0 - seed_k[i] * seed_k[i], 1e-12);
+    check_close("impact rebound velocity", outcome.rebound_velocity, -seed_k[i] * seed_v[i], rel);
+    check_close("impact x_max", outcome.max_compression, seed_xmax[i], rel);
+    check_close("impact F_max", outcome.peak_force, seed_fmax[i], rel);
+    check_true("impact x at F_max in (0, x_max)",
+               outcome.compression_at_peak_force > 0.0
+                   && outcome.compression_at_peak_force < outcome.max_compression);
+    check_close("impact t_compression", outcome.compression_time, seed_tcomp[i], rel);
+    check_close("impact t_contact", outcome.contact_time, seed_tc[i], rel);
+  }
+  /* b = 0 at V = 1 (MODEL.md) */
+  contact = steel_ball(1.0);
+  contact.damping = 0.0;
+  check_status("impact(b = 0)", hcimpact_impact(&contact, &outcome), HCIMPACT_OK);
+  check_close("impact(b = 0) k", outcome.restitution, 1.0, 0.0);
+  check_close("impact(b = 0) x_max", outcome.max_compression, 3.5092181079293274e-5, rel);
+  check_close("impact(b = 0) t_contact", outcome.contact_time, 1.0328594573451282e-4, rel);
+  check_close("impact(b = 0) F_max", outcome.peak_force, 3562.0470473908028, rel);
+
+  /* every invalid field */
+  {
+    struct {
+      const char *what;
+      int field;
+      double value;
+      int status;
+    } bad[] = {
+        {"mass = 0", 0, 0.0, HCIMPACT_ERR_MASS},
+        {"mass = -1", 0, -1.0, HCIMPACT_ERR_MASS},
+        {"mass = NaN", 0, NAN, HCIMPACT_ERR_NOT_FINITE},
+        {"stiffness = 0", 1, 0.0, HCIMPACT_ERR_STIFFNESS},
+        {"stiffness = inf", 1, INFINITY, HCIMPACT_ERR_NOT_FINITE},
+        {"exponent = 0", 2, 0.0, HCIMPACT_ERR_EXPONENT},
+        {"exponent = -1.5", 2, -1.5, HCIMPACT_ERR_EXPONENT},
+        {"damping = -0.1", 3, -0.1, HCIMPACT_ERR_DAMPING},
+        {"damping = NaN", 3, NAN, HCIMPACT_ERR_NOT_FINITE},
+        {"velocity = 0", 4, 0.0, HCIMPACT_ERR_VELOCITY},
+        {"velocity = -1", 4, -1.0, HCIMPACT_ERR_VELOCITY},
+        {"velocity = -inf", 4, -INFINITY, HCIMPACT_ERR_NOT_FINITE},
+        {"damping = 1e300, velocity 1e300", 3, 1e300, HCIMPACT_ERR_DOMAIN},
+    };
+    for (i = 0; i < (int)(sizeof bad / sizeof bad[0]); ++i) {
+      char what[96];
+      contact = steel_ball(1.0);
+      if (bad[i].status == HCIMPACT_ERR_DOMAIN) contact.velocity = 1e300;
+      switch (bad[i].field) {
+      case 0: contact.mass = bad[i].value; break;
+      case 1: contact.stiffness = bad[i].value; break;
+      case 2: contact.exponent = bad[i].value; break;
+      case 3: contact.damping = bad[i].value; break;
+      default: contact.velocity = bad[i].value; break;
+      }
+      snprintf(what, sizeof what, "impact(%s)", bad[i].what);
+      check_status(what, hcimpact_impact(&contact, &outcome), bad[i].status);
+      check_true("impact error: outcome all NaN", outcome_all_nan(&outcome));
+    }
+  }
+  check_true("hcimpact_contact is five doubles", sizeof(hcimpact_contact) == 5 * sizeof(double));
+  check_true("hcimpact_outcome is eight doubles", sizeof(hcimpact_outcome) == 8 * sizeof(double));
+
+  contact = steel_ball(1.0);
+  outcome.restitution = 42.0;
+  check_status("impact(NULL, outcome)", hcimpact_impact(NULL, &outcome), HCIMPACT_ERR_NULL);
+  check_status("impact(contact, NULL)", hcimpact_impact(&contact, NULL), HCIMPACT_ERR_NULL);
+  check_true("impact(NULL): outcome untouched", outcome.restitution == 42.0);
+
+  /* array form: the seed table plus two bad contacts */
+  for (i = 0; i < 6; ++i) contacts[i] = steel_ball(seed_v[i]);
+  contacts[6] = steel_ball(1.0);
+  contacts[6].mass = -1.0;
+  contacts[7] = steel_ball(1.0);
+  contacts[7].damping = -1.0;
+  check_status("impact_array (two bad)", hcimpact_impact_array(8, contacts, outcomes, statuses),
+               HCIMPACT_ERR_MASS);
+  for (i = 0; i < 6; ++i) {
+    check_status("impact_array status", statuses[i], HCIMPACT_OK);
+    check_close("impact_array k", outcomes[i].restitution, seed_k[i], rel);
+    check_close("impact_array t_contact", outcomes[i].contact_time, seed_tc[i], rel);
+  }
+  check_status("impact_array status[6]", statuses[6], HCIMPACT_ERR_MASS);
+  check_status("impact_array status[7]", statuses[7], HCIMPACT_ERR_DAMPING);
+  check_true("impact_array failed outcome NaN", outcome_all_nan(&outcomes[7]));
+  check_status("impact_array (statuses NULL)", hcimpact_impact_array(6, contacts, outcomes, NULL),
+               HCIMPACT_OK);
+  check_close("impact_array (statuses NULL) x_max", outcomes[5].max_compression, seed_xmax[5], rel);
+  check_status("impact_array(n = 0)", hcimpact_impact_array(0, contacts, outcomes, statuses),
+               HCIMPACT_ERR_SIZE);
+  check_status("impact_array(contacts NULL)", hcimpact_impact_array(1, NULL, outcomes, statuses),
+               HCIMPACT_ERR_NULL);
+  check_status("impact_array(outcomes NULL)", hcimpact_impact_array(1, contacts, NULL, statuses),
+               HCIMPACT_ERR_NULL);
+}
+
+static void test_trajectory(void)
+{
+  const double rel = 1.0e-12;
+  hcimpact_contact contact = steel_ball(5.0), bad = steel_ball(5.0);
+  hcimpact_outcome outcome;
+  double v = 0.0, xs[3], vs[3], t[5], x[5], xd[5], f[5];
+  int i;
+
+  bad.exponent = 0.0;
+  check_status("impact(V = 5)", hcimpact_impact(&contact, &outcome), HCIMPACT_OK);
+
+  /* velocity at a depth */
+  check_status("velocity_at_depth(0, compression)",
+               hcimpact_velocity_at_depth(&contact, 0.0, HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_OK);
+  check_close("velocity_at_depth(0, compression) = V", v, 5.0, rel);
+  check_status("velocity_at_depth(0, restitution)",
+               hcimpact_velocity_at_depth(&contact, 0.0, HCIMPACT_RESTITUTION_BRANCH, &v), HCIMPACT_OK);
+  check_close("velocity_at_depth(0, restitution) = -k V", v, outcome.rebound_velocity, rel);
+  check_status("velocity_at_depth(x_max)",
+               hcimpact_velocity_at_depth(&contact, outcome.max_compression,
+                                          HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_OK);
+  check_true("velocity_at_depth(x_max) ~ 0", fabs(v) < 1e-6);
+  check_status("velocity_at_depth(2 x_max)",
+               hcimpact_velocity_at_depth(&contact, 2.0 * outcome.max_compression,
+                                          HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_ERR_DOMAIN);
+  check_nan("velocity_at_depth(2 x_max) output", v);
+  check_status("velocity_at_depth(x = -1e-9)",
+               hcimpact_velocity_at_depth(&contact, -1e-9, HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_ERR_DOMAIN);
+  check_status("velocity_at_depth(x = NaN)",
+               hcimpact_velocity_at_depth(&contact, NAN, HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_ERR_NOT_FINITE);
+  check_status("velocity_at_depth(branch = 3)",
+               hcimpact_velocity_at_depth(&contact, 0.0, 3, &v), HCIMPACT_ERR_DOMAIN);
+  check_status("velocity_at_depth(bad contact)",
+               hcimpact_velocity_at_depth(&bad, 0.0, HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_ERR_EXPONENT);
+  check_status("velocity_at_depth(NULL contact)",
+               hcimpact_velocity_at_depth(NULL, 0.0, HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_ERR_NULL);
+  check_status("velocity_at_depth(NULL velocity)",
+               hcimpact_velocity_at_depth(&contact, 0.0, HCIMPACT_COMPRESSION_BRANCH, NULL), HCIMPACT_ERR_NULL);
+
+  xs[0] = 0.0;
+  xs[1] = 0.5 * outcome.max_compression;
+  xs[2] = outcome.max_compression;
+  check_status("velocity_at_depth_array",
+               hcimpact_velocity_at_depth_array(&contact, 3, xs, HCIMPACT_RESTITUTION_BRANCH, vs), HCIMPACT_OK);
+  check_close("velocity_at_depth_array[0]", vs[0], outcome.rebound_velocity, rel);
+  check_true("velocity_at_depth_array[1] in (-kV, 0)", vs[1] < 0.0 && vs[1] > outcome.rebound_velocity);
+  xs[2] = -1.0;
+  check_status("velocity_at_depth_array (x < 0)",
+               hcimpact_velocity_at_depth_array(&contact, 3, xs, HCIMPACT_RESTITUTION_BRANCH, vs), HCIMPACT_ERR_DOMAIN);
+  check_true("velocity_at_depth_array error: all NaN", isnan(vs[0]) && isnan(vs[1]) && isnan(vs[2]));
+  check_status("velocity_at_depth_array(n = 0)",
+               hcimpact_velocity_at_depth_array(&contact, 0, xs, 1, vs), HCIMPACT_ERR_SIZE);
+  check_status("velocity_at_depth_array(NULL x)",
+               hcimpact_velocity_at_depth_array(&contact, 3, NULL, 1, vs), HCIMPACT_ERR_NULL);
+  check_status("velocity_at_depth_array(NULL v)",
+               hcimpact_velocity_at_depth_array(&contact, 3, xs, 1, NULL), HCIMPACT_ERR_NULL);
+  check_status("velocity_at_depth_array(NULL contact)",
+               hcimpact_velocity_at_depth_array(NULL, 3, xs, 1, vs), HCIMPACT_ERR_NULL);
+
+  /* time law */
+  t[0] = -1.0;
+  t[1] = outcome.compression_time;
+  t[2] = 0.5 * outcome.contact_time;
+  t[3] = 2.0 * outcome.contact_time;
+  t[4] = 0.0;
+  check_status("time_law", hcimpact_time_law(&contact, 5, t, x, xd, f), HCIMPACT_OK);
+  check_true("time_law before contact: x = 0, x' = V, F = 0", x[0] == 0.0 && xd[0] == 5.0 && f[0] == 0.0);
+  check_close("time_law at t_compression: x = x_max", x[1], outcome.max_compression, 1e-10);
+  check_true("time_law at t_compression: x' ~ 0", fabs(xd[1]) < 1e-5);
+  check_true("time_law mid-contact: 0 < x < x_max", x[2] > 0.0 && x[2] < outcome.max_compression);
+  check_true("time_law mid-contact: 0 < F <= F_max", f[2] > 0.0 && f[2] <= outcome.peak_force);
+  check_true("time_law after contact: x = 0, F = 0", x[3] == 0.0 && f[3] == 0.0);
+  check_close("time_law after contact: x' = -k V", xd[3], outcome.rebound_velocity, rel);
+  check_true("time_law at t = 0: x = 0", x[4] == 0.0);
+  t[2] = NAN;
+  check_status("time_law (t NaN)", hcimpact_time_law(&contact, 5, t, x, xd, f), HCIMPACT_ERR_NOT_FINITE);
+  check_true("time_law (t NaN): outputs NaN", isnan(x[0]) && isnan(xd[4]) && isnan(f[1]));
+  check_status("time_law (bad contact)", hcimpact_time_law(&bad, 2, t, x, xd, f), HCIMPACT_ERR_EXPONENT);
+  check_status("time_law (n = 0)", hcimpact_time_law(&contact, 0, t, x, xd, f), HCIMPACT_ERR_SIZE);
+  check_status("time_law (NULL t)", hcimpact_time_law(&contact, 1, NULL, x, xd, f), HCIMPACT_ERR_NULL);
+  check_status("time_law (NULL x)", hcimpact_time_law(&contact, 1, t, NULL, xd, f), HCIMPACT_ERR_NULL);
+  check_status("time_law (NULL v)", hcimpact_time_law(&contact, 1, t, x, NULL, f), HCIMPACT_ERR_NULL);
+  check_status("time_law (NULL f)", hcimpact_time_law(&contact, 1, t, x, xd, NULL), HCIMPACT_ERR_NULL);
+  check_status("time_law (NULL contact)", hcimpact_time_law(NULL, 1, t, x, xd, f), HCIMPACT_ERR_NULL);
+  /* in place: the times array doubles as the compressions */
+  t[0] = outcome.compression_time;
+  check_status("time_law in place", hcimpact_time_law(&contact, 1, t, t, xd, f), HCIMPACT_OK);
+  check_close("time_law in place: x = x_max", t[0], outcome.max_compression, 1e-10);
+
+  check_status("time_law_samples", hcimpact_time_law_samples(&contact, 5, t, x, xd, f), HCIMPACT_OK);
+  check_true("time_law_samples t[0] = 0", t[0] == 0.0);
+  check_close("time_law_samples t[4] = contact time", t[4], outcome.contact_time, 0.0);
+  for (i = 1; i < 5; ++i) check_true("time_law_samples increasing", t[i] > t[i - 1]);
+  check_true("time_law_samples x[0] = 0", x[0] == 0.0);
+  check_close("time_law_samples v[0] = V", xd[0], 5.0, rel);
+  check_status("time_law_samples (n = 1)", hcimpact_time_law_samples(&contact, 1, t, x, xd, f), HCIMPACT_ERR_SIZE);
+  check_status("time_law_samples (bad contact)", hcimpact_time_law_samples(&bad, 5, t, x, xd, f), HCIMPACT_ERR_EXPONENT);
+  check_true("time_law_samples (bad contact): NaN", isnan(t[0]) && isnan(x[4]) && isnan(f[2]));
+  check_status("time_law_samples (NULL t)", hcimpact_time_law_samples(&contact, 2, NULL, x, xd, f), HCIMPACT_ERR_NULL);
+  check_status("time_law_samples (NULL f)", hcimpact_time_law_samples(&contact, 2, t, x, xd, NULL), HCIMPACT_ERR_NULL);
+  check_status("time_law_samples (NULL contact)", hcimpact_time_law_samples(NULL, 2, t, x, xd, f), HCIMPACT_ERR_NULL);
 }
 
 int main(void)
 {
-  const double rel = 1.0e-13;
-
-  if (HCIMPACT_VERSION != 10000 * HCIMPACT_VERSION_MAJOR + 100 * HCIMPACT_VERSION_MINOR
-        + HCIMPACT_VERSION_PATCH) {
-    printf("FAIL HCIMPACT_VERSION %d does not match %d.%d.%d\n", HCIMPACT_VERSION,
-           HCIMPACT_VERSION_MAJOR, HCIMPACT_VERSION_MINOR, HCIMPACT_VERSION_PATCH);
-    ++failures;
-  }
-
-  /* Reference values from mpmath at 30 digits. */
-  check_close("lambert_w0(1)", hcimpact_lambert_w0(1.0), 0.56714329040978387, rel);
-  check_close("lambert_w0(10)", hcimpact_lambert_w0(10.0), 1.7455280027406994, rel);
-  check_close("lambert_wm1(-0.1)", hcimpact_lambert_wm1(-0.1), -3.5771520639572971, rel);
-  check_close("lambert_w0p1(1)", hcimpact_lambert_w0p1(1.0), 0.84140566043696064, rel);
-  check_close("lambert_wm1p1(1)", hcimpact_lambert_wm1p1(1.0), -2.1461932206205826, rel);
-
-  check_nan("lambert_w0(-1)", hcimpact_lambert_w0(-1.0));
-  check_nan("lambert_w0(NaN)", hcimpact_lambert_w0(NAN));
-  check_nan("lambert_wm1(0.5)", hcimpact_lambert_wm1(0.5));
-  check_nan("lambert_w0p1(-1)", hcimpact_lambert_w0p1(-1.0));
-  check_nan("lambert_wm1p1(NaN)", hcimpact_lambert_wm1p1(NAN));
-
-  /* Restitution (MODEL.md: the seed's steel ball at V = 5 m/s has beta = 0.5) */
-  check_close("restitution(0.5)", hcimpact_restitution(0.5), 0.74843493159743416, rel);
-  check_close("restitution(0)", hcimpact_restitution(0.0), 1.0, 0.0);
-  check_close("restitution_inverse(0.5)", hcimpact_restitution_inverse(0.5), 1.4327505332713750,
-              rel);
-  check_close("restitution_inverse(1)", hcimpact_restitution_inverse(1.0) + 1.0, 1.0, 0.0);
-  check_nan("restitution(-1)", hcimpact_restitution(-1.0));
-  check_nan("restitution(NaN)", hcimpact_restitution(NAN));
-  check_nan("restitution_inverse(0)", hcimpact_restitution_inverse(0.0));
-  check_nan("restitution_inverse(1.5)", hcimpact_restitution_inverse(1.5));
+  test_version();
+  test_status_messages();
+  test_lambertw();
+  test_restitution();
+  test_two_bodies();
+  test_impact();
+  test_trajectory();
 
   if (failures > 0) {
-    printf("%d check(s) failed\n", failures);
+    printf("%d of %d checks failed\n", failures, checks);
     return 1;
   }
-  printf("all checks passed\n");
+  printf("all %d checks passed\n", checks);
   return 0;
 }

@@ -1,0 +1,159 @@
+! SPDX-License-Identifier: Apache-2.0
+!> hcimpact: the scene runner. Reads a scene file (or the built-in default scene, the
+!> seed's steel ball), plans from the outputs it asks for, computes only those, prints
+!> the tables and writes the results directory. `hcimpact --help` explains everything.
+program hcimpact_main
+   use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
+   use hcimpact_version_info, only : hcimpact_version_string
+   use hcimpact_scene_model, only : scene_type, n_outputs, output_index, output_names, &
+      & figure_outputs, default_scene_lines
+   use hcimpact_scene_reader, only : read_scene_file, read_default_scene
+   use hcimpact_scene_run, only : run_options, run_scene, exit_ok, exit_usage
+   use hcimpact_scene_ode, only : ode_available
+   use hcimpact_scene_help, only : print_help, print_usage_hint
+   use hcimpact_scene_system, only : is_terminal
+   use hcimpact_scene_text, only : join, lower
+   implicit none
+
+   type(scene_type) :: sc
+   type(run_options) :: opts
+   character(len=:), allocatable :: arg, scene_path, output_dir, error, list
+   logical :: replace(n_outputs), add(n_outputs), files
+   integer :: i, n, code
+
+   replace = .false.
+   add = .false.
+   files = .true.
+   n = command_argument_count()
+   i = 0
+   do while (i < n)
+      i = i + 1
+      arg = argument(i)
+      select case (arg)
+      case ("-h", "--help")
+         call print_help()
+         stop
+      case ("-V", "--version")
+         write(output_unit, '(a)') "hcimpact " // hcimpact_version_string
+         if (ode_available) then
+            write(output_unit, '(a)') "components: core, cvode"
+         else
+            write(output_unit, '(a)') "components: core (built without cvode)"
+         end if
+         stop
+      case ("--show-default")
+         do code = 1, size(default_scene_lines)
+            write(output_unit, '(a)') trim(default_scene_lines(code))
+         end do
+         stop
+      case ("-o", "--output")
+         if (i == n) call usage_error("option " // arg // " needs a directory")
+         i = i + 1
+         output_dir = argument(i)
+      case ("--outputs")
+         if (i == n) call usage_error("option --outputs needs a list, e.g. summary,phase")
+         i = i + 1
+         list = argument(i)
+         call parse_outputs(list, replace)
+      case ("--figures")
+         add = add .or. figure_outputs
+      case ("--no-files")
+         files = .false.
+      case ("--plan")
+         opts%plan_only = .true.
+      case ("-q", "--quiet")
+         opts%quiet = .true.
+      case default
+         if (len(arg) > 2) then
+            if (arg(1:2) == "--") call usage_error("unknown option " // arg)
+         end if
+         if (len(arg) > 1) then
+            if (arg(1:1) == "-") then
+               if (arg(1:2) /= "-o" .and. arg /= "-") call usage_error("unknown option " // arg)
+               ! -oDIR
+               if (arg(1:2) == "-o") then
+                  output_dir = arg(3:)
+                  cycle
+               end if
+            end if
+         end if
+         if (allocated(scene_path)) call usage_error("more than one scene file: " &
+            & // scene_path // " and " // arg)
+         scene_path = arg
+      end select
+   end do
+
+   if (allocated(scene_path)) then
+      call read_scene_file(scene_path, sc, error, replace, add)
+   else
+      call read_default_scene(sc, error, replace, add)
+   end if
+   if (allocated(error)) then
+      write(error_unit, '(a)') "error: " // error
+      stop exit_usage, quiet=.true.
+   end if
+
+   opts%write_files = files
+   if (allocated(output_dir)) then
+      if (.not. files) call usage_error("--no-files and -o contradict each other")
+      opts%output_dir = output_dir
+   else
+      opts%output_dir = "hcimpact-results/" // sc%name
+   end if
+   opts%progress = is_terminal(2)
+   call run_scene(sc, sc%text, opts, code)
+   if (code /= exit_ok) stop code, quiet=.true.
+
+contains
+
+   !> Command-line argument i.
+   function argument(i) result(text)
+      integer, intent(in) :: i
+      character(len=:), allocatable :: text
+      integer :: length
+      call get_command_argument(i, length=length)
+      allocate(character(len=length) :: text)
+      if (length > 0) call get_command_argument(i, text)
+   end function argument
+
+   !> The outputs of a comma-separated list.
+   subroutine parse_outputs(text, wanted)
+      character(len=*), intent(in) :: text
+      logical, intent(inout) :: wanted(n_outputs)
+      integer :: start, comma, k
+      character(len=:), allocatable :: word
+      start = 1
+      do
+         comma = index(text(start:), ",")
+         if (comma == 0) then
+            word = trim(adjustl(text(start:)))
+         else
+            word = trim(adjustl(text(start:start + comma - 2)))
+         end if
+         select case (lower(word))
+         case ("")
+         case ("figures")
+            wanted = wanted .or. figure_outputs
+         case ("all")
+            wanted = .true.
+         case default
+            k = output_index(word)
+            if (k == 0) call usage_error("unknown output '" // word // "' (outputs: " &
+               & // join(output_names, ", ") // ", or figures, all)")
+            wanted(k) = .true.
+         end select
+         if (comma == 0) exit
+         start = start + comma
+      end do
+      if (.not. any(wanted)) call usage_error("--outputs: the list is empty")
+   end subroutine parse_outputs
+
+   !> Report a bad command line and stop with exit_usage.
+   subroutine usage_error(text)
+      character(len=*), intent(in) :: text
+      write(error_unit, '(a)') "error: " // text
+      call print_usage_hint(error_unit)
+      stop exit_usage, quiet=.true.
+   end subroutine usage_error
+
+end program hcimpact_main

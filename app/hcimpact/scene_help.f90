@@ -1,0 +1,123 @@
+! SPDX-License-Identifier: Apache-2.0
+!> The text of `hcimpact --help`: usage, options, the scene format with an example,
+!> the outputs and the exit codes.
+module hcimpact_scene_help
+   use, intrinsic :: iso_fortran_env, only : output_unit
+   use hcimpact_scene_model, only : n_outputs, output_names, output_files, &
+      & output_descriptions, default_scene_lines
+   implicit none
+   private
+
+   public :: print_help, print_usage_hint
+
+contains
+
+   !> Everything a user needs to run the program and write a scene.
+   subroutine print_help()
+      integer :: i
+      call p("hcimpact: the Hunt-Crossley impact m x'' = -c x^n (1 + b x') of a body on a")
+      call p("wall, or of two bodies, in closed form (Lambert W) and by quadrature.")
+      call p("")
+      call p("Usage: hcimpact [options] [SCENE]")
+      call p("")
+      call p("Reads the scene file SCENE (without one: the built-in default scene, the")
+      call p("seed's steel ball, below), computes the outputs it asks for and nothing else,")
+      call p("prints the tables and a log of what each output cost, and writes the results")
+      call p("as CSV files into a directory.")
+      call p("")
+      call p("Options:")
+      call p("  -o, --output DIR  results directory (default: hcimpact-results/<scene name>);")
+      call p("                    files appear there only when the whole run succeeds")
+      call p("  --outputs LIST    outputs to compute instead of the scene's, comma-separated,")
+      call p("                    e.g. --outputs summary,phase")
+      call p("  --figures         also compute what the seed's figures 1-8 need; then")
+      call p("                    python3 python/plot_results.py DIR draws them")
+      call p("  --no-files        write no results directory (console only)")
+      call p("  --plan            print the plan (outputs, methods) and stop")
+      call p("  --show-default    print the default scene: a template for your own")
+      call p("  -q, --quiet       print only the tables and errors")
+      call p("  -h, --help        print this text")
+      call p("  -V, --version     print the version")
+      call p("")
+      call p("Scene files are Fortran namelists: groups &name ... / in any order; ! starts")
+      call p("a comment; text goes in quotes; units are SI. Groups and their names:")
+      call p("  &scene    title = ""...""                 title of the tables and figures")
+      call p("            speeds = 0.5, 1, 2            approach speeds V (m/s); for two")
+      call p("                                          bodies the relative speed")
+      call p("            outputs = ""summary"", ...      see Outputs (default ""summary"")")
+      call p("  &body1    mass = 0.1                    the moving body's mass (kg), or for a")
+      call p("            radius = 0.01, density = 7800 sphere its radius (m) and density")
+      call p("                                          (kg/m^3)")
+      call p("            young = 2e11, poisson = 0.25  material (Pa, -) and radius of")
+      call p("            radius = 0.01 (or flat = .true.)  curvature at the contact: needed")
+      call p("                                          only for Hertz's constant")
+      call p("  &body2    the same names: a second body, at rest. Without &body2, body 1")
+      call p("            strikes a massive flat wall.")
+      call p("  &wall     young = 2e11, poisson = 0.25  the wall's material (Hertz)")
+      call p("  &contact  stiffness = 1.7135e10         c of the elastic law f = c x^n")
+      call p("                                          (N/m^n); without it, Hertz's")
+      call p("                                          constant from radii and materials")
+      call p("            exponent = 1.5                n: 1.5 for spheres (default), 1 for")
+      call p("                                          flat faces")
+      call p("  &damping  b = 0.1                       damping b (s/m); 0: Hertz's elastic")
+      call p("                                          impact. Or instead:")
+      call p("            restitution = 0.8, at_speed = 1   the b that gives restitution")
+      call p("                                          0.8 at 1 m/s (exactly: b = beta(e)/V)")
+      call p("  &sampling samples = 201                 points per curve")
+      call p("            sweep_from = 0.05, sweep_to = 5, sweep_count = 100,")
+      call p("            sweep_spacing = ""linear""      speeds of the sweep (m/s; ""log""")
+      call p("                                          too); default: up to the largest")
+      call p("                                          speed")
+      call p("            beta_max = 10                 range of the restitution curves")
+      call p("            tolerances = 1e-4, 1e-6, 1e-8, 1e-10   CVODE relative tolerances")
+      call p("A scene needs &body1, a stiffness (or Hertz's data), &damping and, for most")
+      call p("outputs, speeds. Mistakes are reported with the file, line and group.")
+      call p("")
+      call p("Outputs (files in the results directory):")
+      do i = 1, n_outputs
+         call p("  " // output_names(i) // "  " // trim(output_descriptions(i)))
+         call p("               -> " // trim(output_files(i)))
+      end do
+      call p("  figures      summary, sweep, histories, phase, loops, restitution, lambertw")
+      call p("  all          every output")
+      call p("Every run also writes parameters.csv (the resolved m, c, n, b), scene.nml (the")
+      call p("scene) and log.txt (the log). CSV files have one header row of 'name [unit]'")
+      call p("and numbers with 17 significant digits.")
+      call p("")
+      call p("Example: the default scene (hcimpact --show-default > my.nml, then edit):")
+      do i = 1, size(default_scene_lines)
+         call p("    " // trim(default_scene_lines(i)))
+      end do
+      call p("")
+      call p("Another: two bodies, Hertz's constant from the materials, and the damping")
+      call p("that gives a restitution of 0.9 at 1 m/s:")
+      call p("    &scene  title = ""Two steel balls"", speeds = 0.5, 1, 2,")
+      call p("            outputs = ""summary"", ""histories"" /")
+      call p("    &body1  radius = 0.01, density = 7800, young = 2e11, poisson = 0.25 /")
+      call p("    &body2  radius = 0.02, density = 7800, young = 2e11, poisson = 0.25 /")
+      call p("    &damping  restitution = 0.9, at_speed = 1 /")
+      call p("More in example/scenes/ and doc/scenes.md.")
+      call p("")
+      call p("Examples:")
+      call p("  hcimpact                              the default scene's table")
+      call p("  hcimpact --figures -o out && python3 python/plot_results.py out")
+      call p("  hcimpact example/scenes/glass_bead.nml --plan")
+      call p("")
+      call p("Exit status: 0 success; 1 a computation or a file failed (nothing is left")
+      call p("half-written); 2 a bad command line or scene file; 3 an output needs a")
+      call p("component this build lacks (CVODE).")
+   end subroutine print_help
+
+   !> One line on the standard output.
+   subroutine p(text)
+      character(len=*), intent(in) :: text
+      write(output_unit, '(a)') trim(text)
+   end subroutine p
+
+   !> The hint after a usage error.
+   subroutine print_usage_hint(unit)
+      integer, intent(in) :: unit
+      write(unit, '(a)') "Usage: hcimpact [options] [SCENE]   (hcimpact --help for more)"
+   end subroutine print_usage_hint
+
+end module hcimpact_scene_help

@@ -1,0 +1,179 @@
+#!/usr/bin/env bash
+# SPDX-License-Identifier: Apache-2.0
+#
+# Fuzz the C interface of hcimpact with libFuzzer, AddressSanitizer and
+# UndefinedBehaviorSanitizer, for a fixed time budget, and report executions,
+# crashes, hangs and sanitizer findings (doc/robustness.md).
+#
+# What is instrumented:
+#   - the library (every Fortran source of src/, and the CVODE and LAPACK components
+#     when they are built): gfortran -fsanitize=address,undefined,float-cast-overflow
+#     -fcheck=all (bounds, pointers, recursion...); its objects link against clang's
+#     sanitizer runtimes (same ASan interface);
+#   - the fuzz target bench/fuzz/fuzz_api.c: clang -fsanitize=fuzzer,address,undefined
+#     (coverage guidance comes from the C side; the Fortran code is not
+#     coverage-instrumented, gfortran cannot emit libFuzzer's counters).
+#   Not instrumented: SUNDIALS, LAPACK/BLAS, libgfortran, libc.
+#
+# Usage: bench/fuzz/run.sh [--seconds N] [--build-dir DIR] [--jobs N] [--no-components]
+#                          [--fpe] [--quiet] [--keep-corpus]
+#   --seconds N       fuzzing budget (default 300)
+#   --build-dir DIR   where the instrumented library, the target, the corpus and the
+#                     log go (default build/fuzz)
+#   --jobs N          parallel libFuzzer workers (default 1)
+#   --no-components   fuzz the core only (no hcimpact_simulate, no fits)
+#   --keep-going      do not stop at the first finding (libFuzzer's fork mode):
+#                     collect them all, then list the distinct ones
+#   --fpe             also trap floating-point exceptions (invalid, divide by zero,
+#                     overflow) in the library, as -ffpe-trap would: a separate finding
+#                     class, not part of the default run (see doc/robustness.md)
+#   --quiet           only the summary
+# Exit status: 0 no finding; 1 a crash, hang, sanitizer report or contract violation;
+# 77 clang or libFuzzer missing (CTest: skipped).
+set -euo pipefail
+
+root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
+seconds=300
+build="$root/build/fuzz"
+jobs=1
+components=1
+fpe=0
+quiet=0
+keep_going=0
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --seconds) seconds="$2"; shift 2 ;;
+    --build-dir) build="$2"; shift 2 ;;
+    --jobs) jobs="$2"; shift 2 ;;
+    --no-components) components=0; shift ;;
+    --fpe) fpe=1; shift ;;
+    --keep-going) keep_going=1; shift ;;
+    --quiet) quiet=1; shift ;;
+    *) echo "unknown option $1" >&2; exit 2 ;;
+  esac
+done
+
+say() { [ "$quiet" = 1 ] || printf '\n---- fuzz: %s\n' "$*"; }
+run_quiet() {
+  if [ "$quiet" = 1 ]; then "$@" >"$build/step.log" 2>&1 || { cat "$build/step.log"; return 1; }
+  else "$@"; fi
+}
+
+cc="${CLANG:-clang}"
+if ! command -v "$cc" >/dev/null 2>&1; then
+  echo "SKIPPED: clang not found (apt-get install clang libclang-rt-14-dev)"
+  exit 77
+fi
+mkdir -p "$build"
+# libFuzzer and the sanitizer runtimes come with libclang-rt-<version>-dev
+printf 'int LLVMFuzzerTestOneInput(const unsigned char *d, unsigned long n) { (void)d; (void)n; return 0; }\n' \
+  >"$build/probe.c"
+if ! "$cc" -fsanitize=fuzzer,address,undefined "$build/probe.c" -o "$build/probe" >/dev/null 2>&1; then
+  echo "SKIPPED: $cc cannot link -fsanitize=fuzzer,address,undefined (libclang-rt-14-dev missing?)"
+  exit 77
+fi
+fc="${FC:-gfortran}"
+generator=()
+if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
+
+san_flags="-fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer"
+# -fcheck=all but recursion: that check is a static flag (not what is fuzzed here)
+fflags="-g -O1 $san_flags -fcheck=all -fcheck=no-recursion"
+if [ "$components" = 1 ]; then with=AUTO; else with=OFF; fi
+if [ "$fpe" = 1 ]; then fpe_flag=ON; else fpe_flag=OFF; fi
+
+say "instrumented library ($fc $fflags) and fuzz target ($cc) in $build/target"
+run_quiet cmake -S "$root/bench/fuzz" -B "$build/target" "${generator[@]}" \
+  -DCMAKE_BUILD_TYPE=None -DCMAKE_Fortran_COMPILER="$fc" -DCMAKE_C_COMPILER="$cc" \
+  -DCMAKE_Fortran_FLAGS="$fflags" -DBUILD_TESTING=OFF -DHCIMPACT_BUILD_EXAMPLES=OFF \
+  -DHCIMPACT_DEBUG_CHECKS=OFF -DHCIMPACT_WITH_CVODE="$with" -DHCIMPACT_WITH_LAPACK="$with" \
+  -DHCIMPACT_FUZZ_FPE="$fpe_flag"
+run_quiet cmake --build "$build/target" --target fuzz_api --parallel "$(nproc 2>/dev/null || echo 2)"
+components_built="core"
+for component in cvode lapack; do
+  if [ -f "$build/target/hcimpact/libhcimpact_$component.a" ]; then
+    components_built="$components_built, $component"
+  fi
+done
+cp "$build/target/fuzz_api" "$build/fuzz_api"
+
+corpus="$build/corpus"
+artifacts="$build/artifacts"
+mkdir -p "$corpus" "$artifacts"
+rm -f "$artifacts"/crash-* "$artifacts"/timeout-* "$artifacts"/leak-* "$artifacts"/oom-*
+log="$build/fuzz.log"
+say "running for ${seconds}s ($jobs worker(s)); log $log"
+status=0
+export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:halt_on_error=1}"
+export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1:suppressions=$root/bench/fuzz/ubsan.supp}"
+fuzz_args=(-max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -max_len=512
+  -print_final_stats=1 -artifact_prefix="$artifacts/")
+if [ "$keep_going" = 1 ]; then
+  fuzz_args+=(-fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
+elif [ "$jobs" -gt 1 ]; then
+  fuzz_args+=(-jobs="$jobs" -workers="$jobs")
+fi
+started=$(date +%s.%N)
+(cd "$build" && ./fuzz_api "${fuzz_args[@]}" "$corpus") >"$log" 2>&1 || status=$?
+elapsed=$(awk -v a="$started" -v b="$(date +%s.%N)" 'BEGIN {printf "%.1f", b - a}')
+if [ "$jobs" -gt 1 ]; then cat "$build"/fuzz-*.log >>"$log" 2>/dev/null || true; fi
+
+# summary
+execs=$(grep -h "stat::number_of_executed_units" "$log" | awk '{s += $2} END {print s + 0}')
+if [ "$keep_going" = 1 ]; then
+  # fork mode prints no final stats: the last status line counts the executions
+  execs=$( (grep -hE "^#[0-9]+" "$log" || true) | tail -1 | sed 's/^#\([0-9]*\).*/\1/')
+  execs=${execs:-0}
+fi
+rate=$(awk -v n="$execs" -v t="$elapsed" 'BEGIN {printf "%.0f", (t > 0 ? n / t : 0)}')
+cov=$( (grep -hE "^#[0-9]+.*(DONE|pulse|NEW|REDUCE)" "$log" || true) | tail -1 \
+  | sed -n 's/.*cov: \([0-9]*\) ft: \([0-9]*\).*/\1 edges, \2 features/p')
+crashes=$(find "$artifacts" -name 'crash-*' | wc -l)
+hangs=$(find "$artifacts" -name 'timeout-*' | wc -l)
+leaks=$(find "$artifacts" -name 'leak-*' | wc -l)
+ooms=$(find "$artifacts" -name 'oom-*' | wc -l)
+# rerun every artifact once to classify it (fork mode keeps the reports elsewhere)
+triage="$build/triage.log"
+: >"$triage"
+for artifact in "$artifacts"/crash-* "$artifacts"/timeout-* "$artifacts"/leak-*; do
+  [ -f "$artifact" ] || continue
+  output=$("$build/fuzz_api" -timeout=60 "$artifact" 2>&1 || true)
+  first=$(printf '%s\n' "$output" \
+    | grep -m1 -E "ERROR: AddressSanitizer|runtime error:|contract broken|deadly signal|SEGV|FPE|floating|timeout" \
+    | sed 's/^==[0-9]*==//' || true)
+  contact=$(printf '%s\n' "$output" | grep -m1 "last contact" | sed 's/^ *//' || true)
+  printf '%s\t%s\t%s\n' "$(basename "$artifact")" "${first:-unclassified}" "$contact" >>"$triage"
+done
+count() { (cut -f2 "$triage" | grep -c -- "$1") || true; }
+asan=$(count "AddressSanitizer")
+ubsan=$(count "runtime error:")
+contract=$(count "contract broken")
+fpes=$(count "FPE")
+corpus_size=$(find "$corpus" -type f | wc -l)
+
+cat <<EOF
+
+hcimpact fuzz summary ($(date -u +%Y-%m-%dT%H:%MZ), $(uname -m), budget ${seconds} s, ran ${elapsed} s, $jobs worker(s))
+  target            bench/fuzz/fuzz_api.c (entry points of: $components_built)
+  executions        $execs ($rate exec/s)
+  coverage          ${cov:-n/a} (C side), corpus $corpus_size inputs
+  crashes           $crashes
+  hangs (> 20 s)    $hangs
+  leaks             $leaks
+  out of memory     $ooms
+  ASan reports      $asan
+  UBSan reports     $ubsan
+  contract broken   $contract
+  FP exceptions     $fpes$( [ "$fpe" = 1 ] || printf ' (not trapped; --fpe to trap)')
+  libFuzzer exit    $status
+EOF
+if [ -s "$triage" ]; then
+  echo "  distinct findings (one artifact each; all in $triage):"
+  sort -t "$(printf '\t')" -k2,2 -u "$triage" \
+    | awk -F '\t' '{printf "    %s\n      %s %s\n", $2, $1, $3}'
+fi
+if [ "$crashes$hangs$leaks$ooms$asan$ubsan$contract" != "0000000" ] || [ "$status" != 0 ]; then
+  echo "FINDINGS: see $log and $artifacts" >&2
+  exit 1
+fi
+echo "no findings"

@@ -1,0 +1,113 @@
+# SPDX-License-Identifier: Apache-2.0
+"""The C structures of ``hcimpact.h``, the result type and the exceptions."""
+
+from __future__ import annotations
+
+import ctypes
+from dataclasses import dataclass, fields
+from typing import Any
+
+__all__ = [
+    "Contact", "Outcome", "ImpactResult", "HcimpactError", "InputError", "ComputationError",
+    "UnavailableError", "STATUS_NAMES",
+]
+
+
+class Contact(ctypes.Structure):
+    """``hcimpact_contact``: mass (kg), stiffness (N/m^n), exponent, damping (s/m),
+    velocity (m/s)."""
+
+    _fields_ = [(name, ctypes.c_double)
+                for name in ("mass", "stiffness", "exponent", "damping", "velocity")]
+
+
+OUTCOME_FIELDS = ("restitution", "energy_loss_ratio", "rebound_velocity", "max_compression",
+                  "peak_force", "compression_at_peak_force", "compression_time",
+                  "contact_time")
+
+
+class Outcome(ctypes.Structure):
+    """``hcimpact_outcome``, field by field."""
+
+    _fields_ = [(name, ctypes.c_double) for name in OUTCOME_FIELDS]
+
+
+@dataclass(frozen=True)
+class ImpactResult:
+    """What :func:`hcimpact.impact` (and :func:`hcimpact.simulate`) computes.
+
+    SI units. For array inputs every field is a NumPy array of the broadcast shape.
+    """
+
+    #: coefficient of restitution k = -(rebound velocity)/V, in (0, 1]
+    restitution: Any
+    #: share of the kinetic energy lost, 1 - k^2
+    energy_loss_ratio: Any
+    #: rebound velocity -k V in m/s (negative)
+    rebound_velocity: Any
+    #: maximum compression x_max in m
+    max_compression: Any
+    #: largest contact force c x^n (1 + b x') in N
+    peak_force: Any
+    #: compression at which the peak force acts, in m
+    compression_at_peak_force: Any
+    #: time from the start of contact to x_max, in s
+    compression_time: Any
+    #: duration of the contact, in s
+    contact_time: Any
+
+    def as_dict(self) -> dict[str, Any]:
+        """The fields as a dictionary (in their order)."""
+        return {f.name: getattr(self, f.name) for f in fields(self)}
+
+
+#: Names of the status codes (the HCIMPACT_* macros of hcimpact.h)
+STATUS_NAMES = {
+    0: "HCIMPACT_OK", 1: "HCIMPACT_ERR_NOT_FINITE", 2: "HCIMPACT_ERR_MASS",
+    3: "HCIMPACT_ERR_STIFFNESS", 4: "HCIMPACT_ERR_EXPONENT", 5: "HCIMPACT_ERR_VELOCITY",
+    6: "HCIMPACT_ERR_DAMPING", 7: "HCIMPACT_ERR_RESTITUTION", 8: "HCIMPACT_ERR_DOMAIN",
+    9: "HCIMPACT_ERR_NO_CONVERGENCE", 10: "HCIMPACT_ERR_NULL", 11: "HCIMPACT_ERR_SOLVER",
+    12: "HCIMPACT_ERR_UNAVAILABLE", 13: "HCIMPACT_ERR_ELASTIC_LAW", 14: "HCIMPACT_ERR_SIZE",
+    15: "HCIMPACT_ERR_UNDERDETERMINED",
+}
+
+
+class HcimpactError(Exception):
+    """An error status of the library.
+
+    ``status`` is the code (``HCIMPACT_*``), ``name`` its macro name, ``message`` the
+    library's text (``hcimpact_status_message``), ``function`` the C function, and
+    ``index`` the position of the failing element for array inputs (else None).
+    """
+
+    def __init__(self, status: int, message: str, function: str, index: int | None = None):
+        self.status = status
+        self.name = STATUS_NAMES.get(status, f"status {status}")
+        self.message = message
+        self.function = function
+        self.index = index
+        where = f" (element {index})" if index is not None else ""
+        super().__init__(f"{function}{where}: {message} [{self.name}]")
+
+
+class InputError(HcimpactError, ValueError):
+    """An argument is invalid: NaN, infinite, or outside its domain (statuses 1-8, 10,
+    13, 14)."""
+
+
+class ComputationError(HcimpactError, ArithmeticError):
+    """A computation failed: no convergence (9), the ODE solver failed (11), or the
+    data cannot determine a fit (15)."""
+
+
+class UnavailableError(HcimpactError, RuntimeError):
+    """The component (CVODE, LAPACK) is not part of this build or installation (12)."""
+
+
+def error_class(status: int) -> type[HcimpactError]:
+    """The exception type of a status code."""
+    if status in (9, 11, 15):
+        return ComputationError
+    if status == 12:
+        return UnavailableError
+    return InputError

@@ -1,0 +1,590 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Figures from a results directory of the ``hcimpact`` scene runner.
+
+Reads only the CSV files the runner wrote (never the shared library), so it works on
+any machine with NumPy and Matplotlib::
+
+    hcimpact --figures -o out              # the seed's steel ball, every figure's data
+    python3 python/plot_results.py out     # writes out/fig1_phase.png ... fig8_lambertw.png
+
+or, with ``python/`` on the module path, ``python3 -m hcimpact.plot out``.
+
+Each figure is drawn when its CSV files are present and skipped otherwise:
+
+======  ============================================  ==================================
+figure  what (the seed's caption)                     from
+======  ============================================  ==================================
+1       phase trajectories V(x)                       phase.csv
+2       V against z on both branches of W             velocity_z.csv, motion_z.csv
+3       k and energy loss against beta = b V          restitution.csv (+ summary.csv)
+4       x(t) and F(t)                                 histories.csv
+5       x_max, F_max and contact time against V       sweep.csv and/or summary.csv
+6       force against deformation (hysteresis)        loops.csv
+7       energy lost against V                         sweep.csv and/or summary.csv
+8       the two real branches of Lambert W            lambertw.csv
+9       work-precision: CVODE against closed form     cvode.csv
+10      damping rules of multibody codes              legacy.csv
+======  ============================================  ==================================
+"""
+
+import argparse
+import csv
+import math
+import os
+import sys
+
+# NumPy and Matplotlib are imported on first use (`_load`): importing this module
+# costs nothing and needs neither.
+np = None
+matplotlib = None
+
+__all__ = ["read_csv", "plot_results", "main"]
+
+FIGURES = {
+    1: "fig1_phase",
+    2: "fig2_velocity_z",
+    3: "fig3_restitution",
+    4: "fig4_histories",
+    5: "fig5_peaks",
+    6: "fig6_loops",
+    7: "fig7_energy",
+    8: "fig8_lambertw",
+    9: "fig9_work_precision",
+    10: "fig10_legacy",
+}
+
+
+def _load():
+    """Import NumPy and Matplotlib (the Agg backend: files only, no display)."""
+    global np, matplotlib
+    if np is None:
+        import numpy
+        np = numpy
+    if matplotlib is None:
+        import matplotlib as mpl
+        mpl.use("Agg")
+        import matplotlib.ticker  # noqa: F401 (used as matplotlib.ticker)
+        matplotlib = mpl
+
+
+# ----------------------------------------------------------------------------------
+# Reading
+# ----------------------------------------------------------------------------------
+
+def read_csv(path):
+    """Columns of a runner CSV file as a dict: name -> NumPy array (float) or list
+    (text). Header cells are ``name [unit]``; the unit is dropped from the key and
+    kept in ``result["_units"][name]``."""
+    _load()
+    with open(path, newline="") as handle:
+        rows = list(csv.reader(handle))
+    if not rows:
+        raise ValueError(f"{path}: empty file")
+    names, units = [], {}
+    for cell in rows[0]:
+        cell = cell.strip()
+        if cell.endswith("]") and "[" in cell:
+            name, unit = cell[:-1].split("[", 1)
+            name = name.strip()
+            units[name] = unit.strip()
+        else:
+            name = cell
+        names.append(name)
+    columns = {name: [] for name in names}
+    for number, row in enumerate(rows[1:], start=2):
+        if not row:
+            continue
+        if len(row) != len(names):
+            raise ValueError(f"{path}:{number}: {len(row)} fields, the header has {len(names)}")
+        for name, cell in zip(names, row):
+            columns[name].append(cell)
+    result = {"_units": units}
+    for name, cells in columns.items():
+        try:
+            result[name] = np.array([float(cell) for cell in cells])
+        except ValueError:
+            result[name] = cells
+    return result
+
+
+def read_parameters(directory):
+    """parameters.csv as a dict name -> float (or text); {} if absent."""
+    path = os.path.join(directory, "parameters.csv")
+    values = {}
+    if not os.path.exists(path):
+        return values
+    with open(path, newline="") as handle:
+        for row in list(csv.reader(handle))[1:]:
+            if len(row) < 2:
+                continue
+            try:
+                values[row[0]] = float(row[1])
+            except ValueError:
+                values[row[0]] = row[1]
+    return values
+
+
+# ----------------------------------------------------------------------------------
+# Helpers
+# ----------------------------------------------------------------------------------
+
+_PREFIXES = [(1e-9, "n"), (1e-6, "µ"), (1e-3, "m"), (1.0, ""), (1e3, "k"), (1e6, "M"),
+             (1e9, "G")]
+
+
+def scale(values, unit):
+    """A factor and a unit with an SI prefix that bring the largest |value| into
+    [1, 1000): returns (factor to multiply by, unit text)."""
+    _load()
+    finite = np.abs(np.asarray(values, dtype=float))
+    finite = finite[np.isfinite(finite) & (finite > 0)]
+    if finite.size == 0:
+        return 1.0, unit
+    top = finite.max()
+    chosen = _PREFIXES[0]
+    for factor, prefix in _PREFIXES:
+        if top >= factor * 0.9999:
+            chosen = (factor, prefix)
+    return 1.0 / chosen[0], chosen[1] + unit
+
+
+def speed_colors(speeds):
+    """One colour per speed, from a sequential colour map (slow: light, fast: dark)."""
+    _load()
+    cmap = matplotlib.colormaps["viridis"]
+    n = len(speeds)
+    return {v: cmap(0.85 * (1.0 - i / max(n - 1, 1))) for i, v in enumerate(speeds)}
+
+
+def speed_label(v):
+    return f"V = {v:g} m/s"
+
+
+def unique(values):
+    seen, out = set(), []
+    for v in values:
+        if v not in seen:
+            seen.add(v)
+            out.append(v)
+    return out
+
+
+def title_of(params, default="hcimpact"):
+    title = params.get("title", default)
+    return title if isinstance(title, str) else default
+
+
+def caption(fig, text):
+    fig.text(0.5, 0.005, text, ha="center", va="bottom", fontsize=8.5, color="0.3",
+             wrap=True)
+
+
+# ----------------------------------------------------------------------------------
+# The figures
+# ----------------------------------------------------------------------------------
+
+def fig_phase(d, params, plt):
+    data = read_csv(os.path.join(d, "phase.csv"))
+    speeds = unique(list(data["speed"]))
+    colors = speed_colors(speeds)
+    kx, ux = scale(data["compression"], "m")
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    phase = data["phase"]
+    for v in speeds:
+        for name, style in (("compression", "-"), ("restitution", "-")):
+            mask = [(s == v and p == name) for s, p in zip(data["speed"], phase)]
+            x = data["compression"][mask] * kx
+            y = data["velocity"][mask]
+            ax.plot(x, y, style, color=colors[v], lw=1.6,
+                    label=speed_label(v) if name == "compression" else None)
+        # direction of motion: along the compression branch, back along restitution
+        mask = [(s == v and p == "compression") for s, p in zip(data["speed"], phase)]
+        x = data["compression"][mask] * kx
+        y = data["velocity"][mask]
+        i = len(x) // 3
+        ax.annotate("", xy=(x[i + 1], y[i + 1]), xytext=(x[i], y[i]),
+                    arrowprops=dict(arrowstyle="->", color=colors[v], lw=1.4))
+    b = params.get("damping")
+    if isinstance(b, float) and b > 0:
+        ax.axhline(-1.0 / b, color="k", ls="--", lw=1.0,
+                   label=f"V = −1/b = −{1.0 / b:g} m/s (never reached)")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.set_xlabel(f"deformation x ({ux})")
+    ax.set_ylabel("velocity V = dx/dt (m/s)")
+    ax.set_xlim(left=0)
+    title = "Fig. 1  Phase trajectories V(x)"
+    if isinstance(b, float):
+        title += f", b = {b:g} s/m"
+    ax.set_title(title + "\n" + title_of(params), fontsize=11)
+    ax.legend(fontsize=8, loc="lower left", bbox_to_anchor=(0.0, 0.1), ncol=2)
+    ax.grid(alpha=0.3)
+    ax.text(0.98, 0.97, "compression: V > 0\nrestitution: V < 0", transform=ax.transAxes,
+            ha="right", va="top", fontsize=8.5, color="0.3")
+    return fig
+
+
+def fig_velocity_z(d, params, plt):
+    curve = read_csv(os.path.join(d, "velocity_z.csv"))
+    motion_path = os.path.join(d, "motion_z.csv")
+    motion = read_csv(motion_path) if os.path.exists(motion_path) else None
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    phase = curve["phase"]
+    for name, style, label in (("compression", "--", "compression: W₋₁ branch"),
+                               ("restitution", "-", "restitution: W₀ branch")):
+        mask = [p == name for p in phase]
+        ax.plot(curve["z"][mask], curve["velocity"][mask], style, color="k", lw=1.2,
+                label=label)
+    b = params.get("damping")
+    if isinstance(b, float) and b > 0:
+        ax.axhline(-1.0 / b, color="0.5", ls=":", lw=1.0, label=f"V = −1/b = −{1.0 / b:g} m/s")
+    ax.axvline(-1.0 / math.e, color="0.6", lw=0.6)
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    vmax = None
+    if motion is not None:
+        speeds = unique(list(motion["speed"]))
+        colors = speed_colors(speeds)
+        vmax = max(speeds)
+        # the faster impacts run through the slower ones' arcs: draw them first
+        for v in reversed(speeds):
+            mask = [s == v for s in motion["speed"]]
+            ax.plot(motion["z"][mask], motion["velocity"][mask], color=colors[v], lw=3.5,
+                    solid_capstyle="round", label=f"impact at {speed_label(v)}")
+    top = 2.5 * vmax if vmax else np.nanmax(curve["velocity"])
+    if isinstance(b, float) and b > 0:
+        ax.set_ylim(-1.15 / b, max(top, 0.3 / b))
+    ax.set_xlim(-1.0 / math.e - 0.01, 0.0)
+    ax.set_xlabel("z = −exp(g(x))  (seed eq. 14)")
+    ax.set_ylabel("velocity V = −(1 + W(z))/b (m/s)")
+    ax.set_title("Fig. 2  Velocity against z on both real branches of W\n" + title_of(params),
+                 fontsize=11)
+    handles, labels = ax.get_legend_handles_labels()
+    order = list(range(3)) + list(range(len(handles) - 1, 2, -1))
+    ax.legend([handles[i] for i in order if i < len(handles)],
+              [labels[i] for i in order if i < len(handles)], fontsize=8, loc="upper left")
+    ax.grid(alpha=0.3)
+    if motion is not None:
+        # the impacts run through a small neighbourhood of the branch point: zoom in
+        zmax = float(np.nanmax(motion["z"]))
+        width = zmax + 1.0 / math.e
+        inset = ax.inset_axes([0.56, 0.5, 0.41, 0.44])
+        for name, style in (("compression", "--"), ("restitution", "-")):
+            mask = [p == name for p in phase]
+            inset.plot(curve["z"][mask], curve["velocity"][mask], style, color="k", lw=1.0)
+        for v in reversed(speeds):
+            mask = [s == v for s in motion["speed"]]
+            inset.plot(motion["z"][mask], motion["velocity"][mask], color=colors[v], lw=3)
+        inset.set_xlim(-1.0 / math.e - 0.05 * width, zmax + 0.1 * width)
+        vel = motion["velocity"]
+        inset.set_ylim(1.1 * np.nanmin(vel), 1.1 * np.nanmax(vel))
+        inset.axhline(0.0, color="0.6", lw=0.6)
+        inset.tick_params(labelsize=7)
+        inset.xaxis.set_major_locator(matplotlib.ticker.MaxNLocator(4))
+        inset.set_title("near z = −1/e: the impacts", fontsize=8)
+        inset.grid(alpha=0.3)
+    return fig
+
+
+def fig_restitution(d, params, plt):
+    data = read_csv(os.path.join(d, "restitution.csv"))
+    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    ax.plot(data["beta"], data["restitution"], "-", color="C0", lw=1.8,
+            label="restitution k")
+    ax.plot(data["beta"], data["energy_loss_ratio"], "--", color="C3", lw=1.8,
+            label="energy lost ΔT/T⁻ = 1 − k²")
+    ax.plot(data["beta"], 1.0 - 2.0 * data["beta"] / 3.0, ":", color="C0", lw=1.0,
+            label="k ≈ 1 − 2β/3 (small β, seed eq. 24)")
+    summary_path = os.path.join(d, "summary.csv")
+    if os.path.exists(summary_path):
+        s = read_csv(summary_path)
+        ax.plot(s["beta"], s["restitution"], "o", color="C0", ms=5,
+                label="this scene's speeds")
+        ax.plot(s["beta"], s["energy_loss_ratio"], "s", color="C3", ms=4.5,
+                label="(the same speeds)")
+    ax.set_ylim(0, 1.05)
+    ax.set_xlim(0, float(np.nanmax(data["beta"])))
+    ax.set_xlabel("β = b V⁻ (dimensionless)")
+    ax.set_ylabel("k,  ΔT/T⁻ (dimensionless)")
+    ax.set_title("Fig. 3  Restitution and energy loss against β = b V⁻\n"
+                 "(the same for every elastic law and mass)", fontsize=11)
+    ax.legend(fontsize=8.5, loc="center right")
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def fig_histories(d, params, plt):
+    data = read_csv(os.path.join(d, "histories.csv"))
+    speeds = unique(list(data["speed"]))
+    colors = speed_colors(speeds)
+    kt, ut = scale(data["time"], "s")
+    kx, ux = scale(data["compression"], "m")
+    kf, uf = scale(data["force"], "N")
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7.5, 7.0), sharex=True)
+    for v in speeds:
+        mask = data["speed"] == v
+        ax1.plot(data["time"][mask] * kt, data["compression"][mask] * kx, color=colors[v],
+                 lw=1.6, label=speed_label(v))
+        ax2.plot(data["time"][mask] * kt, data["force"][mask] * kf, color=colors[v], lw=1.6)
+    ax1.set_ylabel(f"deformation x ({ux})")
+    ax2.set_ylabel(f"contact force F ({uf})")
+    ax2.set_xlabel(f"time t ({ut})")
+    ax1.set_title("Fig. 4  Deformation and contact force against time\n" + title_of(params),
+                  fontsize=11)
+    ax1.legend(fontsize=8, loc="upper right")
+    for ax in (ax1, ax2):
+        ax.grid(alpha=0.3)
+        ax.set_ylim(bottom=0)
+        ax.set_xlim(left=0)
+    fig.tight_layout()
+    return fig
+
+
+def _speed_series(d):
+    """(line data, marker data) for figures 5 and 7: sweep.csv and summary.csv."""
+    sweep_path = os.path.join(d, "sweep.csv")
+    summary_path = os.path.join(d, "summary.csv")
+    line = read_csv(sweep_path) if os.path.exists(sweep_path) else None
+    points = read_csv(summary_path) if os.path.exists(summary_path) else None
+    return line, points
+
+
+def fig_peaks(d, params, plt):
+    line, points = _speed_series(d)
+    fig, axes = plt.subplots(3, 1, figsize=(7.0, 8.2), sharex=True)
+    specs = (("max_compression", "m", "maximum deformation x_max"),
+             ("peak_force", "N", "maximum contact force F_max"),
+             ("contact_time", "s", "contact time"))
+    for ax, (key, unit, label) in zip(axes, specs):
+        ref = line if line is not None else points
+        k, u = scale(ref[key], unit)
+        if line is not None:
+            ax.plot(line["speed"], line[key] * k, "-", color="C0", lw=1.8)
+        if points is not None:
+            ax.plot(points["speed"], points[key] * k, "o", color="C1", ms=5,
+                    label="the scene's speeds")
+        ax.set_ylabel(f"{label}\n({u})", fontsize=9.5)
+        ax.grid(alpha=0.3)
+        ax.set_ylim(bottom=0)
+    axes[-1].set_xlabel("approach speed V⁻ (m/s)")
+    axes[-1].set_xlim(left=0)
+    if points is not None:
+        axes[0].legend(fontsize=8, loc="lower right")
+    axes[0].set_title("Fig. 5  Maximum deformation, peak force and contact time against V⁻\n"
+                      + title_of(params), fontsize=11)
+    fig.tight_layout()
+    return fig
+
+
+def fig_loops(d, params, plt):
+    data = read_csv(os.path.join(d, "loops.csv"))
+    speeds = unique(list(data["speed"]))
+    colors = speed_colors(speeds)
+    kx, ux = scale(data["compression"], "m")
+    kf, uf = scale(data["force"], "N")
+    fig, ax = plt.subplots(figsize=(7.5, 5.4))
+    for v in reversed(speeds):
+        mask = data["speed"] == v
+        x = data["compression"][mask] * kx
+        f = data["force"][mask] * kf
+        ax.fill(x, f, color=colors[v], alpha=0.18, lw=0)
+        ax.plot(x, f, color=colors[v], lw=1.5, label=speed_label(v))
+        phase = [p for p, m in zip(data["phase"], mask) if m]
+        i = phase.index("restitution") + len(phase) // 6
+        ax.annotate("", xy=(x[i + 1], f[i + 1]), xytext=(x[i], f[i]),
+                    arrowprops=dict(arrowstyle="->", color=colors[v], lw=1.3))
+    ax.set_xlabel(f"deformation x ({ux})")
+    ax.set_ylabel(f"contact force F ({uf})")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.set_title("Fig. 6  Contact force against deformation: the hysteresis loops\n"
+                 "(upper branch: compression; the shaded area is the energy lost)",
+                 fontsize=11)
+    handles, labels = ax.get_legend_handles_labels()
+    ax.legend(handles[::-1], labels[::-1], fontsize=8, loc="upper left")
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def fig_energy(d, params, plt):
+    line, points = _speed_series(d)
+    ref = line if line is not None else points
+    k, u = scale(ref["energy_lost"], "J")
+    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    if line is not None:
+        ax.plot(line["speed"], line["energy_lost"] * k, "-", color="C3", lw=1.8,
+                label="energy lost ΔT")
+    if points is not None:
+        ax.plot(points["speed"], points["energy_lost"] * k, "o", color="C3", ms=5,
+                label="the scene's speeds")
+    ax.set_xlabel("approach speed V⁻ (m/s)")
+    ax.set_ylabel(f"kinetic energy lost ΔT ({u})")
+    ax.set_xlim(left=0)
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax2 = ax.twinx()
+    ax2.plot(ref["speed"], ref["energy_loss_ratio"], "--", color="0.4", lw=1.2,
+             label="share lost ΔT/T⁻ (right axis)")
+    ax2.set_ylabel("share of the kinetic energy lost ΔT/T⁻", color="0.3")
+    ax2.set_ylim(bottom=0)
+    lines = ax.get_legend_handles_labels()
+    lines2 = ax2.get_legend_handles_labels()
+    ax.legend(lines[0] + lines2[0], lines[1] + lines2[1], fontsize=8.5, loc="upper left")
+    ax.set_title("Fig. 7  Kinetic energy lost in the impact against V⁻\n" + title_of(params),
+                 fontsize=11)
+    return fig
+
+
+def fig_lambertw(d, params, plt):
+    data = read_csv(os.path.join(d, "lambertw.csv"))
+    fig, ax = plt.subplots(figsize=(7.0, 5.2))
+    branch = data["branch"]
+    for name, style, label in ((0.0, "-", "principal branch W₀(z)"),
+                               (-1.0, "--", "lower branch W₋₁(z)")):
+        mask = branch == name
+        ax.plot(data["z"][mask], data["w"][mask], style, color="k", lw=1.6, label=label)
+    ax.plot([-1.0 / math.e], [-1.0], "o", color="C3", ms=5, label="branch point (−1/e, −1)")
+    ax.axhline(0.0, color="0.6", lw=0.6)
+    ax.axvline(0.0, color="0.6", lw=0.6)
+    ax.set_ylim(-5.0, 1.5)
+    ax.set_xlim(-0.5, float(np.nanmax(data["z"])))
+    ax.set_xlabel("z")
+    ax.set_ylabel("W(z),  W e^W = z")
+    ax.set_title("Fig. 8  The two real branches of the Lambert W function", fontsize=11)
+    ax.legend(fontsize=9, loc="lower right")
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def fig_work_precision(d, params, plt):
+    data = read_csv(os.path.join(d, "cvode.csv"))
+    speeds = unique(list(data["speed"]))
+    colors = speed_colors(speeds)
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    floor = 1e-17
+    for v in speeds:
+        mask = data["speed"] == v
+        err = np.maximum(data["max_error"][mask], floor)
+        ax.loglog(data["seconds"][mask], err, "o-", color=colors[v], lw=1.4, ms=4,
+                  label=f"CVODE, {speed_label(v)}")
+        for t, e, r in zip(data["seconds"][mask], err, data["rtol"][mask]):
+            if v == speeds[-1]:
+                ax.annotate(f"rtol {r:.0e}", (t, e), textcoords="offset points",
+                            xytext=(5, 3), fontsize=7, color="0.3")
+    exact = data["closed_form_seconds"]
+    ax.loglog(exact, np.full_like(exact, 2.2e-16), "*", color="C3", ms=10,
+              label="closed forms (the reference, ~1 ulp)")
+    ax.set_xlabel("time per impact (s)")
+    ax.set_ylabel("largest relative error\n(k, x_max, F_max, contact and compression time)")
+    ax.xaxis.set_minor_locator(matplotlib.ticker.LogLocator(subs=(2.0, 5.0)))
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.LogFormatterSciNotation(
+        labelOnlyBase=False, minor_thresholds=(10, 10)))
+    ax.set_title("Work-precision: CVODE at several tolerances against the closed forms\n"
+                 + title_of(params), fontsize=11)
+    ax.legend(fontsize=7.5, loc="upper right")
+    ax.grid(alpha=0.3, which="both")
+    return fig
+
+
+def fig_legacy(d, params, plt):
+    data = read_csv(os.path.join(d, "legacy.csv"))
+    rules = unique(list(data["rule"]))
+    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    markers = "osD^v<>p"
+    for i, rule in enumerate(rules):
+        mask = [r == rule for r in data["rule"]]
+        ax.plot(data["restitution"][mask], 100.0 * data["k_relative_error"][mask],
+                marker=markers[i % len(markers)], lw=1.2, ms=4, label=rule)
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xlabel("restitution e asked for (the exact k at each of the scene's speeds)")
+    ax.set_ylabel("error of the restitution obtained, (k(χ) − e)/e (%)")
+    ax.set_title("Damping rules of multibody codes in the exact model\n" + title_of(params),
+                 fontsize=11)
+    ax.legend(fontsize=7.5, ncol=2)
+    ax.grid(alpha=0.3)
+    return fig
+
+
+PLOTTERS = [
+    (1, ("phase.csv",), fig_phase),
+    (2, ("velocity_z.csv",), fig_velocity_z),
+    (3, ("restitution.csv",), fig_restitution),
+    (4, ("histories.csv",), fig_histories),
+    (5, ("sweep.csv|summary.csv",), fig_peaks),
+    (6, ("loops.csv",), fig_loops),
+    (7, ("sweep.csv|summary.csv",), fig_energy),
+    (8, ("lambertw.csv",), fig_lambertw),
+    (9, ("cvode.csv",), fig_work_precision),
+    (10, ("legacy.csv",), fig_legacy),
+]
+
+
+def _have(directory, requirement):
+    return any(os.path.exists(os.path.join(directory, name)) for name in requirement.split("|"))
+
+
+def plot_results(directory, out_dir=None, figures=None, dpi=150, fmt="png", log=print):
+    """Draw every figure whose CSV files are in ``directory``; returns the paths written.
+
+    out_dir: where the images go (default: ``directory``); figures: numbers to draw
+    (default: all); fmt: any format Matplotlib writes (png, pdf, svg)."""
+    _load()
+    import matplotlib.pyplot as plt
+
+    if not os.path.isdir(directory):
+        raise FileNotFoundError(f"{directory}: no such results directory")
+    out_dir = out_dir or directory
+    os.makedirs(out_dir, exist_ok=True)
+    params = read_parameters(directory)
+    written = []
+    plt.rcParams.update({"figure.dpi": dpi, "savefig.dpi": dpi, "font.size": 10})
+    for number, requirements, function in PLOTTERS:
+        if figures and number not in figures:
+            continue
+        missing = [r for r in requirements if not _have(directory, r)]
+        name = FIGURES[number]
+        if missing:
+            # the seed's figures 1-8 are expected; 9 and 10 only when asked for
+            if number <= 8 or figures:
+                log(f"  skipped {name}: no "
+                    f"{', '.join(m.replace('|', ' or ') for m in missing)}")
+            continue
+        fig = function(directory, params, plt)
+        path = os.path.join(out_dir, f"{name}.{fmt}")
+        partial = path + ".partial." + fmt
+        fig.savefig(partial, bbox_inches="tight")
+        os.replace(partial, path)
+        plt.close(fig)
+        written.append(path)
+        log(f"  wrote {path}")
+    return written
+
+
+def main(argv=None):
+    parser = argparse.ArgumentParser(
+        prog="plot_results",
+        description="Draw the figures of an hcimpact results directory (the seed's "
+                    "figures 1-8, and the CVODE and legacy figures when their data are "
+                    "there). Reads the CSV files only.")
+    parser.add_argument("results", help="results directory written by hcimpact -o DIR")
+    parser.add_argument("-o", "--output", help="directory for the images (default: RESULTS)")
+    parser.add_argument("--figures", help="comma-separated figure numbers (default: all)")
+    parser.add_argument("--format", default="png", help="image format (png, pdf, svg)")
+    parser.add_argument("--dpi", type=int, default=150, help="resolution (default 150)")
+    args = parser.parse_args(argv)
+    figures = None
+    if args.figures:
+        figures = {int(x) for x in args.figures.split(",") if x.strip()}
+    try:
+        written = plot_results(args.results, args.output, figures, args.dpi, args.format)
+    except (FileNotFoundError, ValueError, KeyError) as exc:
+        print(f"plot_results: error: {exc}", file=sys.stderr)
+        return 2
+    if not written:
+        print("plot_results: no figure drawn: the directory has none of the CSV files "
+              "(run hcimpact --figures -o DIR first)", file=sys.stderr)
+        return 1
+    print(f"{len(written)} figures written to {args.output or args.results}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
