@@ -289,19 +289,31 @@ int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
 
 /* ------------------------------------------------------------------------
  * The impact integrated as an ODE (issue #4). Part of the optional CVODE
- * component: link libhcimpact_cvode (CMake: hcimpact::cvode) as well as
- * libhcimpact. Fortran: components/cvode/api.f90 (module hcimpact_cvode_api).
+ * component: link libhcimpact_cvode (CMake: hcimpact::cvode; it brings the
+ * SUNDIALS libraries) as well as libhcimpact. A program linked with the core
+ * alone gets an undefined reference to hcimpact_simulate at link time; there is
+ * no stub in the core. Fortran: components/cvode/api.f90 (module
+ * hcimpact_cvode_api), physics in components/cvode/solver.f90; doc/cvode.md.
  * ------------------------------------------------------------------------ */
 
-/** The impact integrated by SUNDIALS CVODE (BDF, analytic Jacobian) with the
- *  relative tolerance rtol (0 < rtol < 1) and absolute tolerances rtol times the
- *  natural scales; the outcome has the fields of hcimpact_impact, to about rtol.
- *  Returns 0 (HCIMPACT_OK); HCIMPACT_ERR_NULL (contact or outcome NULL, nothing
- *  written); otherwise a status and NaN in every field of *outcome: the input
- *  errors of hcimpact_impact, HCIMPACT_ERR_NOT_FINITE (rtol NaN),
- *  HCIMPACT_ERR_DOMAIN (rtol outside (0, 1), or b V above about 1e140),
- *  HCIMPACT_ERR_SOLVER (CVODE failed), HCIMPACT_ERR_NO_CONVERGENCE (the contact
- *  does not end). */
+/** The impact of hcimpact_impact integrated by SUNDIALS CVODE (BDF, dense Newton
+ *  with the analytic Jacobian, root finding for x' = 0, dF/dt = 0 and x = 0) in
+ *  the scaled variables x/X, t V/X, with the relative tolerance rtol and absolute
+ *  tolerances rtol times the natural scale of each variable. Measured on the
+ *  benchmark contacts (doc/cvode.md): the contact time within 50 rtol, the other
+ *  fields within about 150 rtol, for rtol from 1e-4 to 1e-11; below about 1e-13
+ *  CVODE gives up (HCIMPACT_ERR_SOLVER, CV_TOO_MUCH_ACC). Thread-safe.
+ *  Returns 0 (HCIMPACT_OK) on success; otherwise a status and, except for
+ *  HCIMPACT_ERR_NULL, every field of *outcome is NaN:
+ *  the input errors of hcimpact_impact (1 to 6),
+ *  HCIMPACT_ERR_NOT_FINITE (1)   rtol is NaN or infinite,
+ *  HCIMPACT_ERR_DOMAIN (8)       rtol outside (0, 1); b V above about 1e140 (the
+ *                                absolute tolerance of x' would fall below
+ *                                1e-150); scales outside the double range,
+ *  HCIMPACT_ERR_NO_CONVERGENCE (9) the contact did not end in time (not seen),
+ *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written),
+ *  HCIMPACT_ERR_SOLVER (11)      CVODE failed (the Fortran interface returns its
+ *                                flag name, e.g. CV_TOO_MUCH_WORK, in a message). */
 int hcimpact_simulate(const hcimpact_contact *contact, double rtol,
                       hcimpact_outcome *outcome);
 
@@ -330,9 +342,11 @@ int hcimpact_simulate(const hcimpact_contact *contact, double rtol,
  *   HCIMPACT_ERR_MASS (2)           mass <= 0,
  *   HCIMPACT_ERR_VELOCITY (5)       a speed <= 0,
  *   HCIMPACT_ERR_DAMPING (6)        a given damping < 0,
- *   HCIMPACT_ERR_RESTITUTION (7)    a restitution <= 0 (values > 1 are allowed),
+ *   HCIMPACT_ERR_RESTITUTION (7)    a restitution <= 0 or > 2 (values in
+ *                                   (1, 2], noise, are allowed),
  *   HCIMPACT_ERR_DOMAIN (8)         another value <= 0 (deflection, force,
- *                                   time, sigma, guess),
+ *                                   time, sigma, guess), or a sigma beyond
+ *                                   1e100 times its value (1 for restitution),
  *   HCIMPACT_ERR_NO_CONVERGENCE (9) the iteration did not converge,
  *   HCIMPACT_ERR_NULL (10)          a required pointer is NULL,
  *   HCIMPACT_ERR_SIZE (14)          npoints < 0,

@@ -119,14 +119,14 @@ elapsed=$(awk -v a="$started" -v b="$(date +%s.%N)" 'BEGIN {printf "%.1f", b - a
 if [ "$jobs" -gt 1 ]; then cat "$build"/fuzz-*.log >>"$log" 2>/dev/null || true; fi
 
 # summary
-execs=$(grep -h "stat::number_of_executed_units" "$log" | awk '{s += $2} END {print s + 0}')
+execs=$( (grep -h "stat::number_of_executed_units" "$log" || true) | awk '{s += $2} END {print s + 0}')
 if [ "$keep_going" = 1 ]; then
   # fork mode prints no final stats: the last status line counts the executions
   execs=$( (grep -hE "^#[0-9]+" "$log" || true) | tail -1 | sed 's/^#\([0-9]*\).*/\1/')
   execs=${execs:-0}
 fi
 rate=$(awk -v n="$execs" -v t="$elapsed" 'BEGIN {printf "%.0f", (t > 0 ? n / t : 0)}')
-cov=$( (grep -hE "^#[0-9]+.*(DONE|pulse|NEW|REDUCE)" "$log" || true) | tail -1 \
+cov=$( (grep -hE "^#[0-9]+.*cov: " "$log" || true) | tail -1 \
   | sed -n 's/.*cov: \([0-9]*\) ft: \([0-9]*\).*/\1 edges, \2 features/p')
 crashes=$(find "$artifacts" -name 'crash-*' | wc -l)
 hangs=$(find "$artifacts" -name 'timeout-*' | wc -l)
@@ -168,9 +168,12 @@ hcimpact fuzz summary ($(date -u +%Y-%m-%dT%H:%MZ), $(uname -m), budget ${second
   libFuzzer exit    $status
 EOF
 if [ -s "$triage" ]; then
-  echo "  distinct findings (one artifact each; all in $triage):"
-  sort -t "$(printf '\t')" -k2,2 -u "$triage" \
-    | awk -F '\t' '{printf "    %s\n      %s %s\n", $2, $1, $3}'
+  echo "  distinct findings (numbers in the messages ignored; every artifact in $triage):"
+  # one line per kind of finding: the message with its numbers blanked
+  awk -F '\t' '{key = $2; gsub(/[0-9]+/, "#", key); if (!(key in seen)) {seen[key] = 1;
+    n[key] = 0; order[++k] = key; first[key] = $0} n[key]++}
+    END {for (i = 1; i <= k; i++) {split(first[order[i]], f, "\t");
+      printf "    %dx %s\n       e.g. %s %s\n", n[order[i]], f[2], f[1], f[3]}}' "$triage"
 fi
 if [ "$crashes$hangs$leaks$ooms$asan$ubsan$contract" != "0000000" ] || [ "$status" != 0 ]; then
   echo "FINDINGS: see $log and $artifacts" >&2

@@ -411,7 +411,9 @@ contains
          stat = hcimpact_err_domain
          why = "max_steps must be positive"
       end if
-      if (stat == hcimpact_ok .and. opts%atol < 0.0_wp) opts%atol = opts%rtol
+      if (stat == hcimpact_ok) then
+         if (opts%atol < 0.0_wp) opts%atol = opts%rtol
+      end if
    end subroutine check_options
 
    !> Check a power-law contact (the rules of the closed forms).
@@ -513,7 +515,7 @@ contains
       real(c_double), target :: y(2), atol_c(2)
       real(c_double) :: tret(1), jac(2, 2)
       integer(c_int) :: ierr, lmm, rootsfound(n_events), rootdir(n_events)
-      integer :: nsamples, ev, jstat, calls
+      integer :: nsamples, ev, jstat, steps
       real(wp) :: lambda_max, tau_comp, tau_peak, tau_end, y_comp(2), y_peak(2), &
          & y_end(2), f_peak, f_here
       logical :: have_comp, have_peak, have_end, ok
@@ -632,10 +634,9 @@ contains
          tret = 0.0_c_double
          ! CVODE's own limit (CVodeSetMaxNumSteps) counts the steps of one call, and
          ! in CV_ONE_STEP mode every call is one step: the limit is enforced here.
-         calls = 0
+         steps = 0
          march: do
-            calls = calls + 1
-            if (calls > opts%max_steps + n_events) then
+            if (steps >= opts%max_steps) then
                stat = hcimpact_err_solver
                simulation%message = "CVODE failed at t = " &
                   & // format_real(tret(1) * sys%time) // " s: " &
@@ -657,6 +658,9 @@ contains
                   & // solver_detail(sys)
                exit march
             end if
+            ! every step is returned once with CV_SUCCESS (a root in it is returned
+            ! before, with CV_ROOT_RETURN)
+            if (ierr == CV_SUCCESS) steps = steps + 1
             if (.not. (ieee_is_finite(y(1)) .and. ieee_is_finite(y(2)))) then
                stat = hcimpact_err_solver
                simulation%message = "CVODE returned a non-finite state at t = " &

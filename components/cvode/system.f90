@@ -27,7 +27,9 @@
 !>   2. dF/dtau = 0 with F = f(x)(1 + b x'): a peak of the contact force. For the power
 !>      law dF/dtau = s^(n-1) (1 + beta sigma) [n sigma - ((n+1)/2) beta s^(n+1)] and the
 !>      bracket alone is used (the other factors are positive during contact; MODEL.md:
-!>      the peak is where n m V = b c x^(n+1));
+!>      the peak is where n m V = b c x^(n+1)); for a user's law likewise
+!>      f'(L s) L sigma - p beta f(L s)^2 without the factor 1 + beta sigma (see
+!>      system_events for why), and the full derivative with an external force;
 !>   3. s = 0 (the state itself, not the clamped copy): the end of contact.
 module hcimpact_cvode_system
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -329,7 +331,7 @@ contains
       real(wp), intent(out) :: events(n_events)
       !> rhs_ok, rhs_recoverable or rhs_law_failure
       integer, intent(out) :: stat
-      real(wp) :: s, sigma, snp1, f, df, w, dy(2)
+      real(wp) :: s, sigma, snp1, f, df, w, a, g
       logical :: ok
 
       stat = rhs_ok
@@ -349,19 +351,41 @@ contains
          events(event_peak_force) = sys%n * sigma &
             & - guarded_product(sys%half_np1 * sys%beta, snp1)
       case default
-         ! p dF/dtau = p [ f'(L s) L sigma (1 + beta sigma) + f(L s) beta sigma' ]
-         call system_rhs(sys, tau, y, dy, stat)
-         if (stat /= rhs_ok) return
+         ! Out of contact dF/dtau vanishes identically, which CVODE's root finding
+         ! rejects (CV_ILL_INPUT, "root found at and very near t") if it happens at a
+         ! root: there the function is -1 ("the force does not grow").
+         if (.not. y(1) > 0.0_wp) then
+            events(event_peak_force) = -1.0_wp
+            return
+         end if
+         ! With sigma' = p (-f w + g), w = 1 + beta sigma:
+         !   dF/dtau = f' L sigma w + f beta sigma' = w (f' L sigma - p beta f^2) + p beta f g.
+         ! The function is p times that, without the factor w > 0 when there is no
+         ! external force: in the creep of large beta, w is below the rounding of
+         ! 1 + beta sigma and computes as 0, and a function that vanishes on an
+         ! interval is what CVODE's root finding rejects.
          f = sys%law%force(sys%length * s)
          df = sys%law%force_derivative(sys%length * s)
          if (.not. (ieee_is_finite(f) .and. ieee_is_finite(df))) then
             stat = rhs_law_failure
             return
          end if
-         w = 1.0_wp + guarded_product(sys%beta, sigma)
-         events(event_peak_force) = guarded_product(sys%accel, &
-            & guarded_product(guarded_product(df, sys%length * sigma), w) &
-            & + guarded_product(f, guarded_product(sys%beta, dy(2))))
+         a = guarded_product(guarded_product(df, sys%length * sigma), sys%accel) &
+            & - guarded_product(guarded_product(sys%accel * sys%beta, f), &
+            & guarded_product(sys%accel, f))
+         if (allocated(sys%external)) then
+            g = sys%external%force(sys%time * tau, sys%length * y(1), sys%velocity * sigma)
+            if (.not. ieee_is_finite(g)) then
+               stat = rhs_law_failure
+               return
+            end if
+            w = 1.0_wp + guarded_product(sys%beta, sigma)
+            g = guarded_product(a, w) + guarded_product(guarded_product(sys%accel * sys%beta, &
+               & f), guarded_product(sys%accel, g))
+            ! w and g both 0 (creep without force): the sign is that of a
+            if (g /= 0.0_wp) a = g
+         end if
+         events(event_peak_force) = a
       end select
    end subroutine system_events
 

@@ -45,8 +45,9 @@
 !> observations than parameters + 1, or data that cannot determine the parameters, such
 !> as a contact-time-only fit at a single speed or a static curve at a single
 !> deflection), hcimpact_err_not_finite, hcimpact_err_mass, hcimpact_err_velocity (a
-!> speed <= 0), hcimpact_err_restitution (a restitution <= 0), hcimpact_err_domain
-!> (another non-positive value: a deflection, force, time or sigma),
+!> speed <= 0), hcimpact_err_restitution (a restitution <= 0 or > 2), hcimpact_err_domain
+!> (another non-positive value: a deflection, force, time or sigma; or a sigma more
+!> than 1e100 times smaller or larger than its value, for restitution than 1),
 !> hcimpact_err_damping (a given b < 0), hcimpact_err_no_convergence.
 module hcimpact_calibration
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
@@ -95,6 +96,12 @@ module hcimpact_calibration
       real(wp) :: condition_number = 0.0_wp
    end type fit_type
 
+   !> Largest measured restitution accepted (values above 1 are noise)
+   real(wp), parameter :: max_restitution = 2.0_wp
+   !> Largest |ln| of a sigma on the residual's scale (sigma, or sigma/value for times
+   !> and forces): 1e-100 ... 1e100
+   real(wp), parameter :: max_log_sigma = 230.2585092994046_wp
+
    !> Series of an impact data set, in the order of the residual blocks
    integer, parameter :: time_series = 1, force_series = 2, restitution_series = 3
    !> Parameters of the impact model, in the order of theta
@@ -138,7 +145,7 @@ contains
    subroutine fit_damping(velocity, restitution, fit, stat, sigma, absolute_sigma)
       !> Approach speeds V_i in m/s, > 0
       real(wp), intent(in) :: velocity(:)
-      !> Measured coefficients of restitution e_i, > 0
+      !> Measured coefficients of restitution e_i, in (0, 2]
       real(wp), intent(in) :: restitution(:)
       !> The fit: parameters = (b) in s/m
       type(fit_type), intent(out) :: fit
@@ -149,12 +156,13 @@ contains
       !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
       logical, intent(in), optional :: absolute_sigma
       type(impact_data_model) :: model
-      real(wp), allocatable :: theta(:), sigma_obs(:)
+      real(wp), allocatable :: theta(:), sigma_obs(:), sigma_in(:)
       logical :: given(1)
       integer :: n
 
       n = size(velocity)
-      stat = check_series(velocity, restitution, restitution_series, sigma)
+      if (present(sigma)) sigma_in = sigma
+      stat = check_series(velocity, restitution, restitution_series, sigma_in)
       if (stat /= hcimpact_ok) return
       stat = check_count(n, 1, 1)
       if (stat /= hcimpact_ok) return
@@ -166,7 +174,7 @@ contains
       model%free = [.false., .false., .true.]
       model%fixed = [0.0_wp, 1.0_wp, 0.0_wp]
       theta = [median(damping_estimates(velocity, restitution))]
-      sigma_obs = series_sigma(restitution, restitution_series, sigma, given(1))
+      sigma_obs = series_sigma(restitution, restitution_series, sigma_in, given(1))
       call run_fit(model, theta, [0.0_wp], [restitution_series], sigma_obs, given, &
          & flag(absolute_sigma), fit, stat)
       if (stat /= hcimpact_ok) return
@@ -181,7 +189,7 @@ contains
    subroutine fit_damping_linear(velocity, restitution, fit, stat, sigma, absolute_sigma)
       !> Approach speeds V_i in m/s, > 0
       real(wp), intent(in) :: velocity(:)
-      !> Measured coefficients of restitution e_i, > 0
+      !> Measured coefficients of restitution e_i, in (0, 2]
       real(wp), intent(in) :: restitution(:)
       !> The fit: parameters = (b) in s/m, b = 3 alpha/2
       type(fit_type), intent(out) :: fit
@@ -192,17 +200,19 @@ contains
       !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
       logical, intent(in), optional :: absolute_sigma
       real(wp) :: a(size(velocity), 1), w(size(velocity)), coef(1), cov(1, 1)
+      real(wp), allocatable :: sigma_in(:)
       real(wp) :: alpha, factor
       integer :: n, rank
       logical :: given
 
       n = size(velocity)
-      stat = check_series(velocity, restitution, restitution_series, sigma)
+      if (present(sigma)) sigma_in = sigma
+      stat = check_series(velocity, restitution, restitution_series, sigma_in)
       if (stat /= hcimpact_ok) return
       stat = check_count(n, 1, 1)
       if (stat /= hcimpact_ok) return
 
-      w = 1.0_wp / series_sigma(restitution, restitution_series, sigma, given)
+      w = 1.0_wp / series_sigma(restitution, restitution_series, sigma_in, given)
       a(:, 1) = w * velocity
       call linear_least_squares(a, w * (1.0_wp - restitution), coef, rank, stat)
       if (stat /= hcimpact_ok) return
@@ -243,6 +253,7 @@ contains
       logical, intent(in), optional :: absolute_sigma
       real(wp) :: a(size(deflection), 2), w(size(deflection)), lx(size(deflection)), &
          & lf(size(deflection)), coef(2), cov(2, 2)
+      real(wp), allocatable :: sigma_in(:)
       real(wp) :: mean_lx, log_c, factor, t(2, 2)
       integer :: n, rank
       logical :: given
@@ -252,8 +263,9 @@ contains
          stat = hcimpact_err_size
          return
       end if
+      if (present(sigma)) sigma_in = sigma
       stat = check_positive(deflection, hcimpact_err_domain)
-      if (stat == hcimpact_ok) stat = check_series(deflection, force, force_series, sigma)
+      if (stat == hcimpact_ok) stat = check_series(deflection, force, force_series, sigma_in)
       if (stat /= hcimpact_ok) return
       stat = check_count(n, 2, 1)
       if (stat /= hcimpact_ok) return
@@ -262,7 +274,7 @@ contains
          return
       end if
 
-      w = 1.0_wp / series_sigma(force, force_series, sigma, given)
+      w = 1.0_wp / series_sigma(force, force_series, sigma_in, given)
       lx = log(deflection)
       lf = log(force)
       mean_lx = sum(w**2 * lx) / sum(w**2)
@@ -323,6 +335,8 @@ contains
       !> Starting values (c, n) (default: from the data)
       real(wp), intent(in), optional :: guess(:)
 
+      real(wp), allocatable :: t(:), f(:), e(:), st(:), sf(:), se(:), g(:)
+
       if (.not. ieee_is_finite(damping)) then
          stat = hcimpact_err_not_finite
          return
@@ -331,9 +345,15 @@ contains
          stat = hcimpact_err_damping
          return
       end if
-      call fit_impact_data(mass, velocity, .false., damping, fit, stat, contact_time, &
-         & peak_force, sigma_time=sigma_time, sigma_force=sigma_force, &
-         & absolute_sigma=absolute_sigma, guess=guess)
+      ! optional arrays travel on as allocatables (unallocated: absent): an absent
+      ! optional array is never passed on (gfortran reads its descriptor's address)
+      if (present(contact_time)) t = contact_time
+      if (present(peak_force)) f = peak_force
+      if (present(sigma_time)) st = sigma_time
+      if (present(sigma_force)) sf = sigma_force
+      if (present(guess)) g = guess
+      call fit_impact_data(mass, velocity, .false., damping, fit, stat, t, f, e, st, sf, se, &
+         & flag(absolute_sigma), g)
    end subroutine fit_elastic
 
    !> Fit the contact law and the damping (c, n, b) jointly to impact data: contact
@@ -356,7 +376,7 @@ contains
       real(wp), intent(in), optional :: contact_time(:)
       !> Measured peak forces in N, > 0
       real(wp), intent(in), optional :: peak_force(:)
-      !> Measured coefficients of restitution, > 0
+      !> Measured coefficients of restitution, in (0, 2]
       real(wp), intent(in), optional :: restitution(:)
       !> Standard deviations of the contact times in s (default: estimated)
       real(wp), intent(in), optional :: sigma_time(:)
@@ -369,12 +389,21 @@ contains
       !> Starting values (c, n, b) (default: from the data)
       real(wp), intent(in), optional :: guess(:)
 
-      call fit_impact_data(mass, velocity, .true., 0.0_wp, fit, stat, contact_time, &
-         & peak_force, restitution, sigma_time, sigma_force, sigma_restitution, &
-         & absolute_sigma, guess)
+      real(wp), allocatable :: t(:), f(:), e(:), st(:), sf(:), se(:), g(:)
+
+      if (present(contact_time)) t = contact_time
+      if (present(peak_force)) f = peak_force
+      if (present(restitution)) e = restitution
+      if (present(sigma_time)) st = sigma_time
+      if (present(sigma_force)) sf = sigma_force
+      if (present(sigma_restitution)) se = sigma_restitution
+      if (present(guess)) g = guess
+      call fit_impact_data(mass, velocity, .true., 0.0_wp, fit, stat, t, f, e, st, sf, se, &
+         & flag(absolute_sigma), g)
    end subroutine fit_impact
 
-   !> The impact fits: (ln c, n) and, when fit_b, b.
+   !> The impact fits: (ln c, n) and, when fit_b, b. The series, sigmas and guess are
+   !> absent when not allocated.
    subroutine fit_impact_data(mass, velocity, fit_b, damping, fit, stat, contact_time, &
          & peak_force, restitution, sigma_time, sigma_force, sigma_restitution, &
          & absolute_sigma, guess)
@@ -383,10 +412,11 @@ contains
       logical, intent(in) :: fit_b
       type(fit_type), intent(out) :: fit
       integer, intent(out) :: stat
-      real(wp), intent(in), optional :: contact_time(:), peak_force(:), restitution(:)
-      real(wp), intent(in), optional :: sigma_time(:), sigma_force(:), sigma_restitution(:)
-      logical, intent(in), optional :: absolute_sigma
-      real(wp), intent(in), optional :: guess(:)
+      real(wp), allocatable, intent(in) :: contact_time(:), peak_force(:), restitution(:)
+      real(wp), allocatable, intent(in) :: sigma_time(:), sigma_force(:), &
+         & sigma_restitution(:)
+      logical, intent(in) :: absolute_sigma
+      real(wp), allocatable, intent(in) :: guess(:)
       type(impact_data_model) :: model
       real(wp), allocatable :: theta(:), lower(:), sigma_obs(:), r(:), estimate(:)
       integer, allocatable :: series(:)
@@ -404,12 +434,12 @@ contains
          stat = hcimpact_err_mass
          return
       end if
-      if (.not. (present(contact_time) .or. present(peak_force) .or. &
-         & (fit_b .and. present(restitution)))) then
+      if (.not. (allocated(contact_time) .or. allocated(peak_force) .or. &
+         & (fit_b .and. allocated(restitution)))) then
          stat = hcimpact_err_underdetermined
          return
       end if
-      if (present(guess)) then
+      if (allocated(guess)) then
          if (size(guess) /= p) then
             stat = hcimpact_err_size
             return
@@ -433,17 +463,17 @@ contains
       model%mass = mass
       allocate(series(0), given(0), sigma_obs(0))
       stat = hcimpact_ok
-      if (present(contact_time)) then
+      if (allocated(contact_time)) then
          call add_series(time_series, contact_time, sigma_time)
          if (stat /= hcimpact_ok) return
          model%log_time = log(contact_time)
       end if
-      if (present(peak_force)) then
+      if (allocated(peak_force)) then
          call add_series(force_series, peak_force, sigma_force)
          if (stat /= hcimpact_ok) return
          model%log_force = log(peak_force)
       end if
-      if (present(restitution) .and. fit_b) then
+      if (allocated(restitution) .and. fit_b) then
          call add_series(restitution_series, restitution, sigma_restitution)
          if (stat /= hcimpact_ok) return
          model%restitution = restitution
@@ -462,7 +492,7 @@ contains
       model%fixed = [0.0_wp, 0.0_wp, damping]
 
       ! starting values: b from the restitution, n from the slopes, then ln c
-      if (present(guess)) then
+      if (allocated(guess)) then
          theta = [log(guess(1)), guess(2:p)]
       else
          b0 = damping
@@ -493,7 +523,7 @@ contains
       lower(1:2) = [-huge(1.0_wp), min_exponent]
       if (fit_b) lower(3) = 0.0_wp
       theta(2) = max(theta(2), min_exponent)
-      call run_fit(model, theta, lower, series, sigma_obs, given, flag(absolute_sigma), &
+      call run_fit(model, theta, lower, series, sigma_obs, given, absolute_sigma, &
          & fit, stat)
       if (stat /= hcimpact_ok) return
       fit%parameters = [exp(theta(1)), theta(2:p)]
@@ -511,7 +541,7 @@ contains
       subroutine add_series(kind, values, sigma)
          integer, intent(in) :: kind
          real(wp), intent(in) :: values(:)
-         real(wp), intent(in), optional :: sigma(:)
+         real(wp), allocatable, intent(in) :: sigma(:)
          logical :: has_sigma
          stat = check_series(velocity, values, kind, sigma)
          if (stat /= hcimpact_ok) return
@@ -824,13 +854,14 @@ contains
    function check_series(abscissa, values, kind, sigma) result(stat)
       real(wp), intent(in) :: abscissa(:), values(:)
       integer, intent(in) :: kind
-      real(wp), intent(in), optional :: sigma(:)
+      !> Standard deviations, or not allocated
+      real(wp), allocatable, intent(in) :: sigma(:)
       integer :: stat
 
       stat = hcimpact_ok
       if (size(values) /= size(abscissa)) then
          stat = hcimpact_err_size
-      else if (present(sigma)) then
+      else if (allocated(sigma)) then
          if (size(sigma) /= size(values)) stat = hcimpact_err_size
       end if
       if (stat /= hcimpact_ok) return
@@ -838,7 +869,7 @@ contains
          stat = hcimpact_err_not_finite
          return
       end if
-      if (present(sigma)) then
+      if (allocated(sigma)) then
          if (.not. all(ieee_is_finite(sigma))) then
             stat = hcimpact_err_not_finite
             return
@@ -848,11 +879,25 @@ contains
       if (stat /= hcimpact_ok) return
       if (kind == restitution_series) then
          stat = check_positive(values, hcimpact_err_restitution)
+         ! above 1 is noise on a nearly elastic impact; above 2 it is no restitution
+         if (stat == hcimpact_ok .and. .not. all(values <= max_restitution)) &
+            & stat = hcimpact_err_restitution
       else
          stat = check_positive(values, hcimpact_err_domain)
       end if
       if (stat /= hcimpact_ok) return
-      if (present(sigma)) stat = check_positive(sigma, hcimpact_err_domain)
+      if (allocated(sigma)) then
+         stat = check_positive(sigma, hcimpact_err_domain)
+         if (stat /= hcimpact_ok) return
+         ! the sigma on the residual's scale (relative for logarithms) must keep the
+         ! weighted residuals and their squares far from overflow
+         if (kind == restitution_series) then
+            if (.not. all(abs(log(sigma)) <= max_log_sigma)) stat = hcimpact_err_domain
+         else
+            if (.not. all(abs(log(sigma) - log(values)) <= max_log_sigma)) &
+               & stat = hcimpact_err_domain
+         end if
+      end if
    end function check_series
 
    !> hcimpact_ok if every value is > 0, else `code`.
@@ -883,10 +928,11 @@ contains
    function series_sigma(values, kind, sigma, given) result(s)
       real(wp), intent(in) :: values(:)
       integer, intent(in) :: kind
-      real(wp), intent(in), optional :: sigma(:)
+      !> Standard deviations, or not allocated
+      real(wp), allocatable, intent(in) :: sigma(:)
       logical, intent(out) :: given
       real(wp) :: s(size(values))
-      given = present(sigma)
+      given = allocated(sigma)
       s = 1.0_wp
       if (.not. given) return
       if (kind == restitution_series) then

@@ -5,7 +5,10 @@
 !> Arrays are C arrays of `npoints` doubles. An optional array is a NULL pointer when
 !> absent (Fortran 2018 `optional` dummies of a bind(C) procedure); a NULL required
 !> pointer gives HCIMPACT_ERR_NULL (15 is HCIMPACT_ERR_UNDERDETERMINED). On any error
-!> every output that is not NULL is set to NaN. The declarations are in
+!> every output that is not NULL is set to NaN. Optional inputs are copied into
+!> allocatables (unallocated: absent) before they are passed on: gfortran reads the
+!> address of an absent explicit-shape array when it passes it to an assumed-shape
+!> dummy, which the undefined-behaviour sanitizer reports. The declarations are in
 !> doc/calibration-c-api.h.txt (to be merged into include/hcimpact.h).
 module hcimpact_calibration_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int
@@ -45,6 +48,7 @@ contains
       !> Status
       integer(c_int) :: stat
       type(fit_type) :: fit
+      real(wp), allocatable :: sigma_in(:)
       integer :: istat
 
       if (present(damping)) damping = nan()
@@ -58,7 +62,8 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      call fit_damping(velocity, restitution, fit, istat, sigma, absolute_sigma /= 0)
+      if (present(sigma)) sigma_in = sigma
+      call fit_damping(velocity, restitution, fit, istat, sigma_in, absolute_sigma /= 0)
       stat = int(istat, c_int)
       if (istat /= hcimpact_ok) return
       damping = fit%parameters(1)
@@ -89,6 +94,7 @@ contains
       !> Status
       integer(c_int) :: stat
       type(fit_type) :: fit
+      real(wp), allocatable :: sigma_in(:)
       integer :: istat
 
       if (present(damping)) damping = nan()
@@ -102,7 +108,8 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      call fit_damping_linear(velocity, restitution, fit, istat, sigma, absolute_sigma /= 0)
+      if (present(sigma)) sigma_in = sigma
+      call fit_damping_linear(velocity, restitution, fit, istat, sigma_in, absolute_sigma /= 0)
       stat = int(istat, c_int)
       if (istat /= hcimpact_ok) return
       damping = fit%parameters(1)
@@ -132,6 +139,7 @@ contains
       !> Status
       integer(c_int) :: stat
       type(fit_type) :: fit
+      real(wp), allocatable :: sigma_in(:)
       integer :: istat
 
       if (present(parameters)) parameters = nan()
@@ -145,7 +153,8 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      call fit_static(deflection, force, fit, istat, sigma, absolute_sigma /= 0)
+      if (present(sigma)) sigma_in = sigma
+      call fit_static(deflection, force, fit, istat, sigma_in, absolute_sigma /= 0)
       stat = int(istat, c_int)
       if (istat /= hcimpact_ok) return
       parameters = fit%parameters
@@ -186,6 +195,7 @@ contains
       !> Status
       integer(c_int) :: stat
       type(fit_type) :: fit
+      real(wp), allocatable :: t(:), f(:), st(:), sf(:), g(:)
       integer :: istat, m
 
       m = npoints * (count([present(contact_time), present(peak_force)]))
@@ -200,8 +210,12 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      call fit_elastic(mass, damping, velocity, fit, istat, contact_time, peak_force, &
-         & sigma_time, sigma_force, absolute_sigma /= 0, guess)
+      if (present(contact_time)) t = contact_time
+      if (present(peak_force)) f = peak_force
+      if (present(sigma_time)) st = sigma_time
+      if (present(sigma_force)) sf = sigma_force
+      if (present(guess)) g = guess
+      call fit_elastic(mass, damping, velocity, fit, istat, t, f, st, sf, absolute_sigma /= 0, g)
       stat = int(istat, c_int)
       if (istat /= hcimpact_ok) return
       parameters = fit%parameters
@@ -244,6 +258,7 @@ contains
       !> Status
       integer(c_int) :: stat
       type(fit_type) :: fit
+      real(wp), allocatable :: t(:), f(:), e(:), st(:), sf(:), se(:), g(:)
       integer :: istat, m
 
       m = npoints * count([present(contact_time), present(peak_force), present(restitution)])
@@ -258,8 +273,14 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      call fit_impact(mass, velocity, fit, istat, contact_time, peak_force, restitution, &
-         & sigma_time, sigma_force, sigma_restitution, absolute_sigma /= 0, guess)
+      if (present(contact_time)) t = contact_time
+      if (present(peak_force)) f = peak_force
+      if (present(restitution)) e = restitution
+      if (present(sigma_time)) st = sigma_time
+      if (present(sigma_force)) sf = sigma_force
+      if (present(sigma_restitution)) se = sigma_restitution
+      if (present(guess)) g = guess
+      call fit_impact(mass, velocity, fit, istat, t, f, e, st, sf, se, absolute_sigma /= 0, g)
       stat = int(istat, c_int)
       if (istat /= hcimpact_ok) return
       parameters = fit%parameters

@@ -16,10 +16,12 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-# the package from this source tree when it is not installed
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-
-import hcimpact  # noqa: E402
+# the package from this source tree when it is not installed (or on PYTHONPATH)
+try:
+    import hcimpact
+except ImportError:
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    import hcimpact
 
 
 def pytest_configure(config):

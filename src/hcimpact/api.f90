@@ -61,7 +61,7 @@ module hcimpact_api
       & "an argument is NaN or infinite" // c_null_char, &
       & "mass must be positive" // c_null_char, &
       & "stiffness must be positive" // c_null_char, &
-      & "exponent of the elastic law must be positive" // c_null_char, &
+      & "exponent of the power law must be at least 1e-6" // c_null_char, &
       & "approach velocity must be positive" // c_null_char, &
       & "damping must not be negative" // c_null_char, &
       & "target restitution must lie in (0, 1]" // c_null_char, &

@@ -53,8 +53,14 @@ module hcimpact_impact_model
 
    public :: contact_type, outcome_type
    public :: impact, impact_law, velocity_at_depth, time_law, time_law_samples
-   public :: damping_for_restitution, default_min_velocity
+   public :: damping_for_restitution, default_min_velocity, min_exponent
    public :: compression_branch, restitution_branch
+
+   !> Smallest exponent n of the power law accepted (hcimpact_err_exponent below it).
+   !> As n -> 0 the law c x^n tends to a step and the peak-force condition
+   !> n m V = b c x^(n+1) degenerates; below about 1e-16 it is not solvable in double
+   !> precision. Every physical law has n far above this bound.
+   real(wp), parameter :: min_exponent = 1.0e-6_wp
 
    !> One impact: with the power law (`contact_type`), or with a user's elastic law
    !> (`impact_law`)
@@ -180,7 +186,7 @@ contains
          stat = hcimpact_err_mass
       else if (.not. contact%stiffness > 0.0_wp) then
          stat = hcimpact_err_stiffness
-      else if (.not. contact%exponent > 0.0_wp) then
+      else if (.not. contact%exponent >= min_exponent) then
          stat = hcimpact_err_exponent
       else if (.not. contact%velocity > 0.0_wp) then
          stat = hcimpact_err_velocity

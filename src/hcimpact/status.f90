@@ -23,7 +23,7 @@ module hcimpact_status
    integer, parameter :: hcimpact_err_mass = 2
    !> Stiffness (contact constant c) is zero or negative
    integer, parameter :: hcimpact_err_stiffness = 3
-   !> Exponent n of the elastic law is zero or negative
+   !> Exponent n of the elastic law is below its minimum (1e-6 for the power law; 0 elsewhere)
    integer, parameter :: hcimpact_err_exponent = 4
    !> Approach velocity is zero or negative
    integer, parameter :: hcimpact_err_velocity = 5
@@ -68,7 +68,7 @@ contains
       case (hcimpact_err_stiffness)
          message = "stiffness must be positive"
       case (hcimpact_err_exponent)
-         message = "exponent of the elastic law must be positive"
+         message = "exponent of the power law must be at least 1e-6"
       case (hcimpact_err_velocity)
          message = "approach velocity must be positive"
       case (hcimpact_err_damping)

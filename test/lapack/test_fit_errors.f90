@@ -76,6 +76,18 @@ contains
       call fit_damping([1.0_wp, 2.0_wp], [0.9_wp, 0.8_wp], fit, stat, sigma=[0.01_wp, 0.0_wp])
       call expect(error, stat, hcimpact_err_domain, fit, "zero sigma")
       if (allocated(error)) return
+      ! sizes that would overflow the sums of squares: no restitution, absurd sigmas
+      call fit_damping([1.0_wp, 2.0_wp], [0.9_wp, 2.5_wp], fit, stat)
+      call expect(error, stat, hcimpact_err_restitution, fit, "e > 2")
+      if (allocated(error)) return
+      call fit_damping([1.0_wp, 2.0_wp], [0.9_wp, 0.8_wp], fit, stat, &
+         & sigma=[0.01_wp, 1.0e-200_wp])
+      call expect(error, stat, hcimpact_err_domain, fit, "sigma 1e-200")
+      if (allocated(error)) return
+      call fit_static([1.0_wp, 2.0_wp, 3.0_wp], [1.0e-300_wp, 2.0_wp, 3.0_wp], fit, stat, &
+         & sigma=[1.0_wp, 1.0_wp, 1.0_wp])
+      call expect(error, stat, hcimpact_err_domain, fit, "sigma 1e300 times the force")
+      if (allocated(error)) return
       call fit_damping_linear([1.0_wp], [0.9_wp], fit, stat)
       call expect(error, stat, hcimpact_err_underdetermined, fit, "linear, one point")
       if (allocated(error)) return

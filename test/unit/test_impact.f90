@@ -27,7 +27,7 @@ module test_impact
       & hcimpact_err_null, hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &
       & velocity_at_depth, time_law, time_law_samples, damping_for_restitution, &
-      & default_min_velocity, compression_branch, restitution_branch
+      & default_min_velocity, compression_branch, restitution_branch, min_exponent
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome, c_impact
@@ -129,7 +129,8 @@ contains
          & new_unittest("user-law-linear", test_user_law_linear), &
          & new_unittest("user-law-cubic", test_user_law_cubic), &
          & new_unittest("user-law-invalid", test_user_law_invalid), &
-         & new_unittest("c-interface", test_c_interface) &
+         & new_unittest("c-interface", test_c_interface), &
+         & new_unittest("tiny-exponent", test_tiny_exponent) &
          & ]
    end subroutine collect_impact
 
@@ -1155,5 +1156,31 @@ contains
       call check(error, stat == hcimpact_err_damping .and. ieee_is_nan(c_outcome%contact_time) &
          & .and. ieee_is_nan(c_outcome%restitution), "bad damping through C")
    end subroutine test_c_interface
+
+   !> Found by the fuzzer: a subnormal exponent with extreme inputs gave a successful
+   !> outcome with a NaN peak force. Exponents below min_exponent are rejected, and just
+   !> above it every output is finite.
+   subroutine test_tiny_exponent(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_type) :: contact
+      type(outcome_type) :: outcome
+      integer :: stat
+      contact = contact_type(mass=146601410560.0_wp, stiffness=7.5825847337118724e-15_wp, &
+         & exponent=9.2349256822808651e-311_wp, damping=146601410560.0_wp, &
+         & velocity=7.5791152867599187e-15_wp)
+      call impact(contact, outcome, stat)
+      call check(error, stat, hcimpact_err_exponent, "subnormal exponent must be rejected")
+      if (allocated(error)) return
+      call check(error, ieee_is_nan(outcome%peak_force), "outputs are NaN on error")
+      if (allocated(error)) return
+      contact%exponent = min_exponent
+      contact%damping = 1.0e4_wp / contact%velocity
+      call impact(contact, outcome, stat)
+      call check(error, stat, hcimpact_ok, "the smallest exponent accepted must work")
+      if (allocated(error)) return
+      call check(error, ieee_is_finite(outcome%peak_force) .and. &
+         & ieee_is_finite(outcome%compression_at_peak_force) .and. &
+         & ieee_is_finite(outcome%contact_time), "finite outputs at the smallest exponent")
+   end subroutine test_tiny_exponent
 
 end module test_impact

@@ -1,0 +1,71 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* hcimpact_simulate (libhcimpact_cvode) from C: the seed's steel ball against MODEL.md,
+ * and the statuses for bad input. Exit code 0 when every check passes. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "hcimpact.h"
+
+static int failures = 0;
+
+static void check_close(const char *what, double actual, double expected, double rel)
+{
+  if (!(fabs(actual - expected) <= rel * fabs(expected))) {
+    printf("FAIL %s: %.17g, expected %.17g (rel %.1e)\n", what, actual, expected, rel);
+    ++failures;
+  }
+}
+
+static void check_status(const char *what, int actual, int expected)
+{
+  if (actual != expected) {
+    printf("FAIL %s: status %d, expected %d\n", what, actual, expected);
+    ++failures;
+  }
+}
+
+int main(void)
+{
+  const double rtol = 1e-8;
+  hcimpact_contact ball = {0.1, 1.7135e10, 1.5, 0.1, 1.0};
+  hcimpact_outcome out;
+  int stat;
+
+  /* MODEL.md, V = 1 m/s */
+  stat = hcimpact_simulate(&ball, rtol, &out);
+  check_status("steel ball", stat, HCIMPACT_OK);
+  check_close("contact time", out.contact_time, 1.0399469349496538e-4, 100 * rtol);
+  check_close("restitution", out.restitution, 0.93747557994990506, 1000 * rtol);
+  check_close("max compression", out.max_compression, 3.4204625278143626e-5, 1000 * rtol);
+  check_close("peak force", out.peak_force, 3441.1122331638547, 1000 * rtol);
+  check_close("compression time", out.compression_time, 5.0856853135224197e-5, 1000 * rtol);
+
+  /* bad input: a status and NaN outputs, never an abort */
+  check_status("NULL contact", hcimpact_simulate(NULL, rtol, &out), HCIMPACT_ERR_NULL);
+  check_status("NULL outcome", hcimpact_simulate(&ball, rtol, NULL), HCIMPACT_ERR_NULL);
+  check_status("rtol NaN", hcimpact_simulate(&ball, NAN, &out), HCIMPACT_ERR_NOT_FINITE);
+  if (!isnan(out.contact_time) || !isnan(out.restitution)) {
+    printf("FAIL rtol NaN: outputs not NaN\n");
+    ++failures;
+  }
+  check_status("rtol 0", hcimpact_simulate(&ball, 0.0, &out), HCIMPACT_ERR_DOMAIN);
+  ball.velocity = -1.0;
+  check_status("V < 0", hcimpact_simulate(&ball, rtol, &out), HCIMPACT_ERR_VELOCITY);
+  ball.velocity = 1.0;
+  ball.damping = 1e300;
+  check_status("b V = 1e300", hcimpact_simulate(&ball, rtol, &out), HCIMPACT_ERR_DOMAIN);
+  ball.damping = 0.1;
+  check_status("rtol 1e-20", hcimpact_simulate(&ball, 1e-20, &out), HCIMPACT_ERR_SOLVER);
+  if (!isnan(out.peak_force)) {
+    printf("FAIL rtol 1e-20: outputs not NaN\n");
+    ++failures;
+  }
+
+  if (failures > 0) {
+    printf("%d check(s) failed\n", failures);
+    return 1;
+  }
+  printf("hcimpact_simulate: all checks passed\n");
+  return 0;
+}
