@@ -43,7 +43,7 @@
 #define HCIMPACT_ERR_NOT_FINITE 1       /**< an argument is NaN or infinite */
 #define HCIMPACT_ERR_MASS 2             /**< mass is zero or negative */
 #define HCIMPACT_ERR_STIFFNESS 3        /**< stiffness (contact constant c) is not positive */
-#define HCIMPACT_ERR_EXPONENT 4         /**< exponent n of the elastic law is not positive */
+#define HCIMPACT_ERR_EXPONENT 4         /**< exponent n of the elastic law is out of range */
 #define HCIMPACT_ERR_VELOCITY 5         /**< approach velocity is zero or negative */
 #define HCIMPACT_ERR_DAMPING 6          /**< damping b is negative */
 #define HCIMPACT_ERR_RESTITUTION 7      /**< target restitution outside (0, 1] */
@@ -61,6 +61,10 @@
  *  (x' <= 0). */
 #define HCIMPACT_COMPRESSION_BRANCH 1
 #define HCIMPACT_RESTITUTION_BRANCH 2
+
+/** Smallest exponent n of the power law that hcimpact_impact accepts (as n -> 0 the
+ *  law tends to a step and the peak force degenerates). */
+#define HCIMPACT_MIN_EXPONENT 1.0e-6
 
 /** Default min_velocity of hcimpact_damping_for_restitution, in m/s. */
 #define HCIMPACT_DEFAULT_MIN_VELOCITY 1.0e-3
@@ -209,7 +213,7 @@ int hcimpact_two_body_velocities(double mass1, double mass2, double velocity1,
 typedef struct {
     double mass;      /**< mass m in kg (effective mass for two bodies), > 0 */
     double stiffness; /**< contact constant c in N/m^n, > 0 (Hertz: see doc/impact.md) */
-    double exponent;  /**< exponent n of the elastic law f = c x^n, > 0 (3/2: Hertz) */
+    double exponent;  /**< exponent n of the elastic law f = c x^n, >= 1e-6 (3/2: Hertz) */
     double damping;   /**< Hunt-Crossley damping b in s/m, >= 0 (0: elastic) */
     double velocity;  /**< approach speed V in m/s, > 0 */
 } hcimpact_contact;
@@ -234,7 +238,7 @@ typedef struct {
  *  HCIMPACT_ERR_NOT_FINITE (1)   a field of *contact is NaN or infinite,
  *  HCIMPACT_ERR_MASS (2)         mass <= 0,
  *  HCIMPACT_ERR_STIFFNESS (3)    stiffness <= 0,
- *  HCIMPACT_ERR_EXPONENT (4)     exponent <= 0,
+ *  HCIMPACT_ERR_EXPONENT (4)     exponent < 1e-6 (HCIMPACT_MIN_EXPONENT),
  *  HCIMPACT_ERR_VELOCITY (5)     velocity <= 0,
  *  HCIMPACT_ERR_DAMPING (6)      damping < 0,
  *  HCIMPACT_ERR_DOMAIN (8)       a result would leave the double range,

@@ -119,7 +119,7 @@ def figure(rows, path):
                                 color=STYLE["bdf"]["color"])
         t, e, u = closed_points(rows, case)
         ax.plot([t * 1e6], [max(e, 1e-17)], marker="*", markersize=16, color="crimson",
-                linestyle="none", label=LABELS["closed"] + " (%.1f ulp)" % u)
+                linestyle="none", label=LABELS["closed"] + ", ≤ %.1f ulp" % closed_points(rows)[2])
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_title(title, fontsize=11)
@@ -354,8 +354,9 @@ def main():
         extra = ""
         if worst[1] is not None:
             w = worst[1]
-            extra = " (%s, n = %s, \u03b2 = %s, m = %s, c = %s, V = %s, rtol %s)" % (
-                LABELS[w["method"]], w["n"], w["beta"], w["m"], w["c"], w["V"], w["rtol"])
+            extra = " (%s, n = %g, \u03b2 = %g, m = %g, c = %g, V = %g, rtol %g)" % (
+                LABELS[w["method"]], float(w["n"]), float(w["beta"]), float(w["m"]),
+                float(w["c"]), float(w["V"]), float(w["rtol"]))
         st_md += ("\n\nCVODE runs: %d; finished: %d (NaN or Inf in a finished outcome: %d); "
                   "ended with a status: %d. Largest difference from the closed forms: "
                   "%.0f rtol%s.\n" % (summary["runs"], summary["ok"], summary["nan"],

@@ -80,6 +80,9 @@ static int next_size(stream *s)
   return n < -1 ? 1 : n;
 }
 
+/* HCIMPACT_FUZZ_VERBOSE set: print every contact decoded (to reproduce a finding) */
+static int verbose = -1;
+
 /* the last contact decoded, printed with a broken contract */
 static hcimpact_contact last_contact;
 static int have_contact = 0;
@@ -142,6 +145,10 @@ static hcimpact_contact next_contact(stream *s)
   if (next_byte(s) & 1) c.exponent = 0.25 + fmod(fabs(c.exponent), 4.0);
   last_contact = c;
   have_contact = 1;
+  if (verbose) {
+    fprintf(stderr, "contact: mass %.17g, stiffness %.17g, exponent %.17g, damping %.17g, "
+            "velocity %.17g\n", c.mass, c.stiffness, c.exponent, c.damping, c.velocity);
+  }
   return c;
 }
 
@@ -262,7 +269,9 @@ static void fuzz_impact_array(stream *s)
   } else {
     for (i = 0; i < n; ++i) {
       hcimpact_outcome one;
-      int one_status = hcimpact_impact(&c[i], &one);
+      int one_status;
+      last_contact = c[i];
+      one_status = hcimpact_impact(&c[i], &one);
       check_outcome(one_status, &o[i]);
       if (!(nulls & 4)) contract(statuses[i] == one_status, "impact_array: status differs");
       if (first == HCIMPACT_OK) first = one_status;
@@ -326,7 +335,13 @@ static void fuzz_trajectory(stream *s)
   } else if (status != HCIMPACT_OK) {
     contract(all_nan(x, n) && all_nan(v, n) && all_nan(f, n), "time_law: not NaN on error");
   } else {
-    for (i = 0; i < n; ++i) contract(x[i] >= 0.0 && f[i] >= 0.0, "time_law: x or F < 0");
+    for (i = 0; i < n; ++i) {
+      if (!(x[i] >= 0.0 && f[i] >= 0.0)) {
+        fprintf(stderr, "time_law at t = %.17g: x = %.17g, v = %.17g, F = %.17g\n", t[i], x[i],
+                v[i], f[i]);
+      }
+      contract(x[i] >= 0.0 && f[i] >= 0.0, "time_law: x or F < 0");
+    }
   }
   status = hcimpact_time_law_samples(&c, n, t, x, v, (nulls & 16) ? NULL : f);
   check_status(status);
@@ -431,6 +446,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
   s.data = data;
   s.size = size;
   have_contact = 0;
+  if (verbose < 0) verbose = getenv("HCIMPACT_FUZZ_VERBOSE") != NULL;
   switch (next_byte(&s) % 10) {
   case 0:
   case 1: fuzz_scalars(&s); break;

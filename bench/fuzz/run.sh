@@ -18,12 +18,17 @@
 # Usage: bench/fuzz/run.sh [--seconds N] [--build-dir DIR] [--jobs N] [--no-components]
 #                          [--fpe] [--quiet] [--keep-corpus]
 #   --seconds N       fuzzing budget (default 300)
+#   --runs N          stop after N executions instead (with --seed: a reproducible run)
+#   --seed N          libFuzzer's random seed (default: chosen by libFuzzer)
+#   --fresh           start from an empty corpus (default: keep the corpus of earlier
+#                     runs in the build directory, which finds old findings again)
 #   --build-dir DIR   where the instrumented library, the target, the corpus and the
 #                     log go (default build/fuzz)
 #   --jobs N          parallel libFuzzer workers (default 1)
 #   --no-components   fuzz the core only (no hcimpact_simulate, no fits)
 #   --keep-going      do not stop at the first finding (libFuzzer's fork mode):
 #                     collect them all, then list the distinct ones
+#   --triage-only     do not build or fuzz: classify the artifacts of an earlier run
 #   --fpe             also trap floating-point exceptions (invalid, divide by zero,
 #                     overflow) in the library, as -ffpe-trap would: a separate finding
 #                     class, not part of the default run (see doc/robustness.md)
@@ -34,20 +39,28 @@ set -euo pipefail
 
 root="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 seconds=300
+runs=""
+seed=""
+fresh=0
 build="$root/build/fuzz"
 jobs=1
 components=1
 fpe=0
 quiet=0
 keep_going=0
+triage_only=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) seconds="$2"; shift 2 ;;
+    --runs) runs="$2"; shift 2 ;;
+    --seed) seed="$2"; shift 2 ;;
+    --fresh) fresh=1; shift ;;
     --build-dir) build="$2"; shift 2 ;;
     --jobs) jobs="$2"; shift 2 ;;
     --no-components) components=0; shift ;;
     --fpe) fpe=1; shift ;;
     --keep-going) keep_going=1; shift ;;
+    --triage-only) triage_only=1; shift ;;
     --quiet) quiet=1; shift ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
   esac
@@ -76,6 +89,7 @@ fc="${FC:-gfortran}"
 generator=()
 if command -v ninja >/dev/null 2>&1; then generator=(-G Ninja); fi
 
+if [ "$triage_only" = 0 ]; then
 san_flags="-fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer"
 # -fcheck=all but recursion: that check is a static flag (not what is fuzzed here)
 fflags="-g -O1 $san_flags -fcheck=all -fcheck=no-recursion"
@@ -99,15 +113,18 @@ cp "$build/target/fuzz_api" "$build/fuzz_api"
 
 corpus="$build/corpus"
 artifacts="$build/artifacts"
+if [ "$fresh" = 1 ]; then rm -rf "$corpus"; fi
 mkdir -p "$corpus" "$artifacts"
 rm -f "$artifacts"/crash-* "$artifacts"/timeout-* "$artifacts"/leak-* "$artifacts"/oom-*
 log="$build/fuzz.log"
-say "running for ${seconds}s ($jobs worker(s)); log $log"
+say "running for ${seconds}s${runs:+ or $runs executions}${seed:+, seed $seed} ($jobs worker(s)); log $log"
 status=0
 export ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=0:halt_on_error=1}"
 export UBSAN_OPTIONS="${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1:suppressions=$root/bench/fuzz/ubsan.supp}"
 fuzz_args=(-max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -max_len=512
   -print_final_stats=1 -artifact_prefix="$artifacts/")
+if [ -n "$runs" ]; then fuzz_args+=(-runs="$runs"); fi
+if [ -n "$seed" ]; then fuzz_args+=(-seed="$seed"); fi
 if [ "$keep_going" = 1 ]; then
   fuzz_args+=(-fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
 elif [ "$jobs" -gt 1 ]; then
@@ -117,6 +134,11 @@ started=$(date +%s.%N)
 (cd "$build" && ./fuzz_api "${fuzz_args[@]}" "$corpus") >"$log" 2>&1 || status=$?
 elapsed=$(awk -v a="$started" -v b="$(date +%s.%N)" 'BEGIN {printf "%.1f", b - a}')
 if [ "$jobs" -gt 1 ]; then cat "$build"/fuzz-*.log >>"$log" 2>/dev/null || true; fi
+else
+  corpus="$build/corpus"; artifacts="$build/artifacts"; log="$build/fuzz.log"
+  components_built="(as built before)"
+  status=0; elapsed=0
+fi
 
 # summary
 execs=$( (grep -h "stat::number_of_executed_units" "$log" || true) | awk '{s += $2} END {print s + 0}')
@@ -141,6 +163,12 @@ for artifact in "$artifacts"/crash-* "$artifacts"/timeout-* "$artifacts"/leak-*;
   first=$(printf '%s\n' "$output" \
     | grep -m1 -E "ERROR: AddressSanitizer|runtime error:|contract broken|deadly signal|SEGV|FPE|floating|timeout" \
     | sed 's/^==[0-9]*==//' || true)
+  if printf '%s\n' "$first" | grep -q "AddressSanitizer"; then
+    # the kind (FPE, SEGV, ...) and where: frame #0 without its address
+    kind=$(printf '%s\n' "$first" | sed -n 's/.*AddressSanitizer: \([A-Za-z-]*\).*/\1/p')
+    where=$(printf '%s\n' "$output" | grep -m1 -E "^ *#0 " | sed 's/^ *#0 0x[0-9a-f]* in //; s/ (.*BuildId.*//' || true)
+    first="AddressSanitizer: $kind in $where"
+  fi
   contact=$(printf '%s\n' "$output" | grep -m1 "last contact" | sed 's/^ *//' || true)
   printf '%s\t%s\t%s\n' "$(basename "$artifact")" "${first:-unclassified}" "$contact" >>"$triage"
 done
@@ -153,7 +181,7 @@ corpus_size=$(find "$corpus" -type f | wc -l)
 
 cat <<EOF
 
-hcimpact fuzz summary ($(date -u +%Y-%m-%dT%H:%MZ), $(uname -m), budget ${seconds} s, ran ${elapsed} s, $jobs worker(s))
+hcimpact fuzz summary ($(date -u +%Y-%m-%dT%H:%MZ), $(uname -m), budget ${seconds} s${runs:+ or $runs runs}${seed:+, seed $seed}, ran ${elapsed} s, $jobs worker(s))
   target            bench/fuzz/fuzz_api.c (entry points of: $components_built)
   executions        $execs ($rate exec/s)
   coverage          ${cov:-n/a} (C side), corpus $corpus_size inputs

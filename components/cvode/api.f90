@@ -8,11 +8,11 @@
 !> structures are those of hcimpact_impact (hcimpact_api_impact).
 module hcimpact_cvode_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int, c_ptr, c_associated, c_f_pointer
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_err_null, hcimpact_err_not_finite, hcimpact_err_domain
    use hcimpact_impact_model, only : contact_type, outcome_type
    use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome
+   use hcimpact_cvode_system, only : finite_value
    use hcimpact_cvode_solver, only : cvode_options, simulation_type, simulate_power, &
       & cvode_bdf
    implicit none
@@ -30,7 +30,8 @@ contains
    !> Returns 0 on success; HCIMPACT_ERR_NULL (10) if a pointer is NULL (nothing is
    !> written); otherwise a status and NaN in every field of *outcome: the input
    !> errors of hcimpact_impact, HCIMPACT_ERR_NOT_FINITE (1) for a NaN or infinite
-   !> rtol, HCIMPACT_ERR_DOMAIN (8) for rtol outside (0, 1) or b V above about 1e140,
+   !> rtol, HCIMPACT_ERR_DOMAIN (8) for rtol outside (0, 1), b V above about 1e140 or
+   !> an exponent above 100,
    !> HCIMPACT_ERR_SOLVER (11) when CVODE fails, HCIMPACT_ERR_NO_CONVERGENCE (9)
    !> when the contact does not end.
    function c_simulate(contact, rtol, outcome) result(stat) bind(C, name="hcimpact_simulate")
@@ -54,7 +55,8 @@ contains
       end if
       call c_f_pointer(contact, c_in)
       call c_f_pointer(outcome, c_out)
-      if (ieee_is_nan(rtol)) then
+      ! (finiteness from the bits: a signalling NaN must not raise invalid)
+      if (.not. finite_value(rtol)) then
          status = hcimpact_err_not_finite
          result = outcome_type()
       else if (.not. (rtol > 0.0_c_double .and. rtol < 1.0_c_double)) then

@@ -24,6 +24,11 @@
 !> refused below 1e-150 (hcimpact_err_domain), where CVODE's error weights would
 !> overflow: that excludes beta above about 1e140 (k < 1e-140) from this path.
 !>
+!> Floating-point traps: CVODE's C code may overflow in its norms on a diverging
+!> Newton iterate (and recovers); halting on overflow, invalid and division by zero is
+!> therefore off while CVODE runs, and back to the caller's setting inside the
+!> callbacks (our own code) and on return.
+!>
 !> Failures: every CVODE failure returns hcimpact_err_solver (or
 !> hcimpact_err_elastic_law when the user's procedures returned non-finite values)
 !> with a message naming CVODE's flag, e.g. "CV_TOO_MUCH_WORK"; the SUNDIALS objects
@@ -33,6 +38,9 @@ module hcimpact_cvode_solver
       & c_null_ptr, c_loc, c_funloc, c_f_pointer, c_associated
    use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
+   use, intrinsic :: ieee_exceptions, only : ieee_flag_type, ieee_overflow, ieee_invalid, &
+      & ieee_divide_by_zero, ieee_get_halting_mode, ieee_set_halting_mode, ieee_get_flag, &
+      & ieee_set_flag, ieee_support_halting
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
@@ -43,7 +51,8 @@ module hcimpact_cvode_solver
    use hcimpact_impact_model, only : contact_type, outcome_type
    use hcimpact_cvode_system, only : impact_system, external_force, power_system, &
       & law_system, system_rhs, system_jacobian, system_events, system_force, &
-      & largest_eigenvalue, scaled_energy, rhs_ok, rhs_recoverable, rhs_law_failure, &
+      & largest_eigenvalue, scaled_energy, guarded_product, guarded_quotient, finite_value, &
+      & rhs_ok, rhs_recoverable, rhs_law_failure, &
       & n_events, event_max_compression, event_peak_force, event_end_of_contact
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
@@ -78,6 +87,9 @@ module hcimpact_cvode_solver
    !> Linear multistep method: Adams-Moulton (non-stiff problems)
    integer, parameter :: cvode_adams = 1
 
+   !> Largest exponent n of the power law on this path: beyond, (n+1)/2 s^n is a wall
+   !> that no step size resolves, and products of n with the state leave the range
+   real(wp), parameter :: max_exponent = 100.0_wp
    !> Smallest absolute tolerance handed to CVODE (see the module header)
    real(wp), parameter :: min_atol = 1.0e-150_wp
    !> Initial capacity of the trajectory arrays
@@ -85,6 +97,10 @@ module hcimpact_cvode_solver
 
    !> Quiet NaN
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
+
+   !> The exceptions a caller may trap (-ffpe-trap=invalid,zero,overflow)
+   type(ieee_flag_type), parameter :: trapped(3) = [ieee_overflow, ieee_invalid, &
+      & ieee_divide_by_zero]
 
    !> Settings of one integration. The defaults give a relative error of a few 1e-8
    !> in the contact time (doc/cvode.md).
@@ -172,8 +188,8 @@ contains
    !>
    !> Errors: the input errors of the closed forms (hcimpact_err_not_finite, _mass,
    !> _stiffness, _exponent, _velocity, _damping); hcimpact_err_domain for options out
-   !> of range, scales outside the double range, or beta too large for the absolute
-   !> tolerances (above about 1e140); hcimpact_err_solver when CVODE fails;
+   !> of range, scales outside the double range, n above 100, or beta too large for
+   !> the absolute tolerances (above about 1e140); hcimpact_err_solver when CVODE fails;
    !> hcimpact_err_no_convergence when the contact has not ended by max_time.
    subroutine simulate_power(contact, simulation, stat, options)
       !> The contact
@@ -201,6 +217,11 @@ contains
 
       n = contact%exponent
       a = 0.5_wp * (n + 1.0_wp)
+      if (n > max_exponent) then
+         stat = hcimpact_err_domain
+         simulation%message = "the ODE path takes exponents n up to 100"
+         return
+      end if
       if (.not. product_fits(contact%damping, contact%velocity)) then
          stat = hcimpact_err_domain
          simulation%message = "b V overflows"
@@ -394,11 +415,11 @@ contains
 
       stat = hcimpact_ok
       why = "success"
-      if (.not. (ieee_is_finite(opts%rtol) .and. ieee_is_finite(opts%atol))) then
+      if (.not. (finite_value(opts%rtol) .and. finite_value(opts%atol))) then
          stat = hcimpact_err_not_finite
          why = "the tolerances must be finite"
-      else if (.not. (ieee_is_finite(opts%max_time) .and. ieee_is_finite(opts%initial_step) &
-         & .and. ieee_is_finite(opts%length_scale))) then
+      else if (.not. (finite_value(opts%max_time) .and. finite_value(opts%initial_step) &
+         & .and. finite_value(opts%length_scale))) then
          stat = hcimpact_err_not_finite
          why = "options%max_time, initial_step and length_scale must be finite"
       else if (.not. (opts%rtol > 0.0_wp .and. opts%rtol < 1.0_wp)) then
@@ -423,9 +444,9 @@ contains
       character(len=:), allocatable, intent(out) :: why
 
       stat = hcimpact_ok
-      if (.not. (ieee_is_finite(contact%mass) .and. ieee_is_finite(contact%stiffness) &
-         & .and. ieee_is_finite(contact%exponent) .and. ieee_is_finite(contact%damping) &
-         & .and. ieee_is_finite(contact%velocity))) then
+      ! (finiteness from the bits: a signalling NaN from C must not raise invalid)
+      if (.not. all(finite_value([contact%mass, contact%stiffness, contact%exponent, &
+         & contact%damping, contact%velocity]))) then
          stat = hcimpact_err_not_finite
       else if (.not. contact%mass > 0.0_wp) then
          stat = hcimpact_err_mass
@@ -525,6 +546,17 @@ contains
       ctx = c_null_ptr
       cvode_mem = c_null_ptr
       nullify(y_vec, atol_vec, jac_mat, lin_sol)
+      ! CVODE's C code is not written for trapping floating-point exceptions: a
+      ! diverging Newton iterate may overflow its weighted norms, which it treats as a
+      ! convergence failure (a smaller step). A caller that traps exceptions would be
+      ! killed there, so halting is off while CVODE runs; the callbacks switch the
+      ! caller's halting back on for our own code (traps still catch our bugs).
+      sys%halting = .false.
+      if (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_invalid) &
+         & .and. ieee_support_halting(ieee_divide_by_zero)) then
+         call ieee_get_halting_mode(trapped, sys%halting)
+         call ieee_set_halting_mode(trapped, .false.)
+      end if
       sys%law_failed = .false.
       sys%solver_code = 0
       simulation%length_unit = sys%length
@@ -639,7 +671,7 @@ contains
             if (steps >= opts%max_steps) then
                stat = hcimpact_err_solver
                simulation%message = "CVODE failed at t = " &
-                  & // format_real(tret(1) * sys%time) // " s: " &
+                  & // format_real(guarded_product(tret(1), sys%time)) // " s: " &
                   & // cvode_flag_name(CV_TOO_MUCH_WORK) // " (options%max_steps = " &
                   & // format_int(opts%max_steps) // " steps taken before the end of contact)"
                exit march
@@ -654,7 +686,7 @@ contains
                   stat = hcimpact_err_elastic_law
                end if
                simulation%message = "CVODE failed at t = " &
-                  & // format_real(tret(1) * sys%time) // " s: " // cvode_flag_name(ierr) &
+                  & // format_real(guarded_product(tret(1), sys%time)) // " s: " // cvode_flag_name(ierr) &
                   & // solver_detail(sys)
                exit march
             end if
@@ -664,7 +696,7 @@ contains
             if (.not. (ieee_is_finite(y(1)) .and. ieee_is_finite(y(2)))) then
                stat = hcimpact_err_solver
                simulation%message = "CVODE returned a non-finite state at t = " &
-                  & // format_real(tret(1) * sys%time) // " s"
+                  & // format_real(guarded_product(tret(1), sys%time)) // " s"
                exit march
             end if
             call system_jacobian(sys, tret(1), y, jac, jstat)
@@ -706,7 +738,7 @@ contains
             if (tret(1) >= tau_max) then
                stat = hcimpact_err_no_convergence
                simulation%message = "the contact has not ended at t = " &
-                  & // format_real(tret(1) * sys%time) // " s (options%max_time)"
+                  & // format_real(guarded_product(tret(1), sys%time)) // " s (options%max_time)"
                exit march
             end if
          end do march
@@ -720,6 +752,11 @@ contains
       if (associated(atol_vec)) call FN_VDestroy(atol_vec)
       if (associated(y_vec)) call FN_VDestroy(y_vec)
       call context_free(ctx)
+      ! what CVODE raised stays with CVODE; the caller's modes come back
+      if (any(sys%halting)) then
+         call ieee_set_flag(trapped, .false.)
+         call ieee_set_halting_mode(trapped, sys%halting)
+      end if
 
       if (opts%record_trajectory) call shrink_samples(simulation, nsamples)
       if (stat /= hcimpact_ok) return
@@ -731,19 +768,20 @@ contains
       end if
 
       associate(o => simulation%outcome)
+         ! (products guarded: a result beyond the double range is reported as such)
          o%restitution = -y_end(2)
-         o%energy_loss_ratio = (1.0_wp - o%restitution) * (1.0_wp + o%restitution)
-         o%rebound_velocity = y_end(2) * sys%velocity
-         o%max_compression = y_comp(1) * sys%length
-         o%compression_time = tau_comp * sys%time
+         o%energy_loss_ratio = guarded_product(1.0_wp - o%restitution, 1.0_wp + o%restitution)
+         o%rebound_velocity = guarded_product(y_end(2), sys%velocity)
+         o%max_compression = guarded_product(y_comp(1), sys%length)
+         o%compression_time = guarded_product(tau_comp, sys%time)
          o%peak_force = f_peak
-         o%compression_at_peak_force = max(y_peak(1), 0.0_wp) * sys%length
-         o%time_at_peak_force = tau_peak * sys%time
-         o%contact_time = tau_end * sys%time
+         o%compression_at_peak_force = guarded_product(max(y_peak(1), 0.0_wp), sys%length)
+         o%time_at_peak_force = guarded_product(tau_peak, sys%time)
+         o%contact_time = guarded_product(tau_end, sys%time)
          o%evaluations = 0
       end associate
-      simulation%max_eigenvalue = lambda_max / sys%time
-      simulation%stiffness_ratio = lambda_max * tau_end
+      simulation%max_eigenvalue = guarded_quotient(lambda_max, sys%time)
+      simulation%stiffness_ratio = guarded_product(lambda_max, tau_end)
       if (.not. ok_outcome(simulation%outcome)) then
          stat = hcimpact_err_domain
          simulation%message = "a result overflows the double range"
@@ -755,10 +793,12 @@ contains
    pure function ok_outcome(o) result(ok)
       type(outcome_type), intent(in) :: o
       logical :: ok
-      ok = all(ieee_is_finite([o%restitution, o%energy_loss_ratio, o%rebound_velocity, &
-         & o%max_compression, o%peak_force, o%compression_at_peak_force, &
-         & o%time_at_peak_force, o%compression_time, o%contact_time])) &
-         & .and. o%peak_force < huge(1.0_wp)
+      real(wp) :: v(9)
+      v = [o%restitution, o%energy_loss_ratio, o%rebound_velocity, o%max_compression, &
+         & o%peak_force, o%compression_at_peak_force, o%time_at_peak_force, &
+         & o%compression_time, o%contact_time]
+      ok = all(ieee_is_finite(v))
+      if (ok) ok = all(abs(v) < huge(1.0_wp))
    end function ok_outcome
 
    !> CVODE's counters of the integration behind cvode_mem.
@@ -806,9 +846,9 @@ contains
       end if
       nsamples = nsamples + 1
       call system_force(sys, y, force, ok)
-      simulation%time(nsamples) = tau * sys%time
-      simulation%compression(nsamples) = y(1) * sys%length
-      simulation%velocity(nsamples) = y(2) * sys%velocity
+      simulation%time(nsamples) = guarded_product(tau, sys%time)
+      simulation%compression(nsamples) = guarded_product(y(1), sys%length)
+      simulation%velocity(nsamples) = guarded_product(y(2), sys%velocity)
       simulation%force(nsamples) = force
    end subroutine append_sample
 
@@ -842,12 +882,15 @@ contains
       real(c_double), pointer :: yv(:), dv(:)
       real(wp) :: dy(2)
       integer :: stat
+      logical :: flags(3)
 
       call c_f_pointer(user_data, sys)
+      if (any(sys%halting)) call traps_on(sys, flags)
       yv => FN_VGetArrayPointer(y)
       dv => FN_VGetArrayPointer(ydot)
       call system_rhs(sys, t, yv(1:2), dy, stat)
       dv(1:2) = dy
+      if (any(sys%halting)) call traps_off(flags)
       ierr = 0
       if (stat == rhs_law_failure) sys%law_failed = .true.
       if (stat /= rhs_ok) ierr = 1
@@ -865,14 +908,17 @@ contains
       real(c_double), pointer :: yv(:), data(:), jv(:, :)
       real(wp) :: jac(2, 2)
       integer :: stat
+      logical :: flags(3)
 
       call c_f_pointer(user_data, sys)
+      if (any(sys%halting)) call traps_on(sys, flags)
       yv => FN_VGetArrayPointer(y)
       ! the wrapper returns a pointer of size 1 to the column-major 2x2 data
       data => FSUNDenseMatrix_Data(jac_mat)
       call c_f_pointer(c_loc(data(1)), jv, [2, 2])
       call system_jacobian(sys, t, yv(1:2), jac, stat)
       jv = jac
+      if (any(sys%halting)) call traps_off(flags)
       ierr = 0
       if (stat == rhs_law_failure) sys%law_failed = .true.
       if (stat /= rhs_ok) ierr = 1
@@ -889,15 +935,35 @@ contains
       real(c_double), pointer :: yv(:)
       real(wp) :: g(n_events)
       integer :: stat
+      logical :: flags(3)
 
       call c_f_pointer(user_data, sys)
+      if (any(sys%halting)) call traps_on(sys, flags)
       yv => FN_VGetArrayPointer(y)
       call system_events(sys, t, yv(1:2), g, stat)
       gout = g
+      if (any(sys%halting)) call traps_off(flags)
       ierr = 0
       if (stat == rhs_law_failure) sys%law_failed = .true.
       if (stat /= rhs_ok) ierr = -1
    end function events_callback
+
+   !> In a callback: the caller's halting modes back on, with the flags CVODE may have
+   !> raised set aside (unmasking a raised flag could trap at once).
+   subroutine traps_on(sys, flags)
+      type(impact_system), intent(in) :: sys
+      logical, intent(out) :: flags(3)
+      call ieee_get_flag(trapped, flags)
+      call ieee_set_flag(trapped, .false.)
+      call ieee_set_halting_mode(trapped, sys%halting)
+   end subroutine traps_on
+
+   !> Leaving a callback: halting off again for CVODE, its flags restored.
+   subroutine traps_off(flags)
+      logical, intent(in) :: flags(3)
+      call ieee_set_halting_mode(trapped, .false.)
+      call ieee_set_flag(trapped, flags)
+   end subroutine traps_off
 
    !> The last message of CVODE's error handler, if any, as ": <message>".
    function solver_detail(sys) result(text)

@@ -32,7 +32,8 @@
 !>      system_events for why), and the full derivative with an external force;
 !>   3. s = 0 (the state itself, not the clamped copy): the end of contact.
 module hcimpact_cvode_system
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use, intrinsic :: iso_fortran_env, only : int64
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp
    use hcimpact_elastic, only : elastic_law
    implicit none
@@ -41,7 +42,8 @@ module hcimpact_cvode_system
    public :: external_force, external_force_value
    public :: impact_system, power_system, law_system
    public :: system_rhs, system_jacobian, system_events, system_force
-   public :: largest_eigenvalue, scaled_energy, guarded_product
+   public :: largest_eigenvalue, scaled_energy, guarded_product, guarded_quotient
+   public :: finite_value
    public :: rhs_ok, rhs_recoverable, rhs_law_failure
    public :: n_events, event_max_compression, event_peak_force, event_end_of_contact
 
@@ -124,6 +126,9 @@ module hcimpact_cvode_system
       real(wp) :: accel = 0.0_wp
       !> Power law: newtons per unit of s^n (1 + beta sigma): ((n+1)/2) m V^2 / X
       real(wp) :: force_unit = 0.0_wp
+      !> The caller's halting modes for overflow, invalid and division by zero: the
+      !> driver turns halting off while CVODE runs, the callbacks turn it back on
+      logical :: halting(3) = .false.
       !> Set by the callbacks: the last evaluation failure of the user's procedures
       logical :: law_failed = .false.
       !> Set by the solver's error handler: its last message and code
@@ -145,13 +150,48 @@ contains
       dg_dv = 0.0_wp
    end subroutine external_force_no_derivatives
 
-   !> a*b, or +-huge when the product would overflow (exponents add up too far).
+   !> Whether x is finite, from its bits: no floating-point operation, so that a
+   !> signalling NaN given as input raises nothing (ieee_is_nan would raise invalid).
+   elemental function finite_value(x) result(finite)
+      !> Any double
+      real(wp), intent(in) :: x
+      !> False for NaN (quiet or signalling) and +-Inf
+      logical :: finite
+      finite = ibits(transfer(x, 0_int64), 52, 11) /= 2047_int64
+   end function finite_value
+
+   !> a/b for finite a and b /= 0, or +-huge when the quotient would overflow.
+   elemental function guarded_quotient(a, b) result(c)
+      !> Numerator and denominator (finite, b /= 0)
+      real(wp), intent(in) :: a, b
+      !> Quotient
+      real(wp) :: c
+      if (a == 0.0_wp) then
+         c = 0.0_wp
+      else if (exponent(a) - exponent(b) >= maxexponent(a) - 1) then
+         c = sign(huge(a), a) * sign(1.0_wp, b)
+      else
+         c = a / b
+      end if
+   end function guarded_quotient
+
+   !> a*b, or +-huge when the product would overflow (exponents add up too far); an
+   !> infinite factor counts as +-huge, a NaN propagates (quietly).
    elemental function guarded_product(a, b) result(c)
-      !> Factors (finite)
+      !> Factors
       real(wp), intent(in) :: a, b
       !> Product
       real(wp) :: c
-      if (a == 0.0_wp .or. b == 0.0_wp) then
+      if (ieee_is_nan(a) .or. ieee_is_nan(b)) then
+         c = a + b
+      else if (.not. (ieee_is_finite(a) .and. ieee_is_finite(b))) then
+         ! (exponent() of an infinity is huge(0): the sum below would overflow)
+         if (a == 0.0_wp .or. b == 0.0_wp) then
+            c = 0.0_wp
+         else
+            c = sign(huge(a), a) * sign(1.0_wp, b)
+         end if
+      else if (a == 0.0_wp .or. b == 0.0_wp) then
          c = 0.0_wp
       else if (exponent(a) + exponent(b) >= maxexponent(a) - 1) then
          c = sign(huge(a), a) * sign(1.0_wp, b)
@@ -348,7 +388,7 @@ contains
       select case (sys%kind)
       case (power_system)
          call guarded_power(s, sys%n + 1.0_wp, snp1, ok)
-         events(event_peak_force) = sys%n * sigma &
+         events(event_peak_force) = guarded_product(sys%n, sigma) &
             & - guarded_product(sys%half_np1 * sys%beta, snp1)
       case default
          ! Out of contact dF/dtau vanishes identically, which CVODE's root finding

@@ -253,7 +253,9 @@ contains
       call c_f_pointer(v, vs, [n])
       call c_f_pointer(f, fs, [n])
       call time_law_samples(to_contact(c_in), int(n), tt, xx, vv, ff, status)
-      if (allocated(tt)) then
+      ! on an error every output is NaN, the times included (hcimpact_impact_model
+      ! leaves the sampled times when the time law itself fails)
+      if (allocated(tt) .and. status == hcimpact_ok) then
          ts = tt
          xs = xx
          vs = vv

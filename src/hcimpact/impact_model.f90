@@ -240,7 +240,12 @@ contains
          return
       end if
       model%force_unit = dd_exp(t)
-      ! dt = x_max/((n+1) H V) (x/x_max)^(-n) dl
+      ! dt = x_max/((n+1) H V) (x/x_max)^(-n) dl; its unit must be representable too
+      if (abs(model%ln_x_max%hi - log(np1%hi) - log(hq%hi) - log(contact%velocity)) &
+         & > log_limit) then
+         stat = hcimpact_err_domain
+         return
+      end if
       model%time_unit = model%x_max / (np1 * hq * contact%velocity)
 
       ! time of the last d in l before an end, in units of the integral, to first order:
@@ -363,6 +368,15 @@ contains
       t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)
       outcome%peak_force = dd_exp_hi(t)
       outcome%evaluations = ev
+      ! An outcome beyond the range of doubles (times of 1e300 s and more) is not an
+      ! answer: never NaN or Inf with success
+      if (.not. all(ieee_is_finite([outcome%restitution, outcome%energy_loss_ratio, &
+         & outcome%rebound_velocity, outcome%max_compression, outcome%compression_time, &
+         & outcome%contact_time, outcome%time_at_peak_force, &
+         & outcome%compression_at_peak_force, outcome%peak_force]))) then
+         outcome = outcome_type()
+         stat = hcimpact_err_domain
+      end if
    end subroutine impact_power
 
    !> exp of a double-double number, rounded to a double.
@@ -537,6 +551,9 @@ contains
       if (stat /= hcimpact_ok) return
       do i = 1, size(t)
          call power_state(model, dur, t(i), x(i), v(i), f(i), stat)
+         ! A state beyond the range of doubles is not an answer (never NaN with success)
+         if (stat == hcimpact_ok .and. .not. (ieee_is_finite(x(i)) .and. ieee_is_finite(v(i)) &
+            & .and. ieee_is_finite(f(i)))) stat = hcimpact_err_domain
          if (stat /= hcimpact_ok) then
             x = nan
             v = nan
@@ -617,6 +634,17 @@ contains
       ! time in units of the integrals
       tau = dd(t) / model%time_unit
       e = dur(1) + dur(2)
+      if (tau%hi < 1.0e-20_wp * e%hi) then
+         ! The start of the motion: x = V t, x' = V, F = c x^n (1 + b V), with relative
+         ! corrections of order (t/T)^(n+1) < 1e-20, below an ulp. (The inversion below
+         ! would lose a time this small, down to subnormal t, in its rounding.)
+         x = model%velocity * t
+         v = model%velocity
+         ! F = (c x_max^n) (x/x_max)^n (1 + beta)
+         f = model%force_unit%hi * (x / model%x_max%hi)**model%n &
+            & * (1.0_wp + model%f%tr%beta%hi)
+         return
+      end if
       if (.not. tau%hi < e%hi) then
          e = -(model%f%tr%k * model%velocity)
          x = 0.0_wp
@@ -968,6 +996,14 @@ contains
       outcome%compression_at_peak_force = xp
       outcome%peak_force = law%force(xp) * (1.0_wp + up)
       outcome%evaluations = ev
+      ! never NaN or Inf with success (see impact_power)
+      if (.not. all(ieee_is_finite([outcome%restitution, outcome%energy_loss_ratio, &
+         & outcome%rebound_velocity, outcome%max_compression, outcome%compression_time, &
+         & outcome%contact_time, outcome%time_at_peak_force, &
+         & outcome%compression_at_peak_force, outcome%peak_force]))) then
+         outcome = outcome_type()
+         stat = hcimpact_err_domain
+      end if
    end subroutine impact_law
 
    !> Peak of the force during compression for a user law: x and u = b x' there.
@@ -1058,6 +1094,8 @@ contains
       if (stat /= hcimpact_ok) return
       do i = 1, size(t)
          call law_state(integrand, dur, t(i), x(i), v(i), f(i), stat)
+         if (stat == hcimpact_ok .and. .not. (ieee_is_finite(x(i)) .and. ieee_is_finite(v(i)) &
+            & .and. ieee_is_finite(f(i)))) stat = hcimpact_err_domain
          if (stat /= hcimpact_ok) then
             x = nan
             v = nan

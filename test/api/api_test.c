@@ -379,6 +379,8 @@ static void test_impact(void)
         {"stiffness = inf", 1, INFINITY, HCIMPACT_ERR_NOT_FINITE},
         {"exponent = 0", 2, 0.0, HCIMPACT_ERR_EXPONENT},
         {"exponent = -1.5", 2, -1.5, HCIMPACT_ERR_EXPONENT},
+        {"exponent below HCIMPACT_MIN_EXPONENT", 2, 0.5 * HCIMPACT_MIN_EXPONENT,
+         HCIMPACT_ERR_EXPONENT},
         {"damping = -0.1", 3, -0.1, HCIMPACT_ERR_DAMPING},
         {"damping = NaN", 3, NAN, HCIMPACT_ERR_NOT_FINITE},
         {"velocity = 0", 4, 0.0, HCIMPACT_ERR_VELOCITY},

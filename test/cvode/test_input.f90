@@ -3,7 +3,7 @@
 !> never a stop; CVODE's failures name CVODE's flag.
 module test_cvode_input
    use, intrinsic :: ieee_arithmetic, only : ieee_is_nan, ieee_value, ieee_quiet_nan, &
-      & ieee_positive_inf
+      & ieee_positive_inf, ieee_signaling_nan
    use testdrive, only : new_unittest, unittest_type, error_type, check
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
@@ -78,6 +78,10 @@ contains
       c = ball; c%mass = nan
       call expect_status(error, c, hcimpact_err_not_finite, "m NaN")
       if (allocated(error)) return
+      ! a signalling NaN must be recognised without raising invalid (-ffpe-trap)
+      c = ball; c%velocity = ieee_value(c%velocity, ieee_signaling_nan)
+      call expect_status(error, c, hcimpact_err_not_finite, "V signalling NaN")
+      if (allocated(error)) return
       c = ball; c%stiffness = inf
       call expect_status(error, c, hcimpact_err_not_finite, "c Inf")
       if (allocated(error)) return
@@ -110,6 +114,9 @@ contains
       if (allocated(error)) return
       c = ball; c%damping = -1.0e-300_wp
       call expect_status(error, c, hcimpact_err_damping, "b < 0")
+      if (allocated(error)) return
+      c = ball; c%exponent = 1.0e300_wp
+      call expect_status(error, c, hcimpact_err_domain, "n = 1e300")
       if (allocated(error)) return
       ! scales outside the double range: X^(n+1) = (n+1) m V^2/(2c) ~ 1e-600
       c = contact_type(mass=1.0e-300_wp, stiffness=1.0e300_wp, exponent=0.01_wp, &

@@ -5,7 +5,7 @@
 module test_cvode_power
    use, intrinsic :: iso_c_binding, only : c_loc, c_null_ptr, c_int, c_double
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan, ieee_value, &
-      & ieee_quiet_nan
+      & ieee_quiet_nan, ieee_signaling_nan, ieee_positive_inf
    use testdrive, only : new_unittest, unittest_type, error_type, check, test_failed
    use hcimpact_check, only : check_close
    use hcimpact_kinds, only : wp
@@ -353,6 +353,12 @@ contains
       if (allocated(error)) return
       call check(error, ieee_is_nan(c_out%contact_time) .and. ieee_is_nan(c_out%restitution) &
          & .and. ieee_is_nan(c_out%peak_force), "NaN outputs for rtol NaN")
+      if (allocated(error)) return
+      stat = c_simulate(c_loc(c_in), ieee_value(rtol, ieee_signaling_nan), c_loc(c_out))
+      call check(error, int(stat), hcimpact_err_not_finite, "rtol signalling NaN")
+      if (allocated(error)) return
+      stat = c_simulate(c_loc(c_in), ieee_value(rtol, ieee_positive_inf), c_loc(c_out))
+      call check(error, int(stat), hcimpact_err_not_finite, "rtol +Inf")
       if (allocated(error)) return
       stat = c_simulate(c_loc(c_in), 0.0_c_double, c_loc(c_out))
       call check(error, int(stat), hcimpact_err_domain, "rtol 0")

@@ -34,6 +34,7 @@ contains
          & new_unittest("grid-adams", test_grid_adams), &
          & new_unittest("extreme-sizes", test_extreme_sizes), &
          & new_unittest("beyond-the-closed-forms", test_large_beta), &
+         & new_unittest("large-exponents", test_large_exponents), &
          & new_unittest("stiffness-ratio", test_stiffness_ratio) &
          & ]
    end subroutine collect_stability
@@ -171,6 +172,28 @@ contains
          end do
       end do
    end subroutine test_large_beta
+
+   !> n = 10, 50, 100: a stiff wall. Newton iterates overshoot and CVODE's norms
+   !> overflow, which it handles (under -ffpe-trap only because the driver turns
+   !> halting off while CVODE runs); n above 100 is refused.
+   subroutine test_large_exponents(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: ns(3) = [10.0_wp, 50.0_wp, 100.0_wp]
+      type(simulation_type) :: sim
+      integer :: i, stat
+      do i = 1, size(ns)
+         call simulate(contact_type(mass=0.1_wp, stiffness=1.0e10_wp, exponent=ns(i), &
+            & damping=0.1_wp, velocity=1.0_wp), sim, stat, cvode_options(rtol=rtol))
+         call check(error, stat, hcimpact_ok, sim%message)
+         if (allocated(error)) return
+         call check_close(error, sim%outcome%restitution, restitution(0.1_wp), &
+            & rel=1000.0_wp * rtol, message="restitution for a large exponent")
+         if (allocated(error)) return
+      end do
+      call simulate(contact_type(mass=0.1_wp, stiffness=1.0e10_wp, exponent=101.0_wp, &
+         & damping=0.1_wp, velocity=1.0_wp), sim, stat)
+      call check(error, stat, hcimpact_err_domain, "n = 101: " // sim%message)
+   end subroutine test_large_exponents
 
    !> max |lambda| t_c grows like (n+1) beta for large beta (|lambda| ~ (n+1)/2 beta s^n
    !> at x_max, t_c ~ beta x_max/X in units of X/V): stiff beyond beta ~ 1e3.

@@ -130,7 +130,8 @@ contains
          & new_unittest("user-law-cubic", test_user_law_cubic), &
          & new_unittest("user-law-invalid", test_user_law_invalid), &
          & new_unittest("c-interface", test_c_interface), &
-         & new_unittest("tiny-exponent", test_tiny_exponent) &
+         & new_unittest("tiny-exponent", test_tiny_exponent), &
+         & new_unittest("fuzz-findings", test_fuzz_findings) &
          & ]
    end subroutine collect_impact
 
@@ -1182,5 +1183,31 @@ contains
          & ieee_is_finite(outcome%compression_at_peak_force) .and. &
          & ieee_is_finite(outcome%contact_time), "finite outputs at the smallest exponent")
    end subroutine test_tiny_exponent
+
+   !> Found by the fuzzer (doc/robustness.md): times beyond the range of doubles gave NaN
+   !> with success, and a subnormal time gave a NaN state.
+   subroutine test_fuzz_findings(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_type) :: contact
+      type(outcome_type) :: outcome
+      real(wp) :: t(2), x(2), v(2), f(2)
+      integer :: stat
+      contact = contact_type(mass=1.7776949456947198e56_wp, stiffness=1.043855498239993e-312_wp, &
+         & exponent=0.25_wp, damping=52841979075100672.0_wp, velocity=3229849766330368.0_wp)
+      call impact(contact, outcome, stat)
+      call check(error, stat, hcimpact_err_domain, "times beyond the double range: a status")
+      if (allocated(error)) return
+      call check(error, ieee_is_nan(outcome%contact_time), "and NaN outputs")
+      if (allocated(error)) return
+      contact = contact_type(mass=10665.625_wp, stiffness=8.046341370970822e-12_wp, &
+         & exponent=3.875_wp, damping=11250560.0_wp, velocity=8.053002709118573e-12_wp)
+      t = [7.2390265773146817e-315_wp, 1.0e-300_wp]
+      call time_law(contact, t, x, v, f, stat)
+      call check(error, stat, hcimpact_ok, "tiny times are valid")
+      if (allocated(error)) return
+      ! x = V t to the last bit (rounded to the subnormal range), x' = V
+      call check(error, all(x == contact%velocity * t) .and. all(v == contact%velocity) &
+         & .and. all(ieee_is_finite(f)), "x = V t, x' = V at the start of the motion")
+   end subroutine test_fuzz_findings
 
 end module test_impact
