@@ -65,6 +65,8 @@
 /** Smallest exponent n of the power law that hcimpact_impact accepts (as n -> 0 the
  *  law tends to a step and the peak force degenerates). */
 #define HCIMPACT_MIN_EXPONENT 1.0e-6
+/** Largest beta = b V the closed forms (hcimpact_impact and the time law) accept */
+#define HCIMPACT_MAX_BETA 1.0e40
 
 /** Default min_velocity of hcimpact_damping_for_restitution, in m/s. */
 #define HCIMPACT_DEFAULT_MIN_VELOCITY 1.0e-3
@@ -241,7 +243,8 @@ typedef struct {
  *  HCIMPACT_ERR_EXPONENT (4)     exponent < 1e-6 (HCIMPACT_MIN_EXPONENT),
  *  HCIMPACT_ERR_VELOCITY (5)     velocity <= 0,
  *  HCIMPACT_ERR_DAMPING (6)      damping < 0,
- *  HCIMPACT_ERR_DOMAIN (8)       a result would leave the double range,
+ *  HCIMPACT_ERR_DOMAIN (8)       b V above 1e40 (HCIMPACT_MAX_BETA), or a result
+ *                                would leave the double range,
  *  HCIMPACT_ERR_NO_CONVERGENCE (9) a quadrature did not converge (not seen for
  *                                b V up to 1e6),
  *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written). */
@@ -305,7 +308,7 @@ int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
  *  the scaled variables x/X, t V/X, with the relative tolerance rtol and absolute
  *  tolerances rtol times the natural scale of each variable. Measured on the
  *  benchmark contacts (doc/cvode.md): the contact time within 50 rtol, the other
- *  fields within about 150 rtol, for rtol from 1e-4 to 1e-11; below about 1e-13
+ *  fields within about 250 rtol, for rtol from 1e-4 to 1e-11; far below 1e-13
  *  CVODE gives up (HCIMPACT_ERR_SOLVER, CV_TOO_MUCH_ACC). Thread-safe.
  *  Returns 0 (HCIMPACT_OK) on success; otherwise a status and, except for
  *  HCIMPACT_ERR_NULL, every field of *outcome is NaN:
@@ -313,7 +316,8 @@ int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
  *  HCIMPACT_ERR_NOT_FINITE (1)   rtol is NaN or infinite,
  *  HCIMPACT_ERR_DOMAIN (8)       rtol outside (0, 1); b V above about 1e140 (the
  *                                absolute tolerance of x' would fall below
- *                                1e-150); scales outside the double range,
+ *                                1e-150); exponent above 100; scales outside
+ *                                the double range,
  *  HCIMPACT_ERR_NO_CONVERGENCE (9) the contact did not end in time (not seen),
  *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written),
  *  HCIMPACT_ERR_SOLVER (11)      CVODE failed (the Fortran interface returns its

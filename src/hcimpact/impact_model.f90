@@ -53,7 +53,7 @@ module hcimpact_impact_model
 
    public :: contact_type, outcome_type
    public :: impact, impact_law, velocity_at_depth, time_law, time_law_samples
-   public :: damping_for_restitution, default_min_velocity, min_exponent
+   public :: damping_for_restitution, default_min_velocity, min_exponent, max_beta
    public :: compression_branch, restitution_branch
 
    !> Smallest exponent n of the power law accepted (hcimpact_err_exponent below it).
@@ -61,6 +61,10 @@ module hcimpact_impact_model
    !> n m V = b c x^(n+1) degenerates; below about 1e-16 it is not solvable in double
    !> precision. Every physical law has n far above this bound.
    real(wp), parameter :: min_exponent = 1.0e-6_wp
+   !> Largest beta = b V the closed forms accept (hcimpact_err_domain above it). Verified
+   !> against mpmath up to 1e12 and free of overflow up to about 1e46; k = 1/beta and the
+   !> times grow like beta there, so nothing physical lies beyond.
+   real(wp), parameter :: max_beta = 1.0e40_wp
 
    !> One impact: with the power law (`contact_type`), or with a user's elastic law
    !> (`impact_law`)
@@ -207,7 +211,7 @@ contains
       integer :: phase
 
       stat = hcimpact_ok
-      if (log(contact%damping + tiny(1.0_wp)) + log(contact%velocity) > log_limit) then
+      if (log(contact%damping + tiny(1.0_wp)) + log(contact%velocity) > log(max_beta)) then
          stat = hcimpact_err_domain
          return
       end if
@@ -843,7 +847,7 @@ contains
       integer :: it
 
       stat = hcimpact_ok
-      if (log(damping + tiny(1.0_wp)) + log(velocity) > 690.0_wp) then
+      if (log(damping + tiny(1.0_wp)) + log(velocity) > log(max_beta)) then
          stat = hcimpact_err_domain
          return
       end if

@@ -27,7 +27,7 @@ module test_impact
       & hcimpact_err_null, hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &
       & velocity_at_depth, time_law, time_law_samples, damping_for_restitution, &
-      & default_min_velocity, compression_branch, restitution_branch, min_exponent
+      & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome, c_impact
@@ -1198,6 +1198,17 @@ contains
       call check(error, stat, hcimpact_err_domain, "times beyond the double range: a status")
       if (allocated(error)) return
       call check(error, ieee_is_nan(outcome%contact_time), "and NaN outputs")
+      if (allocated(error)) return
+      ! beta above max_beta: a status, not an overflow trap (found by the CVODE stability
+      ! sweep in a trapping Debug build at beta = 1e47)
+      contact = contact_type(mass=1.0_wp, stiffness=1.0e10_wp, exponent=1.5_wp, &
+         & damping=1.0e47_wp, velocity=1.0_wp)
+      call impact(contact, outcome, stat)
+      call check(error, stat, hcimpact_err_domain, "beta = 1e47 is beyond max_beta")
+      if (allocated(error)) return
+      contact%damping = max_beta
+      call impact(contact, outcome, stat)
+      call check(error, stat, hcimpact_ok, "beta = max_beta still works")
       if (allocated(error)) return
       contact = contact_type(mass=10665.625_wp, stiffness=8.046341370970822e-12_wp, &
          & exponent=3.875_wp, damping=11250560.0_wp, velocity=8.053002709118573e-12_wp)
