@@ -250,6 +250,30 @@ typedef struct {
  *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written). */
 int hcimpact_impact(const hcimpact_contact *contact, hcimpact_outcome *outcome);
 
+/** A callback of an elastic law: a value at the compression x >= 0 (m); `data` is the
+ *  pointer given in hcimpact_elastic_law. */
+typedef double (*hcimpact_law_fn)(double x, void *data);
+
+/** An elastic law supplied by the caller: an increasing force f with f(0) = 0,
+ *  its potential Pi(x) = integral of f from 0 to x, and its derivative f'(x).
+ *  The callbacks must have no side effects on what the library reads: they are
+ *  called many times, in any order, and from several threads if the caller runs
+ *  impacts in parallel. */
+typedef struct {
+  hcimpact_law_fn force;             /**< f(x) in N */
+  hcimpact_law_fn potential;         /**< Pi(x) in J */
+  hcimpact_law_fn force_derivative;  /**< f'(x) in N/m */
+  void *data;                        /**< handed back to every callback */
+} hcimpact_elastic_law;
+
+/** hcimpact_impact for a caller's elastic law: mass in kg (the effective mass for two
+ *  bodies), damping b in s/m, approach speed in m/s. Same outcome and statuses as
+ *  hcimpact_impact (mass, damping, velocity checked alike); a NULL law, outcome or
+ *  callback gives HCIMPACT_ERR_NULL (nothing written), and a callback returning a
+ *  value that is not finite, or a law that is not increasing, HCIMPACT_ERR_ELASTIC_LAW. */
+int hcimpact_impact_law(const hcimpact_elastic_law *law, double mass, double damping,
+                        double velocity, hcimpact_outcome *outcome);
+
 /** hcimpact_impact for each of n >= 1 contacts: outcomes[i] from contacts[i].
  *  statuses (may be NULL) receives the status of each; an impact that fails has NaN
  *  in its outcome and does not stop the others. Returns HCIMPACT_OK when all

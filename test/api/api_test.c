@@ -333,6 +333,57 @@ static void test_two_bodies(void)
                hcimpact_two_body_velocities(1.0, 1.0, 1.0, -1.0, 0.5, &v1, NULL), HCIMPACT_ERR_NULL);
 }
 
+/* The power law f = c x^1.5 of the steel ball, given as callbacks; data points at c */
+static double cb_force(double x, void *data) { return *(const double *)data * pow(x, 1.5); }
+static double cb_potential(double x, void *data)
+{
+  return *(const double *)data * pow(x, 2.5) / 2.5;
+}
+static double cb_derivative(double x, void *data)
+{
+  return 1.5 * *(const double *)data * sqrt(x);
+}
+static double cb_nan(double x, void *data)
+{
+  (void)x;
+  (void)data;
+  return NAN;
+}
+
+static void test_impact_law(void)
+{
+  double c = 1.7135e10;
+  hcimpact_elastic_law law;
+  hcimpact_outcome outcome, reference;
+  hcimpact_contact contact = steel_ball(2.0);
+
+  law.force = cb_force;
+  law.potential = cb_potential;
+  law.force_derivative = cb_derivative;
+  law.data = &c;
+  check_status("impact(steel ball, V = 2)", hcimpact_impact(&contact, &reference), HCIMPACT_OK);
+  check_status("impact_law(power law)", hcimpact_impact_law(&law, 0.1, 0.1, 2.0, &outcome),
+               HCIMPACT_OK);
+  check_close("impact_law k", outcome.restitution, reference.restitution, 1e-14);
+  check_close("impact_law x_max", outcome.max_compression, reference.max_compression, 1e-12);
+  check_close("impact_law F_max", outcome.peak_force, reference.peak_force, 1e-12);
+  check_close("impact_law t_contact", outcome.contact_time, reference.contact_time, 1e-12);
+  check_status("impact_law(NULL law)", hcimpact_impact_law(NULL, 0.1, 0.1, 2.0, &outcome),
+               HCIMPACT_ERR_NULL);
+  check_status("impact_law(NULL outcome)", hcimpact_impact_law(&law, 0.1, 0.1, 2.0, NULL),
+               HCIMPACT_ERR_NULL);
+  law.potential = NULL;
+  check_status("impact_law(NULL callback)", hcimpact_impact_law(&law, 0.1, 0.1, 2.0, &outcome),
+               HCIMPACT_ERR_NULL);
+  law.potential = cb_potential;
+  check_status("impact_law(mass < 0)", hcimpact_impact_law(&law, -0.1, 0.1, 2.0, &outcome),
+               HCIMPACT_ERR_MASS);
+  check_nan("impact_law(mass < 0) k", outcome.restitution);
+  law.force = cb_nan;
+  check_status("impact_law(NaN force)", hcimpact_impact_law(&law, 0.1, 0.1, 2.0, &outcome),
+               HCIMPACT_ERR_ELASTIC_LAW);
+}
+
 static void test_impact(void)
 {
   const double rel = 1.0e-13;
@@ -551,6 +602,7 @@ int main(void)
   test_restitution();
   test_two_bodies();
   test_impact();
+  test_impact_law();
   test_trajectory();
 
   if (failures > 0) {
