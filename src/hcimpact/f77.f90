@@ -458,6 +458,62 @@ subroutine hcimp(m, c, en, b, v, out, info)
    if (info == 0) out = outcome_array(outcome)
 end subroutine hcimp
 
+!> HCIMPL(FORCE, POTEN, DFORCE, M, B, V, OUT, INFO): one impact with the caller's elastic
+!> law, given as three EXTERNAL DOUBLE PRECISION FUNCTIONs of the compression X (m):
+!> FORCE(X) = f(x) in N (increasing, f(0) = 0), POTEN(X) = its potential, the integral of
+!> f from 0 to X, in J, and DFORCE(X) = f'(x) in N/m. They must not change what they
+!> read (parameters may come through a COMMON block). OUT(8) as in HCIMP.
+!> INFO: 0; -4, -5, -6 for the first of M, B, V that is NaN, infinite or outside its
+!> domain (M, V > 0; B >= 0); 13 when the law returns a value that is not finite or not
+!> increasing; 8 or 9 for a computational failure.
+subroutine hcimpl(force, poten, dforce, m, b, v, out, info)
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use hcimpact_kinds, only : wp
+   use hcimpact_impact_model, only : outcome_type, impact_law
+   use hcimpact_f77_support, only : nan, outcome_array, f77_law, f77_law_fn
+   implicit none
+   !> The force f(x), N
+   procedure(f77_law_fn) :: force
+   !> The potential of f, J
+   procedure(f77_law_fn) :: poten
+   !> The derivative f'(x), N/m
+   procedure(f77_law_fn) :: dforce
+   !> Mass in kg, > 0
+   real(wp), intent(in) :: m
+   !> Damping in s/m, >= 0
+   real(wp), intent(in) :: b
+   !> Approach speed in m/s, > 0
+   real(wp), intent(in) :: v
+   !> OUT(8), see HCIMP
+   real(wp), intent(out) :: out(8)
+   !> Status, see above
+   integer, intent(out) :: info
+   type(f77_law) :: law
+   type(outcome_type) :: outcome
+   integer :: stat
+   out = nan
+   if (.not. ieee_is_finite(m)) then
+      info = -4
+   else if (.not. m > 0.0_wp) then
+      info = -4
+   else if (.not. ieee_is_finite(b)) then
+      info = -5
+   else if (.not. b >= 0.0_wp) then
+      info = -5
+   else if (.not. ieee_is_finite(v)) then
+      info = -6
+   else if (.not. v > 0.0_wp) then
+      info = -6
+   else
+      law%f => force
+      law%p => poten
+      law%d => dforce
+      call impact_law(law, m, b, v, outcome, stat)
+      info = stat
+      if (info == 0) out = outcome_array(outcome)
+   end if
+end subroutine hcimpl
+
 !> HCIMPA(NI, M, C, EN, B, V, OUT, ISTAT, INFO): NI impacts at once; the contacts are
 !> the arrays M(NI), C(NI), EN(NI), B(NI), V(NI), the results OUT(8, NI) as in HCIMP.
 subroutine hcimpa(ni, m, c, en, b, v, out, istat, info)

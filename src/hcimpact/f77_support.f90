@@ -6,10 +6,30 @@ module hcimpact_f77_support
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp
    use hcimpact_impact_model, only : outcome_type
+   use hcimpact_elastic, only : elastic_law
    implicit none
    private
 
-   public :: nan, contact_info, outcome_array
+   public :: nan, contact_info, outcome_array, f77_law, f77_law_fn
+
+   abstract interface
+      !> A function of a FORTRAN 77 law: DOUBLE PRECISION FUNCTION F(X), X the compression
+      !> in m. Taken as free of side effects, as a law of the Fortran interface must be.
+      pure function f77_law_fn(x) result(y)
+         import :: wp
+         real(wp), intent(in) :: x
+         real(wp) :: y
+      end function f77_law_fn
+   end interface
+
+   !> A law given as three EXTERNAL functions (HCIMPL)
+   type, extends(elastic_law) :: f77_law
+      procedure(f77_law_fn), pointer, nopass :: f => null(), p => null(), d => null()
+   contains
+      procedure :: force => f77_force
+      procedure :: potential => f77_potential
+      procedure :: force_derivative => f77_force_derivative
+   end type f77_law
 
    !> Quiet NaN, the value of every real output on error
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
@@ -65,5 +85,26 @@ contains
          & outcome%max_compression, outcome%peak_force, outcome%compression_at_peak_force, &
          & outcome%compression_time, outcome%contact_time]
    end function outcome_array
+
+   pure function f77_force(self, x) result(y)
+      class(f77_law), intent(in) :: self
+      real(wp), intent(in) :: x
+      real(wp) :: y
+      y = self%f(x)
+   end function f77_force
+
+   pure function f77_potential(self, x) result(y)
+      class(f77_law), intent(in) :: self
+      real(wp), intent(in) :: x
+      real(wp) :: y
+      y = self%p(x)
+   end function f77_potential
+
+   pure function f77_force_derivative(self, x) result(y)
+      class(f77_law), intent(in) :: self
+      real(wp), intent(in) :: x
+      real(wp) :: y
+      y = self%d(x)
+   end function f77_force_derivative
 
 end module hcimpact_f77_support

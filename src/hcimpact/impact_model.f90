@@ -867,7 +867,7 @@ contains
       hi = 1.0e-3_wp
       do it = 1, 2200
          p = law%potential(hi)
-         if (.not. ieee_is_finite(p) .or. p < 0.0_wp) then
+         if (bad_potential(p)) then
             stat = hcimpact_err_elastic_law
             return
          end if
@@ -877,7 +877,7 @@ contains
       end do
       do it = 1, 2200
          p = law%potential(lo)
-         if (.not. ieee_is_finite(p) .or. p < 0.0_wp) then
+         if (bad_potential(p)) then
             stat = hcimpact_err_elastic_law
             return
          end if
@@ -1214,5 +1214,17 @@ contains
       stat = hcimpact_ok
       damping = restitution_inverse(e) / max(velocity, vmin)
    end subroutine damping_for_restitution
+
+   !> A potential value that no law can give: NaN, infinite or negative (tested so that
+   !> a NaN never meets an ordered comparison, which would trap in a Debug build)
+   elemental function bad_potential(p) result(bad)
+      real(wp), intent(in) :: p
+      logical :: bad
+      if (.not. ieee_is_finite(p)) then
+         bad = .true.
+      else
+         bad = p < 0.0_wp
+      end if
+   end function bad_potential
 
 end module hcimpact_impact_model

@@ -15,6 +15,9 @@ C
       DOUBLE PRECISION T(5), XS(5), XDS(5), FS(5), ZERO, XNAN, BIG
       DOUBLE PRECISION XMS(3), CS(3), ENS(3), BS(3), VV(3), TAB(8, 3)
       DOUBLE PRECISION V1A, V2A, EM, CH
+      DOUBLE PRECISION CLAW, HCF, HCP, HCD
+      EXTERNAL HCF, HCP, HCD
+      COMMON /HCLAW/ CLAW
       INTEGER INFO, I, ISTAT(3), MAJOR, MINOR, IPATCH
       CHARACTER*80 MSG
       DATA VS /0.5D0, 1.0D0, 2.0D0, 3.0D0, 4.0D0, 5.0D0/
@@ -161,6 +164,24 @@ C     Impacts: the seed's table, then each bad argument
      &          1.0D-13)
       CALL CHKR('HCIMP t_contact', OUT(8), 7.7655384043269703D-5,
      &          1.0D-13)
+C
+C     The same ball through HCIMPL: the Hertz law as EXTERNAL functions,
+C     its constant in COMMON /HCLAW/
+      CLAW = C
+      CALL HCIMPL(HCF, HCP, HCD, XMASS, B, VS(6), OUT, INFO)
+      CALL CHKI('HCIMPL INFO', INFO, 0)
+      CALL CHKR('HCIMPL k', OUT(1), RKS(6), 1.0D-13)
+      CALL CHKR('HCIMPL F_max', OUT(5), 22315.267380743067D0, 1.0D-12)
+      CALL CHKR('HCIMPL t_contact', OUT(8), 7.7655384043269703D-5,
+     &          1.0D-12)
+      CALL HCIMPL(HCF, HCP, HCD, XMASS, -B, 1.0D0, OUT, INFO)
+      CALL CHKI('HCIMPL(B < 0) INFO', INFO, -5)
+      CALL CHKN('HCIMPL(B < 0) OUT', OUT(1))
+      CALL HCIMPL(HCF, HCP, HCD, XMASS, B, XNAN, OUT, INFO)
+      CALL CHKI('HCIMPL(V = NaN) INFO', INFO, -6)
+      CLAW = XNAN
+      CALL HCIMPL(HCF, HCP, HCD, XMASS, B, 1.0D0, OUT, INFO)
+      CALL CHKI('HCIMPL(law gives NaN) INFO', INFO, 13)
       CALL HCIMP(ZERO, C, EN, B, 1.0D0, OUT, INFO)
       CALL CHKI('HCIMP(M = 0) INFO', INFO, -1)
       CALL HCIMP(XMASS, -C, EN, B, 1.0D0, OUT, INFO)
@@ -303,4 +324,26 @@ C     differs from itself
       IMPLICIT NONE
       DOUBLE PRECISION X
       ISNAN2 = .NOT. (X .EQ. X)
+      END
+C
+C     The Hertz law f = CLAW x**1.5 for HCIMPL, its potential and derivative
+      DOUBLE PRECISION FUNCTION HCF(X)
+      IMPLICIT NONE
+      DOUBLE PRECISION X, CLAW
+      COMMON /HCLAW/ CLAW
+      HCF = CLAW * X**1.5D0
+      END
+C
+      DOUBLE PRECISION FUNCTION HCP(X)
+      IMPLICIT NONE
+      DOUBLE PRECISION X, CLAW
+      COMMON /HCLAW/ CLAW
+      HCP = CLAW * X**2.5D0 / 2.5D0
+      END
+C
+      DOUBLE PRECISION FUNCTION HCD(X)
+      IMPLICIT NONE
+      DOUBLE PRECISION X, CLAW
+      COMMON /HCLAW/ CLAW
+      HCD = 1.5D0 * CLAW * SQRT(X)
       END
