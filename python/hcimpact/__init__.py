@@ -29,7 +29,7 @@ _API = (
     "restitution", "restitution_inverse", "one_minus_restitution", "energy_loss_ratio",
     "restitution_derivative", "u_minus_log1p", "damping_for_restitution",
     "hertz_constant", "effective_mass", "two_body_velocities",
-    "impact", "velocity_at_depth", "time_law", "time_law_samples", "simulate",
+    "impact", "impact_law", "velocity_at_depth", "time_law", "time_law_samples", "simulate",
     "has_simulate", "FitResult", "fit_damping", "fit_damping_linear", "fit_static",
     "fit_elastic", "fit_impact",
     "status_message", "version", "version_number", "library_path",

@@ -18,12 +18,13 @@ import ctypes
 import math
 from ctypes import POINTER, byref, c_double, c_int
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
 from . import _library
-from ._types import (OUTCOME_FIELDS, Contact, ImpactResult, Outcome, UnavailableError,
+from ._types import (OUTCOME_FIELDS, Contact, ElasticLaw, ImpactResult, LawFunction,
+                     Outcome, UnavailableError,
                      error_class)
 
 __all__ = [
@@ -296,6 +297,40 @@ def _branch(branch: Any) -> int:
     if branch in (RESTITUTION, "restitution"):
         return RESTITUTION
     raise ValueError(f"branch must be 'compression' or 'restitution', not {branch!r}")
+
+
+def impact_law(force: Callable[[float], float], potential: Callable[[float], float],
+               force_derivative: Callable[[float], float], *, mass: float,
+               damping: float = 0.0, velocity: float) -> ImpactResult:
+    """One impact with your own elastic law, in closed form (``hcimpact_impact_law``).
+
+    ``force(x)`` is f(x) in N (increasing, f(0) = 0), ``potential(x)`` its integral
+    from 0 to x in J, ``force_derivative(x)`` f'(x) in N/m, for a compression x >= 0
+    in m; ``mass`` in kg, ``damping`` b in s/m, ``velocity`` V in m/s (scalars).
+    The functions are called many times and must not change what they read. An
+    exception inside one of them makes it return NaN, which the library reports as
+    an invalid law (HCIMPACT_ERR_ELASTIC_LAW, an :class:`InputError`).
+
+    >>> c = 1.7135e10
+    >>> r = impact_law(lambda x: c * x**1.5, lambda x: c * x**2.5 / 2.5,
+    ...                lambda x: 1.5 * c * x**0.5, mass=0.1, damping=0.1, velocity=2.0)
+    """
+    def wrap(function: Callable[[float], float]) -> Any:
+        def callback(x: float, data: Any) -> float:
+            try:
+                return float(function(x))
+            except Exception:           # never let an exception cross the C boundary
+                return float("nan")
+        return LawFunction(callback)
+
+    callbacks = [wrap(force), wrap(potential), wrap(force_derivative)]
+    law = ElasticLaw(callbacks[0], callbacks[1], callbacks[2], None)
+    outcome = Outcome()
+    status = _lib().hcimpact_impact_law(byref(law), float(mass), float(damping),
+                                        float(velocity), byref(outcome))
+    if status != 0:
+        _raise(status, "hcimpact_impact_law")
+    return _result(outcome)
 
 
 def velocity_at_depth(x: Any, *, mass: float, stiffness: float, exponent: float = 1.5,

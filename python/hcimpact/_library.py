@@ -89,7 +89,7 @@ def _candidates() -> list[tuple[str, Path]]:
 
 def _declare(lib: ctypes.CDLL) -> None:
     """Argument and result types of the core functions (include/hcimpact.h)."""
-    from ._types import Contact, Outcome
+    from ._types import Contact, ElasticLaw, Outcome
 
     d, i, pd, pi = c_double, c_int, POINTER(c_double), POINTER(c_int)
     pc, po = POINTER(Contact), POINTER(Outcome)
@@ -103,6 +103,7 @@ def _declare(lib: ctypes.CDLL) -> None:
         "hcimpact_two_body_velocities": (i, [d] * 5 + [pd, pd]),
         "hcimpact_impact": (i, [pc, po]),
         "hcimpact_impact_array": (i, [i, pc, po, pi]),
+        "hcimpact_impact_law": (i, [POINTER(ElasticLaw), d, d, d, po]),
         "hcimpact_velocity_at_depth": (i, [pc, d, i, pd]),
         "hcimpact_velocity_at_depth_array": (i, [pc, i, pd, i, pd]),
         "hcimpact_time_law": (i, [pc, i, pd, pd, pd, pd]),
@@ -121,7 +122,7 @@ def _declare(lib: ctypes.CDLL) -> None:
 
 
 def _declare_components(lib: ctypes.CDLL) -> None:
-    from ._types import Contact, Outcome
+    from ._types import Contact, ElasticLaw, Outcome
 
     d, i, pd = c_double, c_int, POINTER(c_double)
     signatures = {

@@ -32,6 +32,17 @@ class Outcome(ctypes.Structure):
     _fields_ = [(name, ctypes.c_double) for name in OUTCOME_FIELDS]
 
 
+#: A callback of an elastic law: double fn(double x, void *data)
+LawFunction = ctypes.CFUNCTYPE(ctypes.c_double, ctypes.c_double, ctypes.c_void_p)
+
+
+class ElasticLaw(ctypes.Structure):
+    """struct hcimpact_elastic_law: force, potential, force_derivative, data."""
+
+    _fields_ = [("force", LawFunction), ("potential", LawFunction),
+                ("force_derivative", LawFunction), ("data", ctypes.c_void_p)]
+
+
 @dataclass(frozen=True)
 class ImpactResult:
     """What :func:`hcimpact.impact` (and :func:`hcimpact.simulate`) computes.

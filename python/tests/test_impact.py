@@ -166,3 +166,29 @@ def test_array_errors():
     assert np.isnan(r.contact_time[1, 0]) and np.isfinite(r.contact_time[0, 0])
     with pytest.raises(ValueError):
         hcimpact.impact(**STEEL, velocity=1.0, errors="ignore")
+
+
+def test_impact_law_matches_power_law():
+    """The Hertz law given as Python functions gives the closed forms of the power law."""
+    c = 1.7135e10
+    reference = hcimpact.impact(mass=0.1, stiffness=c, exponent=1.5, damping=0.1, velocity=2.0)
+    result = hcimpact.impact_law(lambda x: c * x**1.5, lambda x: c * x**2.5 / 2.5,
+                                 lambda x: 1.5 * c * math.sqrt(x),
+                                 mass=0.1, damping=0.1, velocity=2.0)
+    assert result.restitution == pytest.approx(reference.restitution, rel=1e-14)
+    assert result.max_compression == pytest.approx(reference.max_compression, rel=1e-12)
+    assert result.peak_force == pytest.approx(reference.peak_force, rel=1e-12)
+    assert result.contact_time == pytest.approx(reference.contact_time, rel=1e-12)
+
+
+def test_impact_law_errors():
+    """Bad input and a failing law raise; an exception in a callback does not escape."""
+    law = (lambda x: x, lambda x: 0.5 * x * x, lambda x: 1.0)
+    with pytest.raises(hcimpact.InputError):
+        hcimpact.impact_law(*law, mass=-1.0, damping=0.1, velocity=1.0)
+
+    def broken(x):
+        raise RuntimeError("not a law")
+
+    with pytest.raises(hcimpact.InputError, match="elastic law"):
+        hcimpact.impact_law(broken, law[1], law[2], mass=1.0, damping=0.1, velocity=1.0)
