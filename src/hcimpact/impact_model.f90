@@ -372,15 +372,7 @@ contains
       t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)
       outcome%peak_force = dd_exp_hi(t)
       outcome%evaluations = ev
-      ! An outcome beyond the range of doubles (times of 1e300 s and more) is not an
-      ! answer: never NaN or Inf with success
-      if (.not. all(ieee_is_finite([outcome%restitution, outcome%energy_loss_ratio, &
-         & outcome%rebound_velocity, outcome%max_compression, outcome%compression_time, &
-         & outcome%contact_time, outcome%time_at_peak_force, &
-         & outcome%compression_at_peak_force, outcome%peak_force]))) then
-         outcome = outcome_type()
-         stat = hcimpact_err_domain
-      end if
+      call reject_unrepresentable(outcome, stat)
    end subroutine impact_power
 
    !> exp of a double-double number, rounded to a double.
@@ -1000,14 +992,7 @@ contains
       outcome%compression_at_peak_force = xp
       outcome%peak_force = law%force(xp) * (1.0_wp + up)
       outcome%evaluations = ev
-      ! never NaN or Inf with success (see impact_power)
-      if (.not. all(ieee_is_finite([outcome%restitution, outcome%energy_loss_ratio, &
-         & outcome%rebound_velocity, outcome%max_compression, outcome%compression_time, &
-         & outcome%contact_time, outcome%time_at_peak_force, &
-         & outcome%compression_at_peak_force, outcome%peak_force]))) then
-         outcome = outcome_type()
-         stat = hcimpact_err_domain
-      end if
+      call reject_unrepresentable(outcome, stat)
    end subroutine impact_law
 
    !> Peak of the force during compression for a user law: x and u = b x' there.
@@ -1226,5 +1211,20 @@ contains
          bad = p < 0.0_wp
       end if
    end function bad_potential
+
+   !> An outcome beyond the range of doubles (times of 1e300 s and more) is not an
+   !> answer: a successful status never comes with a NaN or an infinity. Such an
+   !> outcome becomes all NaN with hcimpact_err_domain.
+   pure subroutine reject_unrepresentable(outcome, stat)
+      type(outcome_type), intent(inout) :: outcome
+      integer, intent(inout) :: stat
+      if (stat /= hcimpact_ok) return
+      if (all(ieee_is_finite([outcome%restitution, outcome%energy_loss_ratio, &
+         & outcome%rebound_velocity, outcome%max_compression, outcome%compression_time, &
+         & outcome%contact_time, outcome%time_at_peak_force, &
+         & outcome%compression_at_peak_force, outcome%peak_force]))) return
+      outcome = outcome_type()
+      stat = hcimpact_err_domain
+   end subroutine reject_unrepresentable
 
 end module hcimpact_impact_model
