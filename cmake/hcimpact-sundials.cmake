@@ -4,8 +4,12 @@
 #
 # SUNDIALS' own CMake package is not used: Debian's copy points at the wrong
 # places. We look for the pieces directly, under (in this order) the variables
-# SUNDIALS_ROOT and SUNDIALS_DIR, the environment variable SUNDIALS_ROOT, then
-# CMAKE_PREFIX_PATH and the system locations.
+# SUNDIALS_ROOT and SUNDIALS_DIR (the prefix, or the directory of its
+# SUNDIALSConfig.cmake), the environment variable SUNDIALS_ROOT, then
+# CMAKE_PREFIX_PATH and the system locations. Every piece can also be given
+# directly by its cache variable: HCIMPACT_SUNDIALS_INCLUDE_DIR,
+# HCIMPACT_SUNDIALS_FORTRAN_MODULE_DIR and HCIMPACT_SUNDIALS_<NAME>_LIBRARY
+# (e.g. HCIMPACT_SUNDIALS_CVODE_LIBRARY; .ci/sundials7-check uses them).
 #
 # Results:
 #   HCIMPACT_SUNDIALS_FOUND                 TRUE if everything below was found
@@ -20,6 +24,12 @@ set(_hcsun_hints "")
 foreach(_hcsun_root IN ITEMS "${SUNDIALS_ROOT}" "${SUNDIALS_DIR}" "$ENV{SUNDIALS_ROOT}")
   if(_hcsun_root)
     list(APPEND _hcsun_hints "${_hcsun_root}")
+    # SUNDIALS_DIR is usually what find_package(SUNDIALS) wants, the directory of
+    # SUNDIALSConfig.cmake (<prefix>/lib/cmake/sundials): search its prefix too.
+    if(EXISTS "${_hcsun_root}/SUNDIALSConfig.cmake"
+        AND _hcsun_root MATCHES "^(.+)/lib(64)?(/[^/]+)?/cmake/sundials/?$")
+      list(APPEND _hcsun_hints "${CMAKE_MATCH_1}")
+    endif()
   endif()
 endforeach()
 

@@ -1,22 +1,26 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Write src/hcimpact/lambertw_tables.f90: Taylor tables for Lambert W near the branch point.
+"""Write src/hcimpact/lambertw_tables.f90: the tables of Lambert W (lambertw.f90) and of
+the restitution k(beta) (restitution_law.f90).
 
-Two analytic functions are tabulated as local Taylor polynomials on a uniform grid of
-centres (spacing h, each polynomial used on [xc - h/2, xc + h/2]):
+* Geometric tables (GEO below), the ones lambertw.f90 evaluates on almost every path: a
+  key x >= 0 that the Fortran code forms exactly (z + 1/e_hi, |z|, z, t, ln z, -ln(-z)) is
+  cut into intervals [2^k (1 + j/32), 2^k (1 + (j+1)/32)), indexed by the bits of x; on
+  each the function is the polynomial (degree 8, in x - centre) that interpolates it at
+  Chebyshev nodes, computed with mpmath at 50 digits and checked against mpmath on the
+  interval with its coefficients rounded to doubles (relative error below 2^-58).
+* w0_small: the same kind of fit of R(z) = (z - W0(z))/z^2 on |z| <= 2^-6.
+* ln_tab: 1/m0 and ln(m0) for the table-driven logarithm of lambertw_ln.inc.
+* Row 0 of the Taylor tables s and p: the series at the branch point of
+  V(s) = 1 + W(-exp(-1 - s^2/2)) and of W(p), p = +-sqrt(2 (1 + e z)) (DLMF 4.13), by
+  series reversion in exact rational arithmetic. V solves -V - ln(1 - V) = s^2/2 and
+  Y = 1 + W solves 1 + (Y - 1) exp(Y) = p^2/2.
+* k and m: local Taylor polynomials of k(beta) on a uniform grid, by composing the
+  power series of h(beta) = beta - ln(1 + beta), s = sqrt(2h) and V(s) (the ODE
+  V V' = s (1 - V) gives V's Taylor coefficients by a recurrence at 60 digits).
 
-* V(s) = 1 + W(-exp(-1 - s^2/2)), the "1 + W" form as a function of s = +-sqrt(2t)
-  (s >= 0: principal branch W0, s < 0: branch W-1). It solves -V - ln(1 - V) = s^2/2,
-  so V V' = s (1 - V).
-* Y(p) = 1 + W(z) with p = +-sqrt(2 (1 + e z)) (DLMF 4.13): p >= 0 gives W0, p < 0 W-1.
-  It solves 1 + (Y - 1) exp(Y) = p^2/2, so Y Y' (p^2/2 - 1) = (Y - 1) p.
-
-At the centre 0 both are series reversions of sigma^2/2 = F(x) with F(x) = sum_k c_k x^k,
-done in exact rational arithmetic. Elsewhere the ODE gives the Taylor coefficients by a
-recurrence at 60 digits, started from a value of W computed with mpmath.
-
-Each coefficient c0 and c1 is stored as a pair of doubles (hi + lo), the others as one
-double. The script also checks every polynomial against mpmath on its interval.
+Each Taylor coefficient c0 and c1 is stored as a pair of doubles (hi + lo), the others
+as one double.
 
 Usage: python3 tools/make_lambertw_tables.py  (writes the module; takes ~1 minute)
 """
@@ -28,13 +32,13 @@ import sys
 import mpmath as mp
 
 mp.mp.dps = 60
-W0_SERIES_TERMS = 18   # enough for |z| <= 0.05 (first omitted term below 2**-61 relative)
 
 TABLES = {
     # name: (spacing, first centre index, last centre index, number of coefficients)
-    "s": (Fraction(1, 8), -16, 16, 14),     # s in [-2.0625, 2.0625]
-    "p": (Fraction(1, 16), -10, 69, 14),    # p in [-0.65625, 4.34375]: z up to 3.1
-    "q": (Fraction(1, 2), 9, 128, 14),      # p in [4.25, 64.25]: W0 for z up to 759
+    # Only the series at the branch point (row 0) of the s and p tables is used by
+    # lambertw.f90 now (the geometric tables below replaced the other rows).
+    "s": (Fraction(1, 8), 0, 0, 14),        # V(s) at s = 0
+    "p": (Fraction(1, 16), 0, 0, 14),       # W(p) at p = 0
     "k": (Fraction(1, 16), 0, 58, 14),      # beta in [0, 3.65625]: restitution k(beta)
     "m": (Fraction(1, 4), 14, 160, 14),     # beta in [3.375, 40.125]: k(beta), coarser
 }
@@ -216,6 +220,183 @@ def fortran_real(x):
     return r + "_wp"
 
 
+# ---------------------------------------------------------------------------------------
+# Geometric tables: the polynomials that lambertw.f90 evaluates in plain double.
+#
+# A key x >= 0 (a double the Fortran code forms exactly: |z|, z + 1/e_hi, t or ln|z|) is
+# cut into intervals [2**k (1 + j/32), 2**k (1 + (j+1)/32)), k = kmin..kmax, j = 0..31:
+# the row is (bits of x >> 47) - base, i.e. the biased exponent and the first five
+# fraction bits. On each interval the function is approximated, in the offset
+# delta = x - xc from the centre xc (an exact double, so delta is exact by Sterbenz), by
+# the polynomial interpolating it at Chebyshev nodes (near-minimax). Relative to the
+# distance of the nearest singularity an interval is at most 1/65 wide, so NTERMS terms
+# reach far below an ulp. Each row is [xc, lo(c0), c0, c1, ..., c(NTERMS-1)], c0 as the
+# unevaluated sum of two doubles.
+# ---------------------------------------------------------------------------------------
+
+GEO_J = 32                # intervals per binade (five fraction bits)
+GEO_TERMS = 9             # coefficients per interval (degree 8)
+GEO_MARGIN = mp.mpf(1) / 64   # fit and check a little beyond each interval
+GEO_DPS = 50
+
+INV_E_HI = 0.36787944117144233   # the double nearest 1/e (as in lambertw.f90)
+
+# name: (kmin, kmax, what)   -- what documents the key and the function
+GEO = {
+    "wa": (-15, -4, "W0(z), key z + 1/e_hi for z <= -1/4"),
+    "wb": (-15, -4, "W-1(z), key z + 1/e_hi for z <= -1/4"),
+    "wc": (-6, -3, "W0(z), key -z for -1/4 < z <= -2**-6"),
+    "wd": (-6, 9, "W0(z), key z for 2**-6 <= z < 2**10"),
+    "we": (-20, -3, "W-1(z), key -z for -1/4 < z <= -2**-20"),
+    "ta": (-13, 4, "1 + W0(-exp(-1 - t)), key t for 2**-13 <= t < 2**5"),
+    "tb": (-13, 9, "1 + W-1(-exp(-1 - t)), key t for 2**-13 <= t < 2**10"),
+    "ya": (2, 9, "W0(exp(y)), key y = ln z for z >= 2**10"),
+    "yb": (3, 9, "W-1(-exp(-y)), key y = -ln(-z) for 0 < -z < 2**-20"),
+}
+
+
+def geo_value(name, x):
+    """The tabulated function at the key x (an mpf at the current precision)."""
+    if name in ("wa", "wb"):
+        z = x - mp.mpf(INV_E_HI)
+        return mp.re(mp.lambertw(z, 0 if name == "wa" else -1))
+    if name == "wc":
+        return mp.re(mp.lambertw(-x, 0))
+    if name == "wd":
+        return mp.re(mp.lambertw(x, 0))
+    if name == "we":
+        return mp.re(mp.lambertw(-x, -1))
+    if name in ("ta", "tb"):
+        z = -mp.exp(-1 - x)
+        return 1 + mp.re(mp.lambertw(z, 0 if name == "ta" else -1))
+    if name == "ya":
+        return mp.re(mp.lambertw(mp.exp(x), 0))
+    return mp.re(mp.lambertw(-mp.exp(-x), -1))
+
+
+def chebyshev_fit(f, xc, r, n):
+    """Monomial coefficients in delta = x - xc of the polynomial of degree n-1 that
+    interpolates f at the n Chebyshev nodes of [xc - r, xc + r]."""
+    nodes = [mp.cos(mp.pi * (i + mp.mpf(1) / 2) / n) for i in range(n)]
+    vals = [f(xc + r * u) for u in nodes]
+    a = []
+    for j in range(n):
+        s = sum(v * mp.cos(j * mp.pi * (i + mp.mpf(1) / 2) / n) for i, v in enumerate(vals))
+        a.append(2 * s / n)
+    a[0] /= 2
+    # Chebyshev to monomials in u, then u = delta / r
+    tm = [[mp.mpf(1)], [mp.mpf(0), mp.mpf(1)]]
+    for j in range(2, n):
+        nxt = [mp.mpf(0)] + [2 * c for c in tm[j - 1]]
+        for k, c in enumerate(tm[j - 2]):
+            nxt[k] -= c
+        tm.append(nxt)
+    b = [mp.mpf(0)] * n
+    for j in range(n):
+        for k, c in enumerate(tm[j]):
+            b[k] += a[j] * c
+    return [b[k] / r**k for k in range(n)]
+
+
+def geo_rows(name):
+    """Rows of one geometric table and its worst relative error (double coefficients)."""
+    kmin, kmax, _ = GEO[name]
+    rows, worst = [], mp.mpf(0)
+    with mp.workdps(GEO_DPS):
+        for k in range(kmin, kmax + 1):
+            for j in range(GEO_J):
+                lo = mp.ldexp(mp.mpf(GEO_J + j), k) / GEO_J
+                hi = mp.ldexp(mp.mpf(GEO_J + j + 1), k) / GEO_J
+                xc = (lo + hi) / 2
+                assert float(xc) == xc
+                r = (hi - lo) / 2 * (1 + GEO_MARGIN)
+                c = chebyshev_fit(lambda x: geo_value(name, x), xc, r, GEO_TERMS)
+                hi0, lo0 = split(c[0])
+                row = [float(xc), lo0, hi0] + [float(ck) for ck in c[1:]]
+                for frac in range(-8, 9):
+                    d = r * frac / 8
+                    ref = geo_value(name, xc + d)
+                    approx = (mp.mpf(hi0) + mp.mpf(lo0)) + sum(
+                        mp.mpf(row[2 + m]) * d**m for m in range(1, GEO_TERMS))
+                    worst = max(worst, abs(approx - ref) / abs(ref))
+                rows.append(row)
+    return rows, worst
+
+
+def small_fit():
+    """Chebyshev fit of R(z) = (z - W0(z))/z**2 on |z| <= 2**-6, and its relative error."""
+    n = 11
+
+    def rfun(z):
+        if abs(z) < mp.mpf(10) ** -20:    # the middle Chebyshev node is ~1e-50, not 0
+            return 1 - 3 * z / 2 + 8 * z**2 / 3
+        return (z - mp.re(mp.lambertw(z, 0))) / z**2
+
+    with mp.workdps(GEO_DPS):
+        r = mp.ldexp(mp.mpf(1), -6) * (1 + GEO_MARGIN)
+        c = chebyshev_fit(rfun, mp.mpf(0), r, n)
+        worst = mp.mpf(0)
+        for i in range(-40, 41):
+            z = r * i / 40
+            approx = sum(mp.mpf(float(ck)) * z**m for m, ck in enumerate(c))
+            worst = max(worst, abs(approx - rfun(z)) / rfun(z))
+    return c, worst
+
+
+def write_geo(w):
+    """All geometric tables in one array geo_tab (one evaluation site per function);
+    table `name` holds rows name_off .. name_off + name_rows - 1."""
+    all_rows, off = [], 0
+    width = GEO_TERMS + 2
+    w("")
+    w(f"   !> [centre, lo(c0), c0, ..., c{GEO_TERMS - 1}] per row: number of entries")
+    w(f"   integer, parameter :: geo_width = {width}")
+    w(f"   !> Right shift of the bits of a key that leaves its exponent and first fraction bits")
+    w(f"   integer, parameter :: geo_shift = {52 - (GEO_J.bit_length() - 1)}")
+    for name, (kmin, kmax, what) in GEO.items():
+        rows, worst = geo_rows(name)
+        print(f"table {name}: {len(rows)} rows, worst relative error {mp.nstr(worst, 3)}",
+              file=sys.stderr)
+        if worst > 2.0**-57:
+            raise SystemExit(f"table {name}: error {worst} too large; use more terms")
+        w("")
+        w(f"   !> {what}: {len(rows)} rows of geo_tab, relative error below {mp.nstr(worst, 2)}")
+        w(f"   integer, parameter :: {name}_off = {off}, {name}_rows = {len(rows)}")
+        w(f"   !> Bits of the key 2**{kmin} shifted right by geo_shift")
+        w(f"   integer, parameter :: {name}_base = {(1023 + kmin) * GEO_J}")
+        all_rows += rows
+        off += len(rows)
+    n = len(all_rows)
+    w("")
+    w(f"   !> The rows of all geometric tables")
+    w(f"   real(wp), parameter :: geo_tab(0:{width - 1}, 0:{n - 1}) = reshape([ &")
+    for i, row in enumerate(all_rows):
+        vals = [fortran_real(v) for v in row]
+        for g in range(0, len(vals), 3):
+            last = i == n - 1 and g + 3 >= len(vals)
+            w("      & " + ", ".join(vals[g:g + 3]) + ("], &" if last else ", &"))
+    w(f"      & [{width}, {n}])")
+
+LN_BITS = 7     # log table: m0 = 1 + (j + 1/2)/2**LN_BITS, j = first LN_BITS fraction bits
+
+
+def write_log(w):
+    """Table of the logarithm: per j, [1/m0 rounded, ln(m0) hi, ln(m0) lo]."""
+    n = 2**LN_BITS
+    w("")
+    w(f"   !> First fraction bits of x that index `ln_tab`")
+    w(f"   integer, parameter :: ln_bits = {LN_BITS}")
+    w(f"   !> For m0 = 1 + (j + 1/2)/2**ln_bits, j = 0..{n - 1}: [1/m0 (rounded), ln(m0) as hi + lo]")
+    w(f"   real(wp), parameter :: ln_tab(0:2, 0:{n - 1}) = reshape([ &")
+    with mp.workdps(GEO_DPS):
+        for j in range(n):
+            m0 = 1 + (mp.mpf(j) + mp.mpf(1) / 2) / n
+            hi, lo = split(mp.log(m0))
+            vals = [fortran_real(float(1 / m0)), fortran_real(hi), fortran_real(lo)]
+            w("      & " + ", ".join(vals) + ("], &" if j == n - 1 else ", &"))
+    w(f"      & [3, {n}])")
+
+
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
     out = os.path.join(here, "..", "src", "hcimpact", "lambertw_tables.f90")
@@ -223,13 +404,16 @@ def main():
     w = lines.append
     w("! SPDX-License-Identifier: Apache-2.0")
     w("! GENERATED by tools/make_lambertw_tables.py: do not edit by hand.")
-    w("!> Local Taylor tables of Lambert W near its branch point.")
+    w("!> Tables of Lambert W (hcimpact_lambertw) and of the restitution k(beta).")
     w("!>")
     w("!> Row i of a table holds the Taylor coefficients c0, c1, ... at centre xc = i*h, used for")
     w("!> |x - xc| <= h/2; c0 and c1 carry a low part (columns 0 and 1 of the `_lo` table).")
-    w("!> `s` tables: V(s) = 1 + W(-exp(-1 - s**2/2)), s = +-sqrt(2t) (+: W0, -: W-1).")
-    w("!> `p` tables: W(z) with p = +-sqrt(2(1 + e z)) (+: W0, -: W-1; DLMF 4.13.6).")
-    w("!> `q` tables: W0(z) in the same variable p, coarser, for 3 < z < 759.")
+    w("!> `s` table: V(s) = 1 + W(-exp(-1 - s**2/2)), s = +-sqrt(2t) (+: W0, -: W-1), and")
+    w("!> `p` table: W(z) with p = +-sqrt(2(1 + e z)) (DLMF 4.13.6): their row 0 only, the")
+    w("!> series at the branch point.")
+    w("!> Geometric tables (`wa` ... `yb`, see tools/make_lambertw_tables.py): one polynomial")
+    w("!> per interval [2**k (1 + j/32), 2**k (1 + (j+1)/32)) of a key, indexed by the key's")
+    w("!> exponent and first five fraction bits; row = [centre, low part of c0, c0, c1, ...].")
     w("!> `k` tables: the restitution k(beta) of the Hunt-Crossley impact, 0 <= beta < 3.66;")
     w("!> `m` tables: the same, coarser, for 3.66 <= beta < 40.125.")
     w("module hcimpact_lambertw_tables")
@@ -239,10 +423,12 @@ def main():
     w("")
     w("   public :: s_ncoef, s_step_inv, s_first, s_last, s_coef, s_lo")
     w("   public :: p_ncoef, p_step_inv, p_first, p_last, p_coef, p_lo")
-    w("   public :: q_ncoef, q_step_inv, q_first, q_last, q_coef, q_lo")
     w("   public :: k_ncoef, k_step_inv, k_first, k_last, k_coef, k_lo")
     w("   public :: m_ncoef, m_step_inv, m_first, m_last, m_coef, m_lo")
-    w("   public :: w0_series")
+    w("   public :: w0_small, ln_tab, ln_bits")
+    w("   public :: geo_tab, geo_width, geo_shift")
+    for name in GEO:
+        w(f"   public :: {name}_off, {name}_base, {name}_rows")
     worst_all = {}
     for kind, (h, i0, i1, nterms) in TABLES.items():
         rows, lows = [], []
@@ -295,12 +481,18 @@ def main():
             w("      & " + ", ".join(fortran_real(v) for v in row) + sep)
         w(f"      & [2, {n}])")
         del flat
-    # Taylor series of W0 at z = 0: W0 = sum_{k>=1} (-k)^(k-1)/k! z^k (Abramowitz-Stegun 4.13.5 style)
-    zc = [Fraction((-k) ** (k - 1), factorial(k)) for k in range(2, W0_SERIES_TERMS + 2)]
+    write_geo(w)
+    write_log(w)
+    # R(z) = (z - W0(z))/z**2 for |z| <= 2**-6
+    rcoef, rerr = small_fit()
+    print(f"w0_small: relative error {mp.nstr(rerr, 3)}", file=sys.stderr)
+    if rerr > 2.0**-52:
+        raise SystemExit("w0_small: fit not accurate enough")
     w("")
-    w("   !> Coefficients a_k = (-k)**(k-1)/k!, k = 2, 3, ..., of W0(z) = z + sum a_k z**k")
-    w(f"   real(wp), parameter :: w0_series(2:{W0_SERIES_TERMS + 1}) = [ &")
-    vals = [fortran_real(float(c)) for c in zc]
+    w(f"   !> Near-minimax (Chebyshev) fit of R(z) = (z - W0(z))/z**2 on |z| <= 2**-6: coefficients")
+    w(f"   !> of 1, z, z**2, ...; W0 = z - z**2 R(z) (relative error of R {mp.nstr(rerr, 2)})")
+    vals = [fortran_real(float(c)) for c in rcoef]
+    w(f"   real(wp), parameter :: w0_small(0:{len(vals) - 1}) = [ &")
     for g in range(0, len(vals), 3):
         last = g + 3 >= len(vals)
         w("      & " + ", ".join(vals[g:g + 3]) + ("]" if last else ", &"))

@@ -8,10 +8,14 @@
 !> - Context: SUNContext_Create takes the communicator as a pointer in 6 (NULL for
 !>   none) and as an MPI_Comm / integer in 7 (SUN_COMM_NULL).
 !> - Errors: in 6, CVODE reports its errors and warnings to a handler set on the
-!>   solver (CVodeSetErrHandlerFn); in 7, to a stack of handlers on the context
-!>   (SUNContext_PushErrHandler; CVodeSetErrHandlerFn is gone). Either way the
+!>   solver (CVodeSetErrHandlerFn); in 7, its errors to a stack of handlers on the
+!>   context (SUNContext_PushErrHandler; CVodeSetErrHandlerFn is gone). Either way the
 !>   handler here stores the message in the impact_system given as its user data
-!>   and prints nothing: the library never writes to the terminal.
+!>   and prints nothing: the library never writes to the terminal. SUNDIALS 7 sends
+!>   CVODE's warnings (CV_WARNING) to its logger instead, which prints them on
+!>   stdout by default; the solver turns off the only ones CVODE 7.1 has ("t + h = t",
+!>   CVodeSetMaxHnilWarns; roots inactive at the start, CVodeSetNoInactiveRootWarn).
+!>   Checked against a real SUNDIALS 7.1 C library by .ci/sundials7-check.
 !>
 !> HCIMPACT_SUNDIALS_MAJOR (6 or 7) comes from the build (CMake, from
 !> sundials_config.h).

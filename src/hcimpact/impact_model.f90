@@ -38,18 +38,34 @@ module hcimpact_impact_model
       & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
       & hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_libm, only : log1p, expm1
-   use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
-      & operator(-), operator(*), operator(/), dd_exp, dd_log
+   use hcimpact_double_double, only : dd_real, dd_two_prod_ext => two_prod, dd_exp, dd_log
    use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
    use hcimpact_restitution_law, only : restitution_inverse
+   use hcimpact_modified_cc, only : cc_max_degree, cc_moments, cc_coefficients, cc_sum, &
+      & cc_converged, cc_end_share, cc_turn_share, cc_node, inv_end_share_hi, inv_end_share_lo
    use hcimpact_elastic, only : elastic_law
    use hcimpact_trajectory, only : trajectory_type, new_trajectory, phase_integrand, &
-      & compression_phase, restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, &
+      & compression_phase, restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, g2, &
       & phase_duration, &
       & duration_from_turn, duration_from_end, invert_from_turn, invert_from_end, &
       & scaled_velocity, phase_length
    implicit none
    private
+
+   ! The double-double operators, inline (impact_dd.inc): hcimpact_double_double's own
+   ! cannot be inlined across modules, and this module applies ~100 per impact.
+   interface operator(+)
+      module procedure :: add_dd_dd, add_dd_r, add_r_dd
+   end interface operator(+)
+   interface operator(-)
+      module procedure :: sub_dd_dd, sub_dd_r, sub_r_dd, neg_dd
+   end interface operator(-)
+   interface operator(*)
+      module procedure :: mul_dd_dd, mul_dd_r, mul_r_dd
+   end interface operator(*)
+   interface operator(/)
+      module procedure :: div_dd_dd, div_dd_r, div_r_dd
+   end interface operator(/)
 
    public :: contact_type, outcome_type
    public :: impact, impact_law, velocity_at_depth, time_law, time_law_samples
@@ -78,6 +94,16 @@ module hcimpact_impact_model
       module procedure :: time_law_power
       module procedure :: time_law_law
    end interface time_law
+
+   !> Above this beta the restitution time is cut into graded pieces (power_phase_split)
+   real(wp), parameter :: cc_max_beta = 8.0_wp
+   !> Above this L_e = ln(1 + beta) the compression time is cut into graded pieces
+   real(wp), parameter :: cc_max_compression_le = 10.0_wp
+   integer :: kk_
+   !> Complete moments of the plain Clenshaw-Curtis rule: int_-1^1 T_k = 2/(1 - k^2),
+   !> k even, 0 for k odd
+   real(wp), parameter :: plain_moment(0:cc_max_degree) = [(real(1 + (-1)**kk_, wp) &
+      & / real(1 - kk_**2 + merge(1, 0, kk_ == 1), wp), kk_ = 0, cc_max_degree)]
 
    !> Quiet NaN, the value of every output on error
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
@@ -173,6 +199,13 @@ module hcimpact_impact_model
       type(dd_real) :: force_unit
       !> Seconds per unit of the integrals: x_max/((n+1) H V)
       type(dd_real) :: time_unit
+      !> Contact constant c
+      real(wp) :: stiffness = 0.0_wp
+      !> (n+1) m V^2 H in J, when `energy_ok` (its factors well inside the double range)
+      type(dd_real) :: energy
+      logical :: energy_ok = .false.
+      !> 1/H as the double nearest to it and the rest (the nodes multiply by it)
+      real(wp) :: inv_hq(2) = 0.0_wp
    end type power_model
 
 contains
@@ -200,15 +233,21 @@ contains
    end function check_contact
 
    !> Set up the scales of a power-law impact (the contact must be valid).
+   !>
+   !> x_max^(n+1) = (n+1) m V^2 H / c is formed as a double-double product when it and
+   !> its factors are well inside the double range (one logarithm then), else as a
+   !> sum of logarithms; either way x_max = exp(ln(x_max^(n+1))/(n+1)) in double-double.
+   !> c x_max^n = (n+1) m V^2 H / x_max needs no further exponential.
    pure subroutine new_power_model(contact, model, stat)
       type(contact_type), intent(in) :: contact
       type(power_model), intent(out) :: model
       integer, intent(out) :: stat
       ! results beyond exp(+-log_limit) would overflow or lose their precision
       real(wp), parameter :: log_limit = 690.0_wp
-      type(dd_real) :: beta, np1, alpha, hq, ln_v, t
-      real(wp) :: r0
-      integer :: phase
+      ! a product of factors each within exp(+-safe_log) cannot leave the double range
+      real(wp), parameter :: safe_log = 120.0_wp
+      type(dd_real) :: beta, np1, alpha, hq, ln_v, t, energy, base
+      real(wp) :: lm, lv, lc, lh
 
       stat = hcimpact_ok
       if (log(contact%damping + tiny(1.0_wp)) + log(contact%velocity) > log(max_beta)) then
@@ -223,43 +262,72 @@ contains
       model%np1 = np1%hi
       model%np1_dd = np1
       model%velocity = contact%velocity
+      model%stiffness = contact%stiffness
       alpha = dd(contact%exponent) / np1
       model%f%alpha_hi = alpha%hi
       model%f%alpha_lo = alpha%lo
       model%f%inv_np1 = 1.0_wp / np1%hi
       model%f%flat = 1.0_wp
+      ! 1/H = ih + il: il = (1 - H ih)/H from the exact residual of the product
+      model%inv_hq(1) = 1.0_wp / hq%hi
+      t = two_prod(hq%hi, model%inv_hq(1))
+      model%inv_hq(2) = (((1.0_wp - t%hi) - t%lo) - hq%lo * model%inv_hq(1)) * model%inv_hq(1)
 
       ! x_max^(n+1) = (n+1) m V^2 H / c
-      ln_v = dd_log(dd(contact%velocity))
-      model%ln_x_max = (dd_log(np1) + dd_log(dd(contact%mass)) + ln_v + ln_v &
-         & + dd_log(hq) - dd_log(dd(contact%stiffness))) / np1
+      lm = log(contact%mass)
+      lv = log(contact%velocity)
+      lc = log(contact%stiffness)
+      lh = log(hq%hi)
+      model%energy_ok = max(abs(lm), abs(lv), abs(lc), abs(lh)) < safe_log
+      if (model%energy_ok) then
+         ! (n+1) m V^2 H (J), the energy unit of the peak force too
+         energy = ((np1 * contact%mass) * contact%velocity) * contact%velocity * hq
+         model%energy = energy
+         base = energy / contact%stiffness
+         model%ln_x_max = dd_log(base) / np1
+      else
+         ln_v = dd_log(dd(contact%velocity))
+         model%ln_x_max = (dd_log(np1) + dd_log(dd(contact%mass)) + ln_v + ln_v &
+            & + dd_log(hq) - dd_log(dd(contact%stiffness))) / np1
+      end if
       if (abs(model%ln_x_max%hi) > log_limit) then
          stat = hcimpact_err_domain
          return
       end if
       model%x_max = dd_exp(model%ln_x_max)
-      t = dd_log(dd(contact%stiffness)) + contact%exponent * model%ln_x_max
-      if (abs(t%hi) > log_limit) then
+      if (abs(lc + contact%exponent * model%ln_x_max%hi) > log_limit) then
          stat = hcimpact_err_domain
          return
       end if
-      model%force_unit = dd_exp(t)
+      if (model%energy_ok) then
+         model%force_unit = model%energy / model%x_max
+      else
+         t = dd_log(dd(contact%stiffness)) + contact%exponent * model%ln_x_max
+         model%force_unit = dd_exp(t)
+      end if
       ! dt = x_max/((n+1) H V) (x/x_max)^(-n) dl; its unit must be representable too
-      if (abs(model%ln_x_max%hi - log(np1%hi) - log(hq%hi) - log(contact%velocity)) &
-         & > log_limit) then
+      if (abs(model%ln_x_max%hi - log(np1%hi) - lh - lv) > log_limit) then
          stat = hcimpact_err_domain
          return
       end if
       model%time_unit = model%x_max / (np1 * hq * contact%velocity)
+   end subroutine new_power_model
 
+   !> The constants of `power_end_time` (only the time law inverts from an end).
+   pure subroutine set_end_times(model)
+      type(power_model), intent(inout) :: model
+      type(dd_real) :: t, alpha
+      real(wp) :: r0
+      integer :: phase
       ! time of the last d in l before an end, in units of the integral, to first order:
       ! integral of (d R(0)/H)^(-alpha) from 0 to d = (n+1) (H/R(0))^alpha d^(1/(n+1))
+      alpha = dd_real(model%f%alpha_hi, model%f%alpha_lo)
       do phase = compression_phase, restitution_phase
          r0 = model%f%tr%end_speed(phase)
-         t = dd_exp(alpha * dd_log(hq / r0)) * np1
+         t = dd_exp(alpha * dd_log(model%f%tr%hq / r0)) * model%np1_dd
          model%f%end_coef(phase) = t%hi
       end do
-   end subroutine new_power_model
+   end subroutine set_end_times
 
    !> (x/x_max)^(-n) - 1 at the point with distances dturn, dend of the current phase.
    pure function power_density(self, dturn, dend) result(rate)
@@ -297,6 +365,380 @@ contains
       time = self%end_coef(self%phase) * d**self%inv_np1
    end function power_end_time
 
+   !> Time of one piece of a phase of a power-law impact by Clenshaw-Curtis rules
+   !> (hcimpact_modified_cc), in the units of the integrals.
+   !>
+   !> The piece covers |l| in [offset + gap, offset + gap + length] (|l| the distance from
+   !> the turning point). `weighted`: the piece reaches the end of contact, d (in l) is
+   !> its distance from that end and D = length; the time density is then
+   !> (S/H)^(-alpha) = (d/D)^(-alpha) F(d), F(d) = (D S/(d H))^(-alpha): S = d R(d) with
+   !> R analytic and positive on [0, D] (trajectory), so F is analytic there and the
+   !> singular factor is the weight of the rule. Otherwise the piece lies inside the
+   !> phase, the density (S/H)^(-alpha) is analytic on it, and the rule is the plain
+   !> Clenshaw-Curtis rule (weight 1). Each node takes the form of S for its nearer end
+   !> (turn_q or end_r). Degrees 12, 24, 48 (nested) until the last two coefficients
+   !> meet `tol`; `converged` false when even 48 does not. `f_turn` is the density at
+   !> the end of the piece facing the turning point, `f_far` at the other end.
+   pure subroutine power_piece_cc(model, phase, offset, length, gap, e0, weighted, tol, &
+         & moment, moment_degree, degree, a, lin, duration, f_turn, f_far, evaluations, &
+         & converged)
+      type(power_model), intent(in) :: model
+      integer, intent(in) :: phase
+      !> Distance of the piece from the turning point, its length, and the shift of its
+      !> nodes (the end of contact rounded to a double: see trajectory_type's gap)
+      real(wp), intent(in) :: offset, length, gap
+      !> Compression pieces of a cut phase: the distance of the piece's far end from the
+      !> end of contact (0 for the piece at the end); -1 otherwise (see power_nodes)
+      real(wp), intent(in) :: e0
+      !> Whether the piece reaches the end of contact (weight (d/D)^(-alpha))
+      logical, intent(in) :: weighted
+      !> Relative tolerance for this piece
+      real(wp), intent(in) :: tol
+      !> Complete moments J_0 .. J_48 of the weight of the piece
+      real(wp), intent(inout) :: moment(0:cc_max_degree)
+      !> Highest degree of the moments given (raised to cc_max_degree here if needed)
+      integer, intent(inout) :: moment_degree
+      !> Degree of the accepted rule, the Chebyshev coefficients of F - A - B x and
+      !> [A, B]: the interpolant is A + B x + sum'' a_k T_k(x), x = 2 d/D - 1
+      integer, intent(out) :: degree
+      real(wp), intent(out) :: a(0:cc_max_degree), lin(2)
+      type(dd_real), intent(out) :: duration
+      real(wp), intent(out) :: f_turn, f_far
+      integer(ik), intent(inout) :: evaluations
+      logical, intent(out) :: converged
+      real(wp) :: f(0:cc_max_degree), g(0:cc_max_degree), fmax
+      type(dd_real) :: sum
+      integer :: j, stride, first
+      logical :: ok
+
+      converged = .false.
+      duration = dd(0.0_wp)
+      a = 0.0_wp
+      lin = 0.0_wp
+      f_turn = 1.0_wp
+      f_far = 1.0_wp
+      first = 0
+      degree = 12
+      do while (degree <= cc_max_degree)
+         stride = cc_max_degree / degree
+         ! the nodes of this degree not yet evaluated: all of them first, then the odd
+         if (first == 0) then
+            call power_nodes(model, phase, offset, length, gap, e0, weighted, 0, stride, &
+               & degree + 1, f, ok)
+            evaluations = evaluations + int(degree + 1, ik)
+         else
+            call power_nodes(model, phase, offset, length, gap, e0, weighted, stride, &
+               & 2 * stride, degree / 2, f, ok)
+            evaluations = evaluations + int(degree / 2, ik)
+         end if
+         if (.not. ok) return
+         first = degree
+         if (degree > moment_degree) then
+            if (weighted) then
+               call cc_moments(1.0_wp / model%np1, model%np1, 1.0_wp, 2.0_wp, degree, moment)
+               call closed_moments(model, moment)
+            else
+               moment = plain_moment
+            end if
+            moment_degree = degree
+         end if
+         ! The rounding errors of the cosine transform are those of the values it is
+         ! given, and the moments J_k (k >= 1) decay slowly (like k^(-2c)): their sum
+         ! would amplify the noise of every coefficient to several ulps of the integral.
+         ! The straight line A + B x through the two end values is taken out first and
+         ! integrated exactly (J_0, J_1): what is left is a few times smaller, and so is
+         ! its noise.
+         lin(1) = 0.5_wp * (f(0) + f(cc_max_degree))
+         lin(2) = 0.5_wp * (f(0) - f(cc_max_degree))
+         do j = 0, degree
+            g(j) = (f(stride * j) - lin(1)) - lin(2) * cc_node(stride * j)
+         end do
+         call cc_coefficients(degree, g, a)
+         ! the straight line's part in double-double: it is nearly all of the integral
+         sum = (two_prod(lin(1), moment(0)) + two_prod(lin(2), moment(1))) &
+            & + cc_sum(degree, a, moment)
+         ! the noise floor of the coefficients: that of the values, ~eps max |f| (a plain
+         ! piece's density is not near 0 and the line taken out does not remove it)
+         if (weighted .and. offset == 0.0_wp) then
+            fmax = maxval(abs(g(0:degree)))
+         else
+            fmax = maxval(abs(f(0:cc_max_degree:stride)))
+         end if
+         if (cc_converged(degree, a, moment, sum%hi, fmax, tol)) then
+            converged = .true.
+            duration = sum * (0.5_wp * length)
+            if (weighted) then
+               f_turn = f(0)
+            else
+               f_turn = f(0)
+               f_far = f(cc_max_degree)
+            end if
+            return
+         end if
+         degree = 2 * degree
+      end do
+      degree = cc_max_degree
+   end subroutine power_piece_cc
+
+   !> Time of a whole phase by Clenshaw-Curtis rules on graded pieces (beta large).
+   !>
+   !> The density (S/H)^(-alpha) is singular at the zeros of S = (h(beta) - g(L))/beta^2,
+   !> L = beta l, g(L) = e^L - 1 - L: the end of contact, and complex zeros near
+   !> L = L_e + 2 pi i j (L_e = ln(1 + beta), the compression's end), i.e. at a distance
+   !> of order 2 pi/beta in l from the compression's end and ln(beta)/beta from the
+   !> turning point on the restitution side. One polynomial of degree 48 over the whole
+   !> phase does not resolve them once ln(beta) is large. The phase is cut at points
+   !> graded geometrically (ratio 3, in L) away from the near-singular side: the
+   !> compression's end piece is 8 wide in L, the restitution's pieces start at 4 from
+   !> the turning point; on each piece the nearest singularity lies at least about its
+   !> own length away, so degree 24 to 48 converges. Only the piece at the end of
+   !> contact carries the weight. On the restitution side the density beyond |L| = 36
+   !> differs from a function smooth on the scale of the phase by e^L/h(beta) < 1e-16,
+   !> so the end piece may be long. `tol` of each piece is scaled by its share of the
+   !> phase (the phase's time is at least its length in l, the density being >= 1).
+   !> Returns the end piece's rule (for the time of the peak) and its length.
+   pure subroutine power_phase_split(model, phase, lp, moment, moment_degree, degree, a, &
+         & lin, end_length, duration, tpeak, evaluations, converged)
+      type(power_model), intent(in) :: model
+      integer, intent(in) :: phase
+      !> l of the peak force (compression only): the end piece ends there, so that the
+      !> time of the peak is a complete integral (an incomplete one near the end of the
+      !> piece sums slowly decaying moments of alternating sign: 5 ulps were seen)
+      type(dd_real), intent(in) :: lp
+      !> Time from the impact to the peak (compression only)
+      type(dd_real), intent(out) :: tpeak
+      real(wp), intent(inout) :: moment(0:cc_max_degree)
+      integer, intent(inout) :: moment_degree
+      integer, intent(out) :: degree
+      real(wp), intent(out) :: a(0:cc_max_degree), lin(2), end_length
+      type(dd_real), intent(out) :: duration
+      integer(ik), intent(inout) :: evaluations
+      logical, intent(out) :: converged
+      integer, parameter :: max_pieces = 40
+      real(wp) :: cut(0:max_pieces), bound, beta, le, w, e, e0, tol, width, resid, f_turn, f_far
+      real(wp) :: plain(0:cc_max_degree), a_p(0:cc_max_degree), lin_p(2), gap_end, prev_far
+      type(dd_real) :: part, s
+      integer :: np, j, deg_p, plain_degree
+
+      converged = .false.
+      duration = dd(0.0_wp)
+      tpeak = dd(0.0_wp)
+      bound = model%f%tr%bound(phase)
+      beta = model%f%tr%beta%hi
+      le = beta * bound
+      ! the cuts, as distances |l| from the turning point, increasing
+      np = 0
+      cut(0) = 0.0_wp
+      if (phase == compression_phase) then
+         ! distances from the end of contact (in L): the peak e_p, then 3 e_p, 9 e_p, ...
+         ! (a plain piece [e, 3e] has the end's singularity at half its width away;
+         ! the complex ones, L_e +- 2 pi i, are farther than that)
+         np = 1
+         cut(1) = lp%hi
+         e = beta * (bound - lp%hi)
+         do j = 2, max_pieces - 1
+            w = 2.0_wp * e
+            if (le - (e + w) <= 0.25_wp * w) exit
+            e = e + w
+            np = np + 1
+            cut(np) = (le - e) / beta
+         end do
+         ! increasing order
+         cut(1:np) = cut(np:1:-1)
+      else
+         w = 4.0_wp
+         do j = 1, max_pieces - 1
+            if (w > 0.75_wp * le .or. w > 40.0_wp) exit
+            np = np + 1
+            cut(np) = w / beta
+            w = 3.0_wp * w
+         end do
+      end if
+      tol = model%f%rtol / real(np + 1, wp)
+      plain_degree = 0
+      prev_far = 1.0_wp
+      resid = 0.0_wp
+      do j = 1, np
+         ! plain piece [cut(j-1), cut(j)]: its width rounded, the rest (exact) added at
+         ! the density of the piece's far end
+         s = two_sum(cut(j), -cut(j - 1))
+         width = s%hi
+         e0 = -1.0_wp
+         if (phase == compression_phase) e0 = (bound - cut(j)) + (model%f%tr%gap(phase) + s%lo)
+         call power_piece_cc(model, phase, cut(j - 1), width, 0.0_wp, e0, .false., &
+            & max(tol * bound / width, model%f%rtol), plain, plain_degree, deg_p, a_p, lin_p, &
+            & part, f_turn, f_far, evaluations, converged)
+         if (.not. converged) return
+         duration = duration + part + s%lo * f_far
+         prev_far = f_far
+      end do
+      ! the end piece [cut(np), |l_end|]: length bound - cut(np) rounded; the rest and
+      ! the end's own rounding shift its nodes (gap_end), the sliver they leave is added
+      ! at the density there
+      s = two_sum(bound, -cut(np))
+      end_length = s%hi
+      gap_end = s%lo + model%f%tr%gap(phase)
+      ! the compression's end piece is also the time of the peak: its own tolerance
+      if (phase == compression_phase) then
+         tol = model%f%rtol
+      else
+         tol = max(tol * bound / end_length, model%f%rtol)
+      end if
+      e0 = -1.0_wp
+      if (phase == compression_phase) e0 = 0.0_wp
+      call power_piece_cc(model, phase, cut(np), end_length, gap_end, e0, .true., &
+         & tol, moment, moment_degree, degree, a, &
+         & lin, part, f_turn, f_far, evaluations, converged)
+      if (.not. converged) return
+      duration = duration + part + gap_end * prev_far
+      ! from the peak: the end piece and the sliver between lp and the piece
+      if (phase == compression_phase) &
+         & tpeak = part + ((cut(np) - lp) + gap_end) * f_turn
+   end subroutine power_phase_split
+
+   !> J_0 = 2 (n+1) and J_1 = -2 n (n+1)/(n+2) of the complete moments in closed form:
+   !> they weigh the straight line, which carries most of the integral.
+   pure subroutine closed_moments(model, moment)
+      type(power_model), intent(in) :: model
+      real(wp), intent(inout) :: moment(0:)
+      moment(0) = 2.0_wp * model%np1
+      moment(1) = -2.0_wp * model%n * (model%np1 / (model%n + 2.0_wp))
+   end subroutine closed_moments
+
+   !> F at the nodes i = first, first + step, ... (count of them) of the degree-48 grid of
+   !> a phase of length D (see power_phase_cc): z^(-alpha) with z = (1 - q) D/d near the
+   !> turning point and z = D R(d)/H near the end. `ok` false when a z is not finite and
+   !> positive (beta or the scales at the limits of the double range): the caller then
+   !> leaves this phase to tanh-sinh, which reports it.
+   !>
+   !> All nodes at once, in loops of independent iterations, with the forms of S
+   !> (hcimpact_trajectory's turn_q and end_r) written out: the divisions by H and by
+   !> the node's share become products with reciprocals computed once (in two parts,
+   !> so that each costs about one rounding, as the division did), and G2 is summed
+   !> to the number of terms the phase's largest |beta l| needs. A call per node
+   !> across modules, with its chain of dependent divisions, cost twice as much.
+   pure subroutine power_nodes(model, phase, offset, length, gap, e0, weighted, first, &
+         & step, count, f, ok)
+      type(power_model), intent(in) :: model
+      integer, intent(in) :: phase, first, step, count
+      real(wp), intent(in) :: offset, length, gap, e0
+      logical, intent(in) :: weighted
+      real(wp), intent(inout) :: f(0:cc_max_degree)
+      logical, intent(out) :: ok
+      ! 1/(j + 2)!, j = 0 .. 23, the coefficients of G2(w) = sum_j w^j/(j + 2)!
+      integer :: jj
+      real(wp), parameter :: inv_factorial(0:23) = 1.0_wp / gamma(real([(jj, jj = 0, 23)], &
+         & wp) + 3.0_wp)
+      real(wp) :: z(0:cc_max_degree), ih, il, beta, sgn, l, w, g, t, r, wmax, rest, lz, dend
+      integer :: i, m, nterm, jt
+      logical :: end_form
+
+      beta = model%f%tr%beta%hi
+      ih = model%inv_hq(1)
+      il = model%inv_hq(2)
+      sgn = 1.0_wp
+      if (phase == restitution_phase) sgn = -1.0_wp
+      ! terms of G2 needed for |w| <= wmax: |w|^j/(j+2)! below 1e-20 of G2 >= 1/2 * ...
+      ! (the series is alternating or positive; the first omitted term bounds the rest)
+      wmax = beta * (offset + length + abs(gap))
+      nterm = 23
+      if (wmax <= 2.0_wp) then
+         rest = 1.0_wp
+         do jt = 1, 23
+            rest = rest * wmax / real(jt + 2, wp)
+            nterm = jt
+            if (rest < 1.0e-20_wp) exit
+         end do
+      end if
+      do m = 0, count - 1
+         i = first + m * step
+         ! The end form for the half at the end of contact of a weighted piece, and on
+         ! the compression pieces of a cut phase wherever beta d <= 4: there |l| is large
+         ! against the distance d to the end, and a node placed in l (absolute error
+         ! eps |l|) would move S by up to eps ln(1 + beta) relative (tens of ulps).
+         end_form = weighted .and. 2 * i > cc_max_degree
+         dend = length * cc_end_share(i)
+         if (e0 >= 0.0_wp) then
+            dend = e0 + dend
+            end_form = end_form .or. beta * dend <= 4.0_wp
+         end if
+         if (.not. end_form) then
+            ! turning-point side: |l| = offset + D (1 - x)/2 + gap, q = l^2 G2(beta l)/H
+            l = sgn * ((offset + length * cc_turn_share(i)) + gap)
+            w = beta * l
+            if (abs(w) <= 2.0_wp) then
+               g = inv_factorial(nterm)
+               do jt = nterm - 1, 0, -1
+                  g = g * w + inv_factorial(jt)
+               end do
+            else
+               g = g2(w)
+            end if
+            t = l * l * g
+            t = t * ih + t * il
+            if (weighted) then
+               z(i) = (1.0_wp - t) * inv_end_share_hi(i) + (1.0_wp - t) * inv_end_share_lo(i)
+            else
+               z(i) = 1.0_wp - t
+            end if
+         else
+            ! end side: S = d R(d), z = D R(d)/H (weighted) or S/H
+            t = dend
+            if (phase == compression_phase) then
+               w = -beta * t
+            else
+               w = beta * t
+            end if
+            if (abs(w) <= 2.0_wp) then
+               g = inv_factorial(nterm)
+               do jt = nterm - 1, 0, -1
+                  g = g * w + inv_factorial(jt)
+               end do
+               t = t * g
+               if (phase == compression_phase) then
+                  r = (1.0_wp - t * model%f%tr%one_plus_beta%hi) &
+                     & - t * model%f%tr%one_plus_beta%lo
+               else
+                  r = ((model%f%tr%k%hi - model%f%tr%a%hi * t) + model%f%tr%k%lo) &
+                     & - model%f%tr%a%lo * t
+               end if
+            else
+               r = end_r(model%f%tr, phase, t)
+            end if
+            if (weighted) then
+               t = length * r
+            else
+               t = dend * r
+            end if
+            z(i) = t * ih + t * il
+         end if
+      end do
+      ok = .false.
+      do m = 0, count - 1
+         i = first + m * step
+         if (.not. ieee_is_finite(z(i))) return
+         if (.not. z(i) > 0.0_wp) return
+      end do
+      ok = .true.
+      if (model%f%alpha_hi == 0.5_wp .and. model%f%alpha_lo == 0.0_wp) then
+         ! n = 1: two correctly rounded operations
+         do m = 0, count - 1
+            i = first + m * step
+            f(i) = 1.0_wp / sqrt(z(i))
+         end do
+      else
+         ! z^(-alpha) = exp(-alpha ln z): 40% faster than pow. Its extra rounding, that of
+         ! ln z times alpha, is below alpha eps |ln z|/2 relative; z lies near 1 except
+         ! at large beta, and the rounding of the nodes averages out in the rule (the
+         ! worst contact time of impact.csv moves by about 0.2 ulp, see doc/impact.md).
+         do m = 0, count - 1
+            i = first + m * step
+            lz = log(z(i))
+            f(i) = exp(-(model%f%alpha_hi * lz + model%f%alpha_lo * lz))
+         end do
+      end if
+   end subroutine power_nodes
+
    !> Everything about one impact with the power law (see `outcome_type`).
    !>
    !> Errors: hcimpact_err_not_finite (NaN or infinite field), _mass, _stiffness,
@@ -317,7 +759,12 @@ contains
       type(power_model) :: model
       type(dd_real) :: k, t, dur(2), tpeak, q, y, u, lp
       integer(ik) :: ev(3)
-      real(wp) :: half
+      real(wp) :: half, c, s, length, length2, big_c, f_turn, f_far
+      type(dd_real) :: ct, xp
+      real(wp) :: moment(0:cc_max_degree), coef(0:cc_max_degree), coef2(0:cc_max_degree)
+      real(wp) :: lin(2), lin2(2)
+      integer :: degree, degree2, moment_degree
+      logical :: done(2), split
 
       outcome = outcome_type()
       stat = check_contact(contact)
@@ -336,19 +783,77 @@ contains
       end if
 
       ev = 0_ik
-      call phase_duration(model%f, compression_phase, dur(1), ev(1), stat)
-      if (stat == hcimpact_ok) call phase_duration(model%f, restitution_phase, dur(2), ev(2), stat)
-      if (stat /= hcimpact_ok) return
-
+      split = .false.
+      ! the complete moments of the weight (d/D)^(-alpha), c = 1 - alpha = 1/(n+1)
+      c = 1.0_wp / model%np1
+      moment_degree = 24
+      call cc_moments(c, model%np1, 1.0_wp, 2.0_wp, moment_degree, moment)
+      call closed_moments(model, moment)
       ! the peak: q = u/beta at the peak, y = 1 - (x/x_max)^(n+1), l of the point
       call power_peak(model, q, y, lp)
+      ! Large L_e = ln(1 + beta): the complex singularities next to the compression's
+      ! end (L_e +- 2 pi i) need graded pieces (power_phase_split).
+      if (model%f%tr%beta%hi * model%f%tr%bound(compression_phase) <= cc_max_compression_le) then
+         length = model%f%tr%bound(compression_phase)
+         call power_piece_cc(model, compression_phase, 0.0_wp, length, &
+            & model%f%tr%gap(compression_phase), -1.0_wp, .true., model%f%rtol, moment, moment_degree, &
+            & degree, coef, lin, dur(1), f_turn, f_far, ev(1), done(1))
+         if (done(1)) dur(1) = dur(1) + model%f%tr%gap(compression_phase)
+      else
+         call power_phase_split(model, compression_phase, lp, moment, moment_degree, degree, &
+            & coef, lin, length, dur(1), tpeak, ev(1), done(1))
+         split = done(1)
+      end if
+      if (.not. done(1)) call phase_duration(model%f, compression_phase, dur(1), ev(1), stat)
+      if (stat /= hcimpact_ok) return
+      ! For beta > 8 the restitution density varies on a scale 1/beta next to the
+      ! turning point (the complex zeros of S near L = ln h(beta) +- 2 pi i): graded
+      ! pieces there (power_phase_split).
+      if (model%f%tr%beta%hi <= cc_max_beta) then
+         call power_piece_cc(model, restitution_phase, 0.0_wp, &
+            & model%f%tr%bound(restitution_phase), model%f%tr%gap(restitution_phase), -1.0_wp, &
+            & .true., &
+            & model%f%rtol, moment, moment_degree, degree2, coef2, lin2, dur(2), f_turn, f_far, &
+            & ev(2), done(2))
+         if (done(2)) dur(2) = dur(2) + model%f%tr%gap(restitution_phase)
+      else
+         call power_phase_split(model, restitution_phase, lp, moment, moment_degree, degree2, &
+            & coef2, lin2, length2, dur(2), t, ev(2), done(2))
+      end if
+      if (.not. done(2)) call phase_duration(model%f, restitution_phase, dur(2), ev(2), stat)
+      if (stat /= hcimpact_ok) return
+
       u = model%f%tr%beta * q
       half = 0.5_wp * model%f%tr%l_end(compression_phase)%hi
-      if (lp%hi <= half) then
+      t = model%f%tr%l_end(compression_phase) - lp
+      ! length: that of the compression's piece at the impact end (the whole phase
+      ! unless it was cut)
+      if (split) then
+         ! tpeak: the compression's end piece (power_phase_split)
+         continue
+      else if (done(1) .and. t%hi < length) then
+         ! from the impact to the peak with the compression's own interpolant: the
+         ! incomplete moments up to s = d/D (no new evaluation)
+         s = max(t%hi / length, 0.0_wp)
+         if (s > 0.0_wp) then
+            ! C = 2 s^c, with the rounding of c = 1/(n+1) corrected to first order
+            ct = two_prod(c, model%np1)
+            big_c = 2.0_wp * s**c
+            big_c = big_c + big_c * (((1.0_wp - ct%hi) - ct%lo) / model%np1) * log(s)
+            call cc_moments(c, model%np1, s, big_c, degree, moment)
+            moment(0) = big_c * model%np1
+            moment(1) = big_c * model%np1 * (2.0_wp * s / (model%n + 2.0_wp) - 1.0_wp)
+            tpeak = ((two_prod(lin(1), moment(0)) + two_prod(lin(2), moment(1))) &
+               & + cc_sum(degree, coef, moment)) * (0.5_wp * length)
+         else
+            tpeak = dd(0.0_wp)
+         end if
+      else if (done(1) .and. length >= model%f%tr%bound(compression_phase)) then
+         tpeak = dur(1)
+      else if (lp%hi <= half) then
          call duration_from_turn(model%f, compression_phase, lp%hi, t, ev(3), stat)
          tpeak = dur(1) - t
       else
-         t = model%f%tr%l_end(compression_phase) - lp
          call duration_from_end(model%f, compression_phase, t%hi, tpeak, ev(3), stat)
       end if
       if (stat /= hcimpact_ok) return
@@ -366,11 +871,18 @@ contains
       outcome%contact_time = t%hi
       t = model%time_unit * tpeak
       outcome%time_at_peak_force = t%hi
-      ! x_peak = x_max (1 - y)^(1/(n+1)); F = c x_peak^n (1 + u)
+      ! x_peak = x_max (1 - y)^(1/(n+1)); F = c x_peak^n (1 + u), which is
+      ! (n+1) m V^2 H (1 - y) (1 + u)/x_peak since c x_peak^(n+1) = c x_max^(n+1) (1 - y)
       t = model%ln_x_max + dd_log(1.0_wp - y) / model%np1
-      outcome%compression_at_peak_force = dd_exp_hi(t)
-      t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)
-      outcome%peak_force = dd_exp_hi(t)
+      xp = dd_exp(t)
+      outcome%compression_at_peak_force = xp%hi
+      if (model%energy_ok) then
+         t = model%energy * (1.0_wp - y) * (u + 1.0_wp) / xp
+         outcome%peak_force = t%hi
+      else
+         t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)
+         outcome%peak_force = dd_exp_hi(t)
+      end if
       outcome%evaluations = ev
       call reject_unrepresentable(outcome, stat)
    end subroutine impact_power
@@ -389,12 +901,12 @@ contains
    !>
    !> F(q) = n q + (n+1) beta (q^2 H(beta q) - H) = 0 is increasing and convex with
    !> F(0) < 0 <= F((n+1) beta H/n): Newton's method from the right end converges
-   !> monotonically; a double iteration, then two in double-double.
+   !> monotonically; a double iteration, then one step in double-double.
    pure subroutine power_peak(model, q, y, lp)
       type(power_model), intent(in) :: model
       type(dd_real), intent(out) :: q, y, lp
-      type(dd_real) :: beta, hq, u, fq, dfq
-      real(wp) :: qd, b, n, np1, h, step, hu
+      type(dd_real) :: beta, hq, u, fq, dfq, hd, dq
+      real(wp) :: qd, b, n, np1, h, step, hu, hprime
       integer :: it
 
       beta = model%f%tr%beta
@@ -416,16 +928,26 @@ contains
          qd = qd - step
          if (.not. abs(step) > 4.0_wp * epsilon(1.0_wp) * qd) exit
       end do
+      ! The double iteration leaves q within a few ulps: one step in double-double
+      ! squares that error. H(beta q) at the final q is the value at the start of the
+      ! step moved by H'(u) du, du = beta (step), in double (du is at the ulp level).
       q = dd(qd)
-      do it = 1, 2
-         u = beta * q
-         fq = n * q + np1 * (beta * (q * q * h_over_square_dd(u) - hq))
-         dfq = n + np1 * (beta * q) / (u + 1.0_wp)
-         q = q - fq / dfq
-      end do
       u = beta * q
-      y = q * q * h_over_square_dd(u) / hq
-      lp = q - beta * q * q * h_over_square_dd(u)
+      hd = h_over_square_dd(u)
+      fq = n * q + np1 * (beta * (q * q * hd - hq))
+      dfq = n + np1 * (beta * q) / (u + 1.0_wp)
+      dq = fq / dfq
+      q = q - dq
+      u = beta * q
+      ! H'(u) = (1/(1 + u) - 2 H(u))/u, or its series -1/3 + u/2 - 3u^2/5 near 0
+      if (abs(u%hi) < 1.0e-3_wp) then
+         hprime = -1.0_wp / 3.0_wp + u%hi * (0.5_wp - 0.6_wp * u%hi)
+      else
+         hprime = (1.0_wp / (1.0_wp + u%hi) - 2.0_wp * hd%hi) / u%hi
+      end if
+      hd = hd - hprime * (b * dq%hi)
+      y = q * q * hd / hq
+      lp = q - beta * q * q * hd
    end subroutine power_peak
 
    !> Velocity (m/s) at the compression x on the compression or the restitution branch:
@@ -541,6 +1063,7 @@ contains
       end if
       call new_power_model(contact, model, stat)
       if (stat /= hcimpact_ok) return
+      call set_end_times(model)
       ev = 0_ik
       call phase_duration(model%f, compression_phase, dur(1), ev, stat)
       if (stat == hcimpact_ok) call phase_duration(model%f, restitution_phase, dur(2), ev, stat)
@@ -1226,5 +1749,7 @@ contains
       outcome = outcome_type()
       stat = hcimpact_err_domain
    end subroutine reject_unrepresentable
+
+   include "impact_dd.inc"
 
 end module hcimpact_impact_model

@@ -759,11 +759,30 @@ def make_cases():
         else:
             b = 10.0 ** rng.uniform(-8, 4) / V
         cases.append(dict(m=m, c=c, n=n, V=V, b=b, tag="random"))
+    # Large beta and exponents outside [1, 3] (issue #4: the Clenshaw-Curtis rules'
+    # corner), appended so that the rows above keep their numbers; own seed.
+    rng2 = random.Random(SEED + 4)
+    combos = [(0.37, 3.1e7, 1.3), (2e-3, 4e10, 0.05), (50.0, 1e5, 20.0)]
+    big = []
+    for n in (3.0, 5.0, 7.0, 7.42, 10.0):
+        for j in range(7):
+            big.append((n, 10.0 ** (6 + j) * (1 + 0.5 * rng2.random())))
+    for n in (0.1, 0.5):
+        for e in (4, 6, 9, 12):
+            big.append((n, 10.0 ** e * (1 + 0.5 * rng2.random())))
+    big.append((7.42, 5.6e10))
+    for n in (1.5, 7.42):                # the seams: beta = 8 and ln(1 + beta) = 10
+        for beta in (7.9, 8.1, 2.1e4, 2.3e4):
+            big.append((n, beta))
+    for j, (n, beta) in enumerate(big):
+        m, c, V = combos[j % 3]
+        cases.append(dict(m=m, c=c, n=n, V=V, b=beta / V, tag="large-beta"))
     for cs in cases:
         for key in ("m", "c", "n", "V", "b"):
             cs[key] = float(cs[key])
         assert 1e-6 <= cs["m"] <= 1e3 and 1e3 <= cs["c"] <= 1e13
-        assert 1e-6 <= cs["V"] <= 1e3 and 1.0 <= cs["n"] <= 3.0 and cs["b"] >= 0
+        assert 1e-6 <= cs["V"] <= 1e3 and cs["b"] >= 0
+        assert 1.0 <= cs["n"] <= 3.0 or cs["tag"] == "large-beta"
     return cases
 
 

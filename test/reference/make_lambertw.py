@@ -25,12 +25,13 @@ import argparse
 import math
 import os
 import random
-import struct
 import sys
 import time
 
 import mpmath
 from mpmath import mp, mpf
+
+from doubles import nearest_double
 
 #: Seed shared by every region (each region mixes in its own name)
 SEED = "hcimpact-lambertw-2"
@@ -54,30 +55,6 @@ TINY_SUB, TINY_NORMAL = math.ldexp(1.0, -1074), sys.float_info.min
 # --------------------------------------------------------------------------
 # Rounding to doubles
 # --------------------------------------------------------------------------
-
-def _is_even(x):
-    """True if the last significand bit of the double x is zero."""
-    return struct.unpack("<q", struct.pack("<d", x))[0] & 1 == 0
-
-
-def nearest_double(x):
-    """The mpf x rounded to the nearest double, ties to even, subnormals included.
-
-    float() is only a first guess (mpmath may round twice in the subnormal
-    range); the neighbours are compared with x in the current precision.
-    """
-    if x == 0:
-        return 0.0
-    guess = float(x)
-    if math.isinf(guess):
-        raise OverflowError(f"{x} does not fit in a double")
-    best, best_err = guess, abs(x - mpf(guess))
-    for other in (math.nextafter(guess, -math.inf), math.nextafter(guess, math.inf)):
-        err = abs(x - mpf(other))
-        if err < best_err or (err == best_err and _is_even(other) and not _is_even(best)):
-            best, best_err = other, err
-    return best
-
 
 def split(value, extra=0):
     """(hi, lo): value + extra rounded to a double, and the rest rounded to a double.
@@ -310,6 +287,50 @@ def p_grid(count, step):
                 for k in range(1, count + 1)]
 
 
+#: The double nearest 1/e, as lambertw.f90 uses it (the key z + 1/e_hi of its tables)
+INV_E_HI = 0.36787944117144233
+
+
+def geo_seams(kmin, kmax):
+    """Boundaries 2**k (1 + j/16) of the geometric tables of lambertw.f90 (tools/
+    make_lambertw_tables.py) for binades kmin..kmax, and the top 2**(kmax+1)."""
+    return [math.ldexp(16 + j, k - 4) for k in range(kmin, kmax + 1) for j in range(16)] \
+        + [math.ldexp(1.0, kmax + 1)]
+
+
+def nearest_exp(y):
+    """The double nearest exp(y) for the mpf or float y (None if it underflows to 0)."""
+    with mp.workdps(DPS_Z_CHECK):
+        v = mp.exp(mpf(y))
+        if v < mpf(TINY_SUB) / 2:
+            return None
+        return nearest_double(v)
+
+
+def seam_points(func):
+    """Every seam of the tables of lambertw.f90 for func, with one double either side:
+    the interval boundaries of each geometric table (in its key: z + 1/e_hi, |z|, z, t,
+    ln z or -ln(-z)) and the switches between methods."""
+    if func == "w0":
+        zs = [d - INV_E_HI for d in geo_seams(-15, -4) if d - INV_E_HI <= -0.25]
+        zs += [-s for s in geo_seams(-6, -3) if -0.25 <= -s <= -2.0**-6]
+        zs += [z for z in geo_seams(-6, 9) if z <= 1024.0]
+        zs += [nearest_exp(y) for y in geo_seams(2, 9) if y < 709.7]
+        zs += [-0.25, -2.0**-6, 2.0**-6, 1024.0, 2.0**-60, -2.0**-60, HUGE]
+        zs += [(2.0**-12 / (2 * 2.718281828459045) + 1.2428753672788363e-17) - INV_E_HI]
+        return [z for z in double_windows(zs, 1, double_below_branch()) if z <= HUGE]
+    if func == "wm1":
+        zs = [d - INV_E_HI for d in geo_seams(-15, -4) if d - INV_E_HI <= -0.25]
+        zs += [-s for s in geo_seams(-20, -3) if -0.25 <= -s <= -2.0**-20]
+        zs += [-v for v in (nearest_exp(-y) for y in geo_seams(3, 9)) if v is not None]
+        zs += [-0.25, -2.0**-20, -TINY_NORMAL]
+        points = double_windows(zs, 1, double_below_branch())
+        return [z for z in points if z < 0]
+    top = 4 if func == "w0p1" else 9
+    ts = geo_seams(-13, top) + [2.0**-13, 2.0**-600]
+    return double_windows(ts, 1, 0.0)
+
+
 def draw(rng, count, sampler, fixed=()):
     """count distinct doubles: the fixed ones, then sampler(rng) until full; sorted."""
     points = set(fixed)
@@ -346,6 +367,8 @@ def regions():
                 seams = [nearest_double(minus_inv_e() + mpf(q) ** 2 / (2 * mp.e)) for q in ps]
             yield "pgrid2", func, double_windows(seams + [-0.05, 0.05, 758.0], 8,
                                                  double_below_branch())
+        # seams of the geometric tables and method switches of lambertw.f90
+        yield "seams", func, seam_points(func)
         yield "neg", func, draw(region_rng(func, "neg"), POINTS,
                                 lambda r: r.uniform(-0.358, -1e-3))
         top = 1e-3 if func == "w0" else 1e-1
@@ -369,6 +392,7 @@ def regions():
                                     lambda r: log_uniform(r, 1e-3, 10.0))
         # seams of tables in s = sqrt(2t) with spacings down to 1/32, s up to 4
         yield "sgrid", func, double_windows([(k / 32) ** 2 / 2 for k in range(1, 129)], 8, 0.0)
+        yield "seams", func, seam_points(func)
 
 
 BRANCH = {"w0": 0, "wm1": -1, "w0p1": 0, "wm1p1": -1}

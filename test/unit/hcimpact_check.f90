@@ -21,7 +21,7 @@ module hcimpact_check
    private
 
    public :: ulp_error, check_ulps, check_close, median
-   public :: format_real, reference_path
+   public :: format_real, reference_path, read_labelled_table, int_text
 
    !> Environment variable naming the directory of the reference data
    character(len=*), parameter :: reference_env = "HCIMPACT_REFERENCE_DIR"
@@ -326,6 +326,89 @@ contains
          path = dir // "/" // name
       end if
    end function reference_path
+
+   !> Read a reference file of rows `region,func,v1,...,vn` (n = size(values, 1)):
+   !> two text labels and n reals. Empty lines and lines starting with `#` are
+   !> skipped. On an unreadable or malformed line, or a file that cannot be opened,
+   !> `error` says which (path and line number) and the arrays are not allocated.
+   subroutine read_labelled_table(error, name, columns, region, func, values)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      !> File name inside the reference directory (see reference_path)
+      character(len=*), intent(in) :: name
+      !> Number n of reals per row
+      integer, intent(in) :: columns
+      !> The labels of each row
+      character(len=*), allocatable, intent(out) :: region(:), func(:)
+      !> The reals, one column per row
+      real(wp), allocatable, intent(out) :: values(:, :)
+
+      character(len=:), allocatable :: path
+      character(len=1024) :: line, message
+      integer :: unit, stat, pass, rows, line_number, c1, c2
+
+      path = reference_path(name)
+      open(newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=message)
+      if (stat /= 0) then
+         call test_failed(error, "cannot open the reference file " // path, trim(message), &
+            & "set " // reference_env // " to the directory of " // name)
+         return
+      end if
+      ! Two passes: count the rows, then read them into arrays of that size.
+      do pass = 1, 2
+         rows = 0
+         line_number = 0
+         do
+            read(unit, '(a)', iostat=stat) line
+            if (is_iostat_end(stat)) exit
+            line_number = line_number + 1
+            if (stat /= 0 .or. len_trim(line) == len(line)) then
+               call fail(": cannot read line ")
+               return
+            end if
+            if (len_trim(line) == 0 .or. line(1:1) == "#") cycle
+            rows = rows + 1
+            if (pass == 1) cycle
+            c1 = index(line, ",")
+            c2 = 0
+            if (c1 > 0) c2 = index(line(c1 + 1:), ",") + c1
+            stat = 1
+            if (c2 > c1) read(line(c2 + 1:), *, iostat=stat) values(:, rows)
+            if (stat /= 0) then
+               call fail(": malformed line ")
+               return
+            end if
+            region(rows) = line(:c1 - 1)
+            func(rows) = line(c1 + 1:c2 - 1)
+         end do
+         if (pass == 1) then
+            allocate(region(rows), func(rows), values(columns, rows))
+            rewind(unit)
+         end if
+      end do
+      close(unit)
+
+   contains
+
+      !> Report the current line, close the file and leave nothing allocated.
+      subroutine fail(what)
+         character(len=*), intent(in) :: what
+         call test_failed(error, path // what // int_text(line_number), trim(line))
+         close(unit)
+         if (allocated(values)) deallocate(region, func, values)
+      end subroutine fail
+   end subroutine read_labelled_table
+
+   !> An integer as text, without blanks.
+   pure function int_text(i) result(text)
+      !> The integer
+      integer, intent(in) :: i
+      !> Its decimal digits
+      character(len=:), allocatable :: text
+      character(len=16) :: buffer
+      write(buffer, '(i0)') i
+      text = trim(buffer)
+   end function int_text
 
    !> A double with 17 significant digits (enough to identify it), or
    !> NaN / Infinity / -Infinity.

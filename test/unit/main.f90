@@ -14,6 +14,8 @@ program tester
    use test_quadrature, only : collect_quadrature
    use test_restitution, only : collect_restitution
    use test_impact, only : collect_impact
+   use test_double_double, only : collect_double_double
+   use test_modified_cc, only : collect_modified_cc
    implicit none
    type(testsuite_type), allocatable :: testsuites(:)
 
@@ -22,7 +24,9 @@ program tester
       new_testsuite("lambertw", collect_lambertw), &
       new_testsuite("quadrature", collect_quadrature), &
       new_testsuite("restitution", collect_restitution), &
-      new_testsuite("impact", collect_impact) &
+      new_testsuite("impact", collect_impact), &
+      new_testsuite("double_double", collect_double_double), &
+      new_testsuite("modified_cc", collect_modified_cc) &
       ]
 
    call run_tester(testsuites)

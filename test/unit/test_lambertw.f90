@@ -16,7 +16,7 @@ module test_lambertw
       & ieee_negative_inf, ieee_is_nan, ieee_is_finite, ieee_next_after
    use testdrive, only : new_unittest, unittest_type, error_type, check, test_failed
    use hcimpact, only : wp, lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1
-   use hcimpact_check, only : ulp_error, median, format_real, reference_path
+   use hcimpact_check, only : ulp_error, median, format_real, read_labelled_table, int_text
    implicit none
    private
 
@@ -43,14 +43,14 @@ module test_lambertw
 
    !> Every (function, region) of the reference file with an accuracy test; a test
    !> checks that the file holds no other (so a new region cannot go untested)
-   character(len=*), parameter :: accuracy_cases(2, 23) = reshape([ character(len=name_len) :: &
+   character(len=*), parameter :: accuracy_cases(2, 27) = reshape([ character(len=name_len) :: &
       & "w0", "branch300", "w0", "near16_6", "w0", "near6_2", "w0", "pgrid", "w0", "pgrid2", &
-      & "w0", "neg", &
+      & "w0", "seams", "w0", "neg", &
       & "w0", "negtiny", "w0", "w0mid", "w0", "w0pos", "w0", "subnormal", &
-      & "wm1", "branch300", "wm1", "near16_6", "wm1", "near6_2", "wm1", "pgrid", "wm1", "neg", &
-      & "wm1", "negtiny", "wm1", "subnormal", &
-      & "w0p1", "tlog", "w0p1", "tswitch", "w0p1", "sgrid", &
-      & "wm1p1", "tlog", "wm1p1", "tswitch", "wm1p1", "sgrid"], [2, 23])
+      & "wm1", "branch300", "wm1", "near16_6", "wm1", "near6_2", "wm1", "pgrid", "wm1", "seams", &
+      & "wm1", "neg", "wm1", "negtiny", "wm1", "subnormal", &
+      & "w0p1", "tlog", "w0p1", "tswitch", "w0p1", "sgrid", "w0p1", "seams", &
+      & "wm1p1", "tlog", "wm1p1", "tswitch", "wm1p1", "sgrid", "wm1p1", "seams"], [2, 27])
 
    !> The reference file, read once on first use
    type :: reference_table
@@ -90,6 +90,7 @@ contains
          & new_unittest("w0-near6_2", test_w0_near6_2), &
          & new_unittest("w0-pgrid", test_w0_pgrid), &
          & new_unittest("w0-pgrid2", test_w0_pgrid2), &
+         & new_unittest("w0-seams", test_w0_seams), &
          & new_unittest("w0-neg", test_w0_neg), &
          & new_unittest("w0-negtiny", test_w0_negtiny), &
          & new_unittest("w0-w0mid", test_w0_w0mid), &
@@ -99,15 +100,18 @@ contains
          & new_unittest("wm1-near16_6", test_wm1_near16_6), &
          & new_unittest("wm1-near6_2", test_wm1_near6_2), &
          & new_unittest("wm1-pgrid", test_wm1_pgrid), &
+         & new_unittest("wm1-seams", test_wm1_seams), &
          & new_unittest("wm1-neg", test_wm1_neg), &
          & new_unittest("wm1-negtiny", test_wm1_negtiny), &
          & new_unittest("wm1-subnormal", test_wm1_subnormal), &
          & new_unittest("w0p1-tlog", test_w0p1_tlog), &
          & new_unittest("w0p1-tswitch", test_w0p1_tswitch), &
          & new_unittest("w0p1-sgrid", test_w0p1_sgrid), &
+         & new_unittest("w0p1-seams", test_w0p1_seams), &
          & new_unittest("wm1p1-tlog", test_wm1p1_tlog), &
          & new_unittest("wm1p1-tswitch", test_wm1p1_tswitch), &
          & new_unittest("wm1p1-sgrid", test_wm1p1_sgrid), &
+         & new_unittest("wm1p1-seams", test_wm1p1_seams), &
          & new_unittest("edge", test_edge), &
          & new_unittest("nan", test_nan), &
          & new_unittest("below-branch-point", test_below_branch_point), &
@@ -169,48 +173,6 @@ contains
       end if
    end function ulp_text
 
-   !> Text of an integer, no blanks.
-   function int_text(i) result(text)
-      !> Value
-      integer, intent(in) :: i
-      character(len=:), allocatable :: text
-      character(len=16) :: buffer
-      write(buffer, '(i0)') i
-      text = trim(buffer)
-   end function int_text
-
-   !> Split one data row `region,func,x,ref_hi,ref_lo`; stat /= 0 if malformed.
-   subroutine parse_row(line, region, func, x, ref_hi, ref_lo, stat)
-      !> Row of the file
-      character(len=*), intent(in) :: line
-      !> Region name
-      character(len=*), intent(out) :: region
-      !> Function name
-      character(len=*), intent(out) :: func
-      !> Input and reference
-      real(wp), intent(out) :: x, ref_hi, ref_lo
-      !> Zero on success
-      integer, intent(out) :: stat
-      integer :: comma(4), i, next, start
-      start = 1
-      do i = 1, 4
-         next = index(line(start:), ",")
-         if (next == 0) then
-            stat = 1
-            return
-         end if
-         comma(i) = start + next - 1
-         start = comma(i) + 1
-      end do
-      region = line(:comma(1) - 1)
-      func = line(comma(1) + 1:comma(2) - 1)
-      read(line(comma(2) + 1:comma(3) - 1), *, iostat=stat) x
-      if (stat /= 0) return
-      read(line(comma(3) + 1:comma(4) - 1), *, iostat=stat) ref_hi
-      if (stat /= 0) return
-      read(line(comma(4) + 1:), *, iostat=stat) ref_lo
-   end subroutine parse_row
-
    !> Read the reference file into `table`, once. (test-drive may run the tests of a
    !> suite in OpenMP threads: the first reader holds the others back.)
    subroutine load_table(error)
@@ -221,56 +183,16 @@ contains
       !$omp end critical (test_lambertw_table)
    end subroutine load_table
 
-   !> Read the reference file into `table`.
+   !> Read the reference file into `table` (rows `region,func,x,ref_hi,ref_lo`).
    subroutine read_table(error)
       !> Error handling
       type(error_type), allocatable, intent(out) :: error
-      character(len=:), allocatable :: path
-      character(len=256) :: line, message
-      integer :: unit, stat, pass, rows, line_number
-
-      if (allocated(table%x)) deallocate(table%region, table%func, table%x, table%ref_hi, &
-         & table%ref_lo)      ! left over from a read that failed half-way
-      path = reference_path(reference_file)
-      open(newunit=unit, file=path, status="old", action="read", iostat=stat, iomsg=message)
-      if (stat /= 0) then
-         call test_failed(error, "cannot open the reference file " // path, trim(message), &
-            & "set HCIMPACT_REFERENCE_DIR to the directory of " // reference_file)
-         return
-      end if
-      ! Two passes: count the rows, then read them into arrays of that size.
-      do pass = 1, 2
-         rows = 0
-         line_number = 0
-         do
-            read(unit, '(a)', iostat=stat) line
-            if (is_iostat_end(stat)) exit
-            line_number = line_number + 1
-            if (stat /= 0 .or. len_trim(line) == len(line)) then
-               call test_failed(error, path // ": cannot read line " // int_text(line_number))
-               close(unit)
-               return
-            end if
-            if (len_trim(line) == 0 .or. line(1:1) == "#") cycle
-            rows = rows + 1
-            if (pass == 2) then
-               call parse_row(trim(line), table%region(rows), table%func(rows), &
-                  & table%x(rows), table%ref_hi(rows), table%ref_lo(rows), stat)
-               if (stat /= 0) then
-                  call test_failed(error, path // ": malformed line " // int_text(line_number), &
-                     & trim(line))
-                  close(unit)
-                  return
-               end if
-            end if
-         end do
-         if (pass == 1) then
-            allocate(table%region(rows), table%func(rows), table%x(rows), &
-               & table%ref_hi(rows), table%ref_lo(rows))
-            rewind(unit)
-         end if
-      end do
-      close(unit)
+      real(wp), allocatable :: values(:, :)
+      call read_labelled_table(error, reference_file, 3, table%region, table%func, values)
+      if (allocated(error)) return
+      table%x = values(1, :)
+      table%ref_hi = values(2, :)
+      table%ref_lo = values(3, :)
       table_loaded = .true.
    end subroutine read_table
 
@@ -533,6 +455,38 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call check_region(error, "w0", "pgrid2")
    end subroutine test_w0_pgrid2
+
+   !> W0 at every seam of the tables of lambertw.f90 and its method switches (one
+   !> double either side)
+   subroutine test_w0_seams(error)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      call check_region(error, "w0", "seams")
+   end subroutine test_w0_seams
+
+   !> W-1 at every seam of the tables of lambertw.f90 and its method switches (one
+   !> double either side)
+   subroutine test_wm1_seams(error)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      call check_region(error, "wm1", "seams")
+   end subroutine test_wm1_seams
+
+   !> 1 + W0 from t at every seam of the tables of lambertw.f90 and its method switches (one
+   !> double either side)
+   subroutine test_w0p1_seams(error)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      call check_region(error, "w0p1", "seams")
+   end subroutine test_w0p1_seams
+
+   !> 1 + W-1 from t at every seam of the tables of lambertw.f90 and its method switches (one
+   !> double either side)
+   subroutine test_wm1p1_seams(error)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      call check_region(error, "wm1p1", "seams")
+   end subroutine test_wm1p1_seams
 
    !> W0 at z in [-0.358, -1e-3]
    subroutine test_w0_neg(error)

@@ -1,0 +1,219 @@
+! SPDX-License-Identifier: Apache-2.0
+!> Modified Clenshaw-Curtis quadrature for integrals with an algebraic end singularity,
+!>
+!>     int_0^D (d/D)^(c-1) F(d) dd,      0 < c <= 1,  F analytic on [0, D],
+!>
+!> the method of Piessens and Branders ("The evaluation and application of some modified
+!> moments", BIT 13, 1973, 443-450; QUADPACK's QAWS, Piessens et al. 1983): F is
+!> interpolated at the Chebyshev points x_j = cos(pi j/N) of [-1, 1] (d = D (1 + x)/2),
+!> its Chebyshev coefficients a_k come from a discrete cosine transform, and the integral
+!> is (D/2) sum'' a_k J_k with the modified moments
+!>
+!>     J_k(y) = int_-1^y ((1 + x)/2)^(c-1) T_k(x) dx,
+!>
+!> complete (y = 1) for a whole interval, incomplete (y < 1) for the part [0, d]
+!> of it, d = D (1 + y)/2, from the same coefficients (no new evaluation of F).
+!>
+!> The moments obey a three-term recurrence, derived here from
+!> 2 T_m = T'_(m+1)/(m+1) - T'_(m-1)/(m-1) and the integration by parts
+!> int_-1^y w (1+x) T'_m dx = C T_m(y) - c J_m(y),  w = ((1+x)/2)^(c-1),
+!> C = (1+y) w(y) = 2 ((1+y)/2)^c (no boundary term at -1, since c > 0):
+!>
+!>     (m+1+c) J_(m+1) = C T_(m+1)(y) - C T_(m-1)(y) (m+1)/(m-1) - 2 (m+1) J_m
+!>                      + (c+1-m) (m+1)/(m-1) J_(m-1),          m >= 2,
+!>
+!> with J_0 = C/c, J_1 = C (2s/(c+1) - 1/c) (s = (1+y)/2) and
+!> (2+c) J_2 = C T_2(y) - 4 J_1 - 2 J_0. Its homogeneous solutions grow only linearly
+!> ((r+1)^2 = 0 asymptotically), so the forward recurrence is stable: checked against
+!> mpmath (test/unit/test_modified_cc.f90) for 0.1 <= n <= 12 (c = 1/(n+1)),
+!> -0.999 <= y <= 1, k <= 48, the error grows like 4e-17 k^2 J_0(y) up to k = 24
+!> (2e-14 J_0 there, 3e-15 J_0 for the complete moments), then linearly (5e-14 J_0 at
+!> k = 48); the coefficients a_k it multiplies decay geometrically, so the moments'
+!> share of the error of an accepted rule stays near 1e-16 of the integral.
+!>
+!> The rules are nested: N = 12, 24, 48 share their nodes, so a rule that does not
+!> converge hands all its values to the next. Convergence is judged by the last two
+!> coefficients (an analytic F has geometrically decaying a_k; their sum bounds the
+!> neglected tail and the aliasing error when the decay is faster than 1/2 per degree).
+!> See doc/quadrature.md.
+module hcimpact_modified_cc
+   use hcimpact_kinds, only : wp
+   implicit none
+   private
+
+   public :: cc_max_degree, cc_moments, cc_coefficients, cc_sum, cc_tail, cc_converged
+   public :: cc_end_share, cc_turn_share, cc_node, inv_end_share_hi, inv_end_share_lo
+
+   !> Largest degree N of the rules (nodes of every rule are among its N + 1)
+   integer, parameter :: cc_max_degree = 48
+
+   integer, parameter :: qp = selected_real_kind(30)
+   integer, parameter :: xp = merge(qp, wp, qp > 0)
+   integer :: i_, j_
+   real(xp), parameter :: pi_xp = acos(-1.0_xp)
+
+   !> cos(pi j k/48), j, k = 0 .. 48 (folded by the compiler, rounded once)
+   real(wp), parameter :: cosines(0:cc_max_degree, 0:cc_max_degree) = reshape( &
+      & [((real(cos(pi_xp * real(i_ * j_, xp) / cc_max_degree), wp), i_ = 0, cc_max_degree), &
+      & j_ = 0, cc_max_degree)], [cc_max_degree + 1, cc_max_degree + 1])
+   !> (1 + x_j)/2 = cos^2(pi j/96): node j's distance from the singular end, per unit D
+   real(wp), parameter :: cc_end_share(0:cc_max_degree) = &
+      & [(real(cos(pi_xp * i_ / (2 * cc_max_degree))**2, wp), i_ = 0, cc_max_degree)]
+   !> 2/(1 + x_j) = 1/cos^2(pi j/96), j <= 24, as the double nearest to it and the
+   !> double nearest to the rest: a product with both costs about one rounding, as a
+   !> division by cc_end_share did (the callers scale by it at every node)
+   real(wp), parameter :: inv_end_share_hi(0:cc_max_degree / 2) = &
+      & [(real(1.0_xp / cos(pi_xp * i_ / (2 * cc_max_degree))**2, wp), &
+      & i_ = 0, cc_max_degree / 2)]
+   !> The rest 2/(1 + x_j) - inv_end_share_hi(j)
+   real(wp), parameter :: inv_end_share_lo(0:cc_max_degree / 2) = &
+      & [(real(1.0_xp / cos(pi_xp * i_ / (2 * cc_max_degree))**2 &
+      & - real(real(1.0_xp / cos(pi_xp * i_ / (2 * cc_max_degree))**2, wp), xp), wp), &
+      & i_ = 0, cc_max_degree / 2)]
+   !> (1 - x_j)/2 = sin^2(pi j/96): node j's distance from the regular end, per unit D
+   real(wp), parameter :: cc_turn_share(0:cc_max_degree) = &
+      & [(real(sin(pi_xp * i_ / (2 * cc_max_degree))**2, wp), i_ = 0, cc_max_degree)]
+
+   !> (m + 1)/(m - 1) of the moment recurrence
+   real(wp), parameter :: ratio(2:cc_max_degree) = &
+      & [(real(i_ + 1, wp) / real(i_ - 1, wp), i_ = 2, cc_max_degree)]
+   !> The nodes x_j = cos(pi j/48)
+   real(wp), parameter :: cc_node(0:cc_max_degree) = cosines(:, 1)
+
+contains
+
+   !> Modified moments J_k(y), k = 0 .. n, of the weight ((1 + x)/2)^(c-1) on [-1, y],
+   !> given s = (1 + y)/2 in (0, 1] (s = 1: the complete moments) and C = 2 s^c.
+   pure subroutine cc_moments(c, inv_c, s, big_c, n, moment)
+      !> Exponent c = 1 - alpha, 0 < c <= 1
+      real(wp), intent(in) :: c
+      !> 1/c, given separately because it may be exact where c is not (c = 1/(n+1))
+      real(wp), intent(in) :: inv_c
+      !> (1 + y)/2, the share of the interval, 0 < s <= 1
+      real(wp), intent(in) :: s
+      !> 2 s^c
+      real(wp), intent(in) :: big_c
+      !> Highest degree, 2 <= n <= cc_max_degree
+      integer, intent(in) :: n
+      !> J_0 .. J_n
+      real(wp), intent(out) :: moment(0:)
+      real(wp) :: y, t(0:cc_max_degree + 1)
+      real(wp) :: inv_den(2:cc_max_degree), drive(2:cc_max_degree)
+      integer :: m
+
+      y = 2.0_wp * s - 1.0_wp
+      if (s >= 1.0_wp) y = 1.0_wp
+      t(0) = 1.0_wp
+      t(1) = y
+      do m = 1, n
+         t(m + 1) = 2.0_wp * y * t(m) - t(m - 1)
+      end do
+      moment(0) = big_c * inv_c
+      moment(1) = big_c * (2.0_wp * s / (c + 1.0_wp) - inv_c)
+      moment(2) = (big_c * t(2) - 4.0_wp * moment(1) - 2.0_wp * moment(0)) / (2.0_wp + c)
+      ! The divisions by m + 1 + c do not depend on the moments: taken out of the
+      ! recurrence as reciprocals, they no longer lengthen its chain of dependent
+      ! operations (a division takes four to five times as long as a product), and
+      ! the extra rounding is far below the recurrence's own error growth.
+      do m = 2, n - 1
+         inv_den(m) = 1.0_wp / (real(m + 1, wp) + c)
+         drive(m) = big_c * (t(m + 1) - ratio(m) * t(m - 1))
+      end do
+      do m = 2, n - 1
+         moment(m + 1) = (drive(m) - 2.0_wp * real(m + 1, wp) * moment(m) &
+            & + (c + 1.0_wp - real(m, wp)) * ratio(m) * moment(m - 1)) * inv_den(m)
+      end do
+   end subroutine cc_moments
+
+   !> Chebyshev coefficients a_k, k = 0 .. n, of the interpolant of f at the nodes
+   !> x_j = cos(pi j/n): a_k = (2/n) sum''_j f_j cos(pi j k/n) (first and last halved).
+   !> n must divide cc_max_degree; f(j) is the value at node j of this rule.
+   pure subroutine cc_coefficients(n, f, a)
+      !> Degree: 12, 24 or 48
+      integer, intent(in) :: n
+      !> Values at the n + 1 nodes
+      real(wp), intent(in) :: f(0:)
+      !> Coefficients
+      real(wp), intent(out) :: a(0:)
+      real(wp) :: even(0:cc_max_degree / 2), odd(0:cc_max_degree / 2), scale
+      integer :: j, k, stride, half
+
+      ! cos(pi (n-j) k/n) = (-1)^k cos(pi j k/n): fold the nodes j and n - j first
+      stride = cc_max_degree / n
+      half = n / 2
+      even(0) = 0.5_wp * (f(0) + f(n))
+      odd(0) = 0.5_wp * (f(0) - f(n))
+      do j = 1, half - 1
+         even(j) = f(j) + f(n - j)
+         odd(j) = f(j) - f(n - j)
+      end do
+      even(half) = f(half)
+      odd(half) = 0.0_wp
+      scale = 2.0_wp / real(n, wp)
+      ! Node by node, all coefficients at once: each a_k is still summed over j in
+      ! increasing order (the same roundings as a sum per coefficient), but the n + 1
+      ! sums are independent and advance together instead of one long chain each.
+      a(0:n) = 0.0_wp
+      do j = 0, half
+         do k = 0, n, 2
+            a(k) = a(k) + even(j) * cosines(stride * k, j)
+         end do
+      end do
+      do j = 0, half - 1
+         do k = 1, n - 1, 2
+            a(k) = a(k) + odd(j) * cosines(stride * k, j)
+         end do
+      end do
+      a(0:n) = a(0:n) * scale
+   end subroutine cc_coefficients
+
+   !> sum''_k a_k J_k (first and last terms halved), k = 0 .. n.
+   pure function cc_sum(n, a, moment) result(total)
+      !> Degree
+      integer, intent(in) :: n
+      !> Coefficients and moments
+      real(wp), intent(in) :: a(0:), moment(0:)
+      !> The sum
+      real(wp) :: total
+      integer :: k
+      total = 0.5_wp * (a(0) * moment(0) + a(n) * moment(n))
+      do k = n - 1, 1, -1
+         total = total + a(k) * moment(k)
+      end do
+   end function cc_sum
+
+   !> Bound on the error of the degree-n rule, in units of the integral sum'' a_k J_k:
+   !> (|a_(n-1)| + |a_n|) J_0, the size of the first neglected coefficients (assumed
+   !> decaying at least geometrically) against the largest moment.
+   pure function cc_tail(n, a, moment) result(bound)
+      !> Degree
+      integer, intent(in) :: n
+      !> Coefficients and complete moments
+      real(wp), intent(in) :: a(0:), moment(0:)
+      !> Absolute error bound
+      real(wp) :: bound
+      bound = (abs(a(n - 1)) + abs(a(n))) * abs(moment(0))
+   end function cc_tail
+
+   !> Whether the degree-n rule is accepted: its tail bound `cc_tail` is at most
+   !> tol |total|, or at most the rounding noise of the transform, 4 eps max_j |f_j| J_0
+   !> (the coefficients of a resolved function stop decaying at the level of the
+   !> rounding errors of its values; no higher degree would do better).
+   pure function cc_converged(n, a, moment, total, fmax, tol) result(ok)
+      !> Degree
+      integer, intent(in) :: n
+      !> Coefficients and complete moments
+      real(wp), intent(in) :: a(0:), moment(0:)
+      !> The integral sum'' a_k J_k of this rule (or the part of it the a_k are added to)
+      real(wp), intent(in) :: total
+      !> Largest |f_j| given to cc_coefficients
+      real(wp), intent(in) :: fmax
+      !> Relative tolerance
+      real(wp), intent(in) :: tol
+      !> True when accepted
+      logical :: ok
+      ok = cc_tail(n, a, moment) <= tol * abs(total) &
+         & + 4.0_wp * epsilon(1.0_wp) * fmax * abs(moment(0))
+   end function cc_converged
+
+end module hcimpact_modified_cc
