@@ -41,7 +41,8 @@ module hcimpact_modified_cc
    implicit none
    private
 
-   public :: cc_max_degree, cc_moments, cc_coefficients, cc_sum, cc_tail, cc_converged
+   public :: cc_max_degree, cc_moments, cc_moments_pair, cc_coefficients, cc_sum, cc_tail, &
+      & cc_converged
    public :: cc_end_share, cc_turn_share, cc_node, inv_end_share_hi, inv_end_share_lo
 
    !> Largest degree N of the rules (nodes of every rule are among its N + 1)
@@ -79,6 +80,38 @@ module hcimpact_modified_cc
       & [(real(i_ + 1, wp) / real(i_ - 1, wp), i_ = 2, cc_max_degree)]
    !> The nodes x_j = cos(pi j/48)
    real(wp), parameter :: cc_node(0:cc_max_degree) = cosines(:, 1)
+
+   ! The cosines each degree's transform reads, cos(pi j k/n), folded as `cosines` is
+   ! (the same doubles, so the same results to the bit; gfortran 12 fails on a
+   ! constant built from elements of `cosines` itself) into one table per degree and
+   ! parity of k, with k running fastest, the rows padded with zeros to a multiple of 4
+   ! (block_sums forms four coefficients at a time; the padded ones are not used): the
+   ! transform then reads consecutive memory instead of every (2 stride)-th double of a
+   ! 49 x 49 table.
+   !> cos(pi j (2m)/12), m, j = 0 .. 6
+   real(wp), parameter :: cos_even12(0:7, 0:6) = reshape([((merge(real(cos(pi_xp &
+      & * real((8 * i_) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 6), &
+      & i_ = 0, 7), j_ = 0, 6)], [8, 7])
+   !> cos(pi j (2m+1)/12), m, j = 0 .. 5
+   real(wp), parameter :: cos_odd12(0:7, 0:5) = reshape([((merge(real(cos(pi_xp &
+      & * real((4 * (2 * i_ + 1)) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 5), &
+      & i_ = 0, 7), j_ = 0, 5)], [8, 6])
+   !> cos(pi j (2m)/24), m, j = 0 .. 12
+   real(wp), parameter :: cos_even24(0:15, 0:12) = reshape([((merge(real(cos(pi_xp &
+      & * real((4 * i_) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 12), &
+      & i_ = 0, 15), j_ = 0, 12)], [16, 13])
+   !> cos(pi j (2m+1)/24), m, j = 0 .. 11
+   real(wp), parameter :: cos_odd24(0:11, 0:11) = reshape([((merge(real(cos(pi_xp &
+      & * real((2 * (2 * i_ + 1)) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 11), &
+      & i_ = 0, 11), j_ = 0, 11)], [12, 12])
+   !> cos(pi j (2m)/48), m, j = 0 .. 24
+   real(wp), parameter :: cos_even48(0:27, 0:24) = reshape([((merge(real(cos(pi_xp &
+      & * real((2 * i_) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 24), &
+      & i_ = 0, 27), j_ = 0, 24)], [28, 25])
+   !> cos(pi j (2m+1)/48), m, j = 0 .. 23
+   real(wp), parameter :: cos_odd48(0:23, 0:23) = reshape([((merge(real(cos(pi_xp &
+      & * real((2 * i_ + 1) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 23), &
+      & i_ = 0, 23), j_ = 0, 23)], [24, 24])
 
 contains
 
@@ -125,6 +158,55 @@ contains
       end do
    end subroutine cc_moments
 
+   !> The complete moments (s = 1, C = 2) and the incomplete ones for s, C together:
+   !> the same values as two calls of cc_moments, to the bit (the same operations), in
+   !> one pass. The two recurrences are chains of dependent products; interleaved,
+   !> each fills the other's wait, and the reciprocals 1/(m + 1 + c) are formed once.
+   pure subroutine cc_moments_pair(c, inv_c, s, big_c, n, complete, partial)
+      !> Exponent c = 1 - alpha, 0 < c <= 1
+      real(wp), intent(in) :: c
+      !> 1/c (see cc_moments)
+      real(wp), intent(in) :: inv_c
+      !> (1 + y)/2 of the incomplete moments, 0 < s <= 1
+      real(wp), intent(in) :: s
+      !> 2 s^c
+      real(wp), intent(in) :: big_c
+      !> Highest degree, 2 <= n <= cc_max_degree
+      integer, intent(in) :: n
+      !> J_0 .. J_n for y = 1 and for y = 2 s - 1
+      real(wp), intent(out) :: complete(0:), partial(0:)
+      real(wp) :: y, t(0:cc_max_degree + 1)
+      real(wp) :: inv_den(2:cc_max_degree), drive(2:cc_max_degree), drive1(2:cc_max_degree)
+      integer :: m
+
+      y = 2.0_wp * s - 1.0_wp
+      if (s >= 1.0_wp) y = 1.0_wp
+      t(0) = 1.0_wp
+      t(1) = y
+      do m = 1, n
+         t(m + 1) = 2.0_wp * y * t(m) - t(m - 1)
+      end do
+      ! y = 1: T_k(1) = 1 (the recurrence 2 * 1 * 1 - 1 is exact)
+      complete(0) = 2.0_wp * inv_c
+      complete(1) = 2.0_wp * (2.0_wp * 1.0_wp / (c + 1.0_wp) - inv_c)
+      complete(2) = (2.0_wp * 1.0_wp - 4.0_wp * complete(1) - 2.0_wp * complete(0)) &
+         & / (2.0_wp + c)
+      partial(0) = big_c * inv_c
+      partial(1) = big_c * (2.0_wp * s / (c + 1.0_wp) - inv_c)
+      partial(2) = (big_c * t(2) - 4.0_wp * partial(1) - 2.0_wp * partial(0)) / (2.0_wp + c)
+      do m = 2, n - 1
+         inv_den(m) = 1.0_wp / (real(m + 1, wp) + c)
+         drive(m) = big_c * (t(m + 1) - ratio(m) * t(m - 1))
+         drive1(m) = 2.0_wp * (1.0_wp - ratio(m) * 1.0_wp)
+      end do
+      do m = 2, n - 1
+         complete(m + 1) = (drive1(m) - 2.0_wp * real(m + 1, wp) * complete(m) &
+            & + (c + 1.0_wp - real(m, wp)) * ratio(m) * complete(m - 1)) * inv_den(m)
+         partial(m + 1) = (drive(m) - 2.0_wp * real(m + 1, wp) * partial(m) &
+            & + (c + 1.0_wp - real(m, wp)) * ratio(m) * partial(m - 1)) * inv_den(m)
+      end do
+   end subroutine cc_moments_pair
+
    !> Chebyshev coefficients a_k, k = 0 .. n, of the interpolant of f at the nodes
    !> x_j = cos(pi j/n): a_k = (2/n) sum''_j f_j cos(pi j k/n) (first and last halved).
    !> n must divide cc_max_degree; f(j) is the value at node j of this rule.
@@ -136,10 +218,9 @@ contains
       !> Coefficients
       real(wp), intent(out) :: a(0:)
       real(wp) :: even(0:cc_max_degree / 2), odd(0:cc_max_degree / 2), scale
-      integer :: j, k, stride, half
+      integer :: j, half
 
       ! cos(pi (n-j) k/n) = (-1)^k cos(pi j k/n): fold the nodes j and n - j first
-      stride = cc_max_degree / n
       half = n / 2
       even(0) = 0.5_wp * (f(0) + f(n))
       odd(0) = 0.5_wp * (f(0) - f(n))
@@ -150,22 +231,69 @@ contains
       even(half) = f(half)
       odd(half) = 0.0_wp
       scale = 2.0_wp / real(n, wp)
-      ! Node by node, all coefficients at once: each a_k is still summed over j in
-      ! increasing order (the same roundings as a sum per coefficient), but the n + 1
-      ! sums are independent and advance together instead of one long chain each.
-      a(0:n) = 0.0_wp
-      do j = 0, half
-         do k = 0, n, 2
-            a(k) = a(k) + even(j) * cosines(stride * k, j)
-         end do
-      end do
-      do j = 0, half - 1
-         do k = 1, n - 1, 2
-            a(k) = a(k) + odd(j) * cosines(stride * k, j)
-         end do
-      end do
-      a(0:n) = a(0:n) * scale
+      select case (n)
+      case (12)
+         call fold_transform(half, even, odd, cos_even12, cos_odd12, scale, a)
+      case (24)
+         call fold_transform(half, even, odd, cos_even24, cos_odd24, scale, a)
+      case default
+         call fold_transform(half, even, odd, cos_even48, cos_odd48, scale, a)
+      end select
    end subroutine cc_coefficients
+
+   !> The coefficients from the folded values: a_(2m) = scale sum_j even_j cos_even(m, j),
+   !> a_(2m+1) = scale sum_j odd_j cos_odd(m, j), j = 0 .. h (odd: h - 1).
+   pure subroutine fold_transform(h, even, odd, cos_even, cos_odd, scale, a)
+      !> Half the degree
+      integer, intent(in) :: h
+      !> Folded values f_j + f_(n-j) and f_j - f_(n-j) (see cc_coefficients)
+      real(wp), intent(in) :: even(0:), odd(0:)
+      !> This degree's cosines, k (as m) running fastest, rows padded with zeros to a
+      !> multiple of 4
+      real(wp), intent(in) :: cos_even(0:, 0:), cos_odd(0:, 0:)
+      !> 2/n
+      real(wp), intent(in) :: scale
+      !> Coefficients a_0 .. a_(2h)
+      real(wp), intent(out) :: a(0:)
+      real(wp) :: ae(0:cc_max_degree / 2 + 3), ao(0:cc_max_degree / 2 + 3)
+      ! Blocks of four coefficients, their sums in registers over all j: each a_k is
+      ! still summed over j in increasing order (the same roundings as a sum per
+      ! coefficient, so the same values), the four sums are independent chains, and
+      ! no partial sum goes through memory. The padded rows give 0 and are not used.
+      call block_sums(h + 1, size(cos_even, 1), even, cos_even, ae)
+      call block_sums(h, size(cos_odd, 1), odd, cos_odd, ao)
+      a(0:2 * h:2) = ae(0:h) * scale
+      a(1:2 * h - 1:2) = ao(0:h - 1) * scale
+   end subroutine fold_transform
+
+   !> s_m = sum_j v_j c(m, j), j = 0 .. nj - 1, m = 0 .. nm - 1 (nm a multiple of 4),
+   !> each summed in increasing j
+   pure subroutine block_sums(nj, nm, v, c, sums)
+      !> Number of terms and of sums
+      integer, intent(in) :: nj, nm
+      !> Values and table
+      real(wp), intent(in) :: v(0:), c(0:, 0:)
+      !> The sums
+      real(wp), intent(out) :: sums(0:)
+      real(wp) :: s0, s1, s2, s3
+      integer :: j, m
+      do m = 0, nm - 4, 4
+         s0 = 0.0_wp
+         s1 = 0.0_wp
+         s2 = 0.0_wp
+         s3 = 0.0_wp
+         do j = 0, nj - 1
+            s0 = s0 + v(j) * c(m, j)
+            s1 = s1 + v(j) * c(m + 1, j)
+            s2 = s2 + v(j) * c(m + 2, j)
+            s3 = s3 + v(j) * c(m + 3, j)
+         end do
+         sums(m) = s0
+         sums(m + 1) = s1
+         sums(m + 2) = s2
+         sums(m + 3) = s3
+      end do
+   end subroutine block_sums
 
    !> sum''_k a_k J_k (first and last terms halved), k = 0 .. n.
    pure function cc_sum(n, a, moment) result(total)

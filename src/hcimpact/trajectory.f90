@@ -203,7 +203,8 @@ contains
          hq = u * u
          hq = ((0.5_wp - u * third) + 0.25_wp * hq) - hq * (x * tail)
       else
-         hq = ((u - dd_log(u + 1.0_wp)) / u) / u
+         ! one quotient by u^2 (two by u doubled the cost, for no accuracy needed)
+         hq = (u - dd_log(u + 1.0_wp)) / (u * u)
       end if
    end function h_over_square_dd
 
@@ -343,7 +344,8 @@ contains
             ! from a double start, one step squares the error (below 1e-30)
             do it = 1, 1
                phi = h_over_square_dd(u) * u * u - hb
-               u = u - phi * (u + 1.0_wp) / u
+               ! the step is at the 1e-16 level: its quotient in double suffices
+               u = u - phi%hi * (u%hi + 1.0_wp) / u%hi
             end do
             tr%a = u + 1.0_wp
             kb = -u
@@ -358,7 +360,8 @@ contains
             do it = 1, 2
                ea = dd_exp(lm)
                phi = ((ea - 1.0_wp) - lm) - hb
-               lm = lm - phi / (ea - 1.0_wp)
+               ! e^L - 1 <= -1/2 here; the step in double is exact enough for its size
+               lm = lm - phi%hi / (ea%hi - 1.0_wp)
             end do
             tr%a = dd_exp(lm)
             kb = 1.0_wp - tr%a

@@ -774,9 +774,18 @@ def make_cases():
     for n in (1.5, 7.42):                # the seams: beta = 8 and ln(1 + beta) = 10
         for beta in (7.9, 8.1, 2.1e4, 2.3e4):
             big.append((n, beta))
+    # small exponents at moderate beta, where the time of the peak from one rule on the
+    # whole compression lost up to 4.6 ulp, and the seam ln(1 + beta) = 5 (beta = 147.4)
+    # that replaced ln(1 + beta) = 10 for the compression
+    for n in (0.1, 0.35, 0.6):
+        for beta in (100.0, 146.0, 149.0, 250.0, 560.0, 1.35e3, 4.6e3, 1.21e4):
+            big.append((n, beta))
     for j, (n, beta) in enumerate(big):
         m, c, V = combos[j % 3]
         cases.append(dict(m=m, c=c, n=n, V=V, b=beta / V, tag="large-beta"))
+    # the worst case of that sweep before the cut moved to L_e = 5 (time of the peak
+    # 4.6 ulp off), with its exact inputs
+    cases.append(dict(m=0.37, c=3.1e7, n=0.1, V=1.3, b=9289.395041464571, tag="large-beta"))
     for cs in cases:
         for key in ("m", "c", "n", "V", "b"):
             cs[key] = float(cs[key])

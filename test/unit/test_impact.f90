@@ -27,11 +27,13 @@ module test_impact
       & hcimpact_err_null, hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &
       & velocity_at_depth, time_law, time_law_samples, damping_for_restitution, &
-      & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta
+      & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta, &
+      & power_phase_pieces, max_pieces, cc_max_beta, cc_max_compression_le
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome, c_impact
-   use hcimpact_check, only : ulp_error, median, format_real, reference_path, check_close
+   use hcimpact_check, only : ulp_error, median, format_real, reference_path, check_close, &
+      & int_text
    implicit none
    private
 
@@ -51,6 +53,17 @@ module test_impact
    real(wp), parameter :: goal_time_law = 8.0_wp
    !> Largest number of integrand evaluations of one quadrature for beta <= 100
    integer, parameter :: goal_evaluations = 200
+   !> Largest number of evaluations of one quadrature on graded pieces, beta up to 1e12
+   !> and n in 0.1 .. 10 (about 240 are needed: 5 to 8 pieces of 25 to 49 values)
+   integer, parameter :: goal_piece_evaluations = 400
+   !> Largest second difference of a time across a seam of the graded pieces, in ulp:
+   !> the rounding noise of three values of up to goal_max = 4 ulps error each, less
+   !> than that in practice (7 seen: for n = 0.1 the time of the peak just below the
+   !> compression's seam is 4.25 ulp off by mpmath, on the side that is not cut)
+   real(wp), parameter :: goal_seam = 10.0_wp
+   !> Exponents of the graded-piece tests
+   real(wp), parameter :: piece_exponents(6) = [0.1_wp, 0.5_wp, 1.0_wp, 1.5_wp, 3.0_wp, &
+      & 10.0_wp]
 
    !> Rows of impact.csv: inputs m, c, n, V, b, then (hi, lo) of each output
    type :: impact_table
@@ -131,22 +144,16 @@ contains
          & new_unittest("user-law-invalid", test_user_law_invalid), &
          & new_unittest("c-interface", test_c_interface), &
          & new_unittest("tiny-exponent", test_tiny_exponent), &
-         & new_unittest("fuzz-findings", test_fuzz_findings) &
+         & new_unittest("fuzz-findings", test_fuzz_findings), &
+         & new_unittest("graded-pieces-tile", test_graded_pieces_tile), &
+         & new_unittest("graded-pieces-evaluations", test_graded_pieces_evaluations), &
+         & new_unittest("graded-pieces-seams", test_graded_pieces_seams) &
          & ]
    end subroutine collect_impact
 
    ! ------------------------------------------------------------------------------
    ! Reference files
    ! ------------------------------------------------------------------------------
-
-   !> Text of an integer
-   pure function itoa(i) result(text)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: text
-      character(len=16) :: buffer
-      write(buffer, '(i0)') i
-      text = trim(buffer)
-   end function itoa
 
    !> Text of an error in ulps
    pure function utoa(x) result(text)
@@ -200,7 +207,7 @@ contains
             if (pass == 2) then
                read(line, *, iostat=stat) data(:, rows)
                if (stat /= 0) then
-                  call test_failed(error, path // ": malformed row " // itoa(rows), trim(line))
+                  call test_failed(error, path // ": malformed row " // int_text(rows), trim(line))
                   close(unit)
                   return
                end if
@@ -272,7 +279,7 @@ contains
       call load_impacts(error)
       if (allocated(error)) return
       call check(error, size(impacts%input, 2) >= 27, &
-         & "impact.csv holds " // itoa(size(impacts%input, 2)) // " rows, expected >= 27")
+         & "impact.csv holds " // int_text(size(impacts%input, 2)) // " rows, expected >= 27")
       if (allocated(error)) return
       call load_timelaws(error)
       if (allocated(error)) return
@@ -294,7 +301,8 @@ contains
       do i = 1, n
          call impact(row_contact(i), outcome, stat)
          if (stat /= hcimpact_ok) then
-            call test_failed(error, "impact.csv row " // itoa(i) // ": status " // itoa(stat))
+            call test_failed(error, "impact.csv row " // int_text(i) // ": status " &
+               & // int_text(stat))
             return
          end if
          actual(i) = element(outputs(outcome), j)
@@ -303,9 +311,9 @@ contains
       worst = maxloc(err, dim=1)
       if (err(worst) > goal_max(j) .or. median(err) > goal_median) then
          call test_failed(error, trim(output_names(j)) // ": max " // utoa(err(worst)) &
-            & // " ulp, median " // utoa(median(err)) // " ulp over " // itoa(n) &
+            & // " ulp, median " // utoa(median(err)) // " ulp over " // int_text(n) &
             & // " impacts (goal: max <= " // utoa(goal_max(j)) // ", median <= " &
-            & // utoa(goal_median) // ")", "worst: row " // itoa(worst) // ", got " &
+            & // utoa(goal_median) // ")", "worst: row " // int_text(worst) // ", got " &
             & // format_real(actual(worst)) // ", reference " &
             & // format_real(impacts%ref_hi(j, worst)))
       end if
@@ -374,8 +382,9 @@ contains
             worst = i
          end if
       end do
-      call check(error, most <= goal_evaluations, "a quadrature took " // itoa(most) &
-         & // " evaluations (row " // itoa(worst) // "), goal <= " // itoa(goal_evaluations))
+      call check(error, most <= goal_evaluations, "a quadrature took " // int_text(most) &
+         & // " evaluations (row " // int_text(worst) // "), goal <= " &
+         & // int_text(goal_evaluations))
    end subroutine test_evaluations
 
    !> x(t), x'(t), F(t) against timelaw.csv, weighted by their condition numbers.
@@ -396,7 +405,8 @@ contains
          t = timelaws%t(i)
          call time_law(row_contact(id), [t], x, v, f, stat)
          if (stat /= hcimpact_ok) then
-            call test_failed(error, "timelaw.csv row " // itoa(i) // ": status " // itoa(stat))
+            call test_failed(error, "timelaw.csv row " // int_text(i) // ": status " &
+               & // int_text(stat))
             return
          end if
          err(1) = ulp_error(x(1), timelaws%ref_hi(1, i), timelaws%ref_lo(1, i))
@@ -431,7 +441,7 @@ contains
       do k = 1, 3
          if (worst(k) > goal_time_law) then
             call test_failed(error, names(k) // "(t): error / (1 + condition) = " &
-               & // utoa(worst(k)) // " ulp at timelaw.csv row " // itoa(worst_row(k)) &
+               & // utoa(worst(k)) // " ulp at timelaw.csv row " // int_text(worst_row(k)) &
                & // " (goal <= " // utoa(goal_time_law) // ")")
             return
          end if
@@ -560,7 +570,7 @@ contains
          call impact(contact_type(mass=0.1_wp, stiffness=1.7135e10_wp, exponent=1.5_wp, &
             & damping=b, velocity=1.0_wp), outcome, stat)
          call check(error, stat == hcimpact_ok .and. all(ieee_is_finite(outputs(outcome))), &
-            & "b = " // format_real(b) // ": status " // itoa(stat) // " or a NaN")
+            & "b = " // format_real(b) // ": status " // int_text(stat) // " or a NaN")
          if (allocated(error)) return
          if (i > 1) then
             ! towards b = 0: x_max, k and the compression time grow, the contact time
@@ -604,7 +614,7 @@ contains
       call check(error, stat == expected .and. all(ieee_is_nan(outputs(outcome))) &
          & .and. ieee_is_nan(outcome%energy_loss_ratio) &
          & .and. ieee_is_nan(outcome%rebound_velocity), &
-         & what // ": status " // itoa(stat) // ", expected " // itoa(expected) &
+         & what // ": status " // int_text(stat) // ", expected " // int_text(expected) &
          & // " and NaN outputs")
    end subroutine check_bad
 
@@ -671,7 +681,7 @@ contains
       call time_law(contact, [0.0_wp, 1.0e-5_wp, ieee_value(1.0_wp, ieee_quiet_nan)], &
          & x, v, f, stat)
       call check(error, stat == hcimpact_err_not_finite .and. all(ieee_is_nan(x)), &
-         & "NaN time: status " // itoa(stat))
+         & "NaN time: status " // int_text(stat))
       if (allocated(error)) return
       call time_law(contact, [0.0_wp, 1.0e-5_wp, 2.0e-5_wp], x2, v, f, stat)
       call check(error, stat, hcimpact_err_size, "arrays of different sizes")
@@ -679,7 +689,7 @@ contains
       contact%mass = -1.0_wp
       call time_law(contact, [0.0_wp, 1.0e-5_wp, 2.0e-5_wp], x, v, f, stat)
       call check(error, stat == hcimpact_err_mass .and. all(ieee_is_nan(f)), &
-         & "bad mass: status " // itoa(stat))
+         & "bad mass: status " // int_text(stat))
       if (allocated(error)) return
       contact%mass = 0.1_wp
       call time_law_samples(contact, 1, ts, xs, vs, fs, stat)
@@ -924,7 +934,7 @@ contains
             & damping=b, velocity=v), outcome, stat)
          call check(error, stat == hcimpact_ok .and. all(ieee_is_finite(outputs(outcome))) &
             & .and. outcome%restitution >= 0.5_wp, "V = " // format_real(v) // ": status " &
-            & // itoa(stat) // ", k = " // format_real(outcome%restitution))
+            & // int_text(stat) // ", k = " // format_real(outcome%restitution))
          if (allocated(error)) return
       end do
       call damping_for_restitution(0.5_wp, 0.0_wp, b, stat)
@@ -1111,7 +1121,7 @@ contains
       integer :: stat
       call impact_law(broken_law(), 1.0_wp, 0.1_wp, 1.0_wp, outcome, stat)
       call check(error, stat == hcimpact_err_elastic_law .and. ieee_is_nan(outcome%peak_force), &
-         & "a law with a negative potential: status " // itoa(stat))
+         & "a law with a negative potential: status " // int_text(stat))
       if (allocated(error)) return
       call impact_law(linear_spring(), -1.0_wp, 0.1_wp, 1.0_wp, outcome, stat)
       call check(error, stat, hcimpact_err_mass, "user law, mass < 0")
@@ -1220,5 +1230,182 @@ contains
       call check(error, all(x == contact%velocity * t) .and. all(v == contact%velocity) &
          & .and. all(ieee_is_finite(f)), "x = V t, x' = V at the start of the motion")
    end subroutine test_fuzz_findings
+
+   ! ------------------------------------------------------------------------------
+   ! Graded pieces of the time quadratures (large beta)
+   ! ------------------------------------------------------------------------------
+
+   !> The cuts of a cut phase tile it: 0 = cut(0) < cut(1) < ... < cut(np) < length,
+   !> np < max_pieces, and are graded as power_phase_split intends. Compression: no
+   !> plain piece is wider than 2.5 times its distance from the end of contact (the
+   !> singularity), and the distances from the end grow by 3 from the last cut (the
+   !> peak) on; restitution: the cuts lie at L = beta l = 4, 12, 36, below 3/4 of the
+   !> phase. Whether a phase is cut follows the thresholds cc_max_beta (restitution)
+   !> and cc_max_compression_le (compression, on ln(1 + beta)).
+   subroutine test_graded_pieces_tile(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp) :: cut(0:max_pieces), bound, beta, ratio
+      integer :: i, k, j, np, stat, phase
+      logical :: split
+      character(len=:), allocatable :: label
+
+      do i = 1, size(piece_exponents)
+         do k = 0, 44
+            beta = 10.0_wp**(0.25_wp * real(k, wp) + 1.0_wp)
+            do phase = compression_branch, restitution_branch
+               label = "n = " // format_real(piece_exponents(i)) // ", beta = " &
+                  & // format_real(beta) // ", phase " // int_text(phase)
+               call power_phase_pieces(contact_type(mass=1.0_wp, stiffness=1.0_wp, &
+                  & exponent=piece_exponents(i), velocity=1.0_wp, damping=beta), phase, &
+                  & split, bound, cut, np, stat)
+               call check(error, stat == hcimpact_ok, label // ": status " // int_text(stat))
+               if (allocated(error)) return
+               if (phase == restitution_branch) then
+                  call check(error, split .eqv. (beta > cc_max_beta), label &
+                     & // ": cut against the threshold cc_max_beta")
+               else
+                  call check(error, split .eqv. (beta * bound > cc_max_compression_le), &
+                     & label // ": cut against the threshold cc_max_compression_le")
+               end if
+               if (allocated(error)) return
+               if (.not. split) cycle
+               call check(error, np >= 1 .and. np < max_pieces, label // ": " &
+                  & // int_text(np) // " cuts")
+               if (allocated(error)) return
+               call check(error, cut(0) == 0.0_wp .and. all(cut(1:np) > cut(0:np - 1)) &
+                  & .and. cut(np) < bound, label // ": the cuts do not tile [0, " &
+                  & // format_real(bound) // "]")
+               if (allocated(error)) return
+               if (phase == compression_branch) then
+                  do j = 1, np
+                     call check(error, cut(j) - cut(j - 1) <= 2.5_wp * (bound - cut(j)) &
+                        & * (1.0_wp + 1.0e-9_wp), label // ": piece " // int_text(j) &
+                        & // " wider than 2.5 times its distance from the end")
+                     if (allocated(error)) return
+                  end do
+                  do j = 2, np
+                     ratio = (bound - cut(j - 1)) / (bound - cut(j))
+                     call check(error, abs(ratio - 3.0_wp) < 1.0e-6_wp, label &
+                        & // ": distances from the end grow by " // format_real(ratio))
+                     if (allocated(error)) return
+                  end do
+               else
+                  do j = 1, np
+                     call check(error, abs(beta * cut(j) - 4.0_wp * 3.0_wp**(j - 1)) &
+                        & <= 1.0e-12_wp * 3.0_wp**j .and. beta * cut(j) <= 0.75_wp &
+                        & * beta * bound, label // ": cut " // int_text(j) // " at L = " &
+                        & // format_real(beta * cut(j)))
+                     if (allocated(error)) return
+                  end do
+               end if
+            end do
+         end do
+      end do
+   end subroutine test_graded_pieces_tile
+
+   !> Every quadrature converges, in at most goal_piece_evaluations evaluations, for
+   !> n in 0.1 .. 10 and beta from 1e-6 to 1e12 (the peak's time from the compression's
+   !> own rule: no third quadrature), and every output is finite.
+   subroutine test_graded_pieces_evaluations(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(outcome_type) :: outcome
+      real(wp) :: beta
+      integer :: i, k, stat
+
+      do i = 1, size(piece_exponents)
+         do k = 0, 36
+            beta = 10.0_wp**(0.5_wp * real(k, wp) - 6.0_wp)
+            call impact(contact_type(mass=2.0_wp, stiffness=3.0e9_wp, &
+               & exponent=piece_exponents(i), velocity=0.5_wp, damping=beta / 0.5_wp), &
+               & outcome, stat)
+            call check(error, stat == hcimpact_ok .and. ieee_is_finite(outcome%contact_time) &
+               & .and. ieee_is_finite(outcome%time_at_peak_force) &
+               & .and. ieee_is_finite(outcome%peak_force), "n = " &
+               & // format_real(piece_exponents(i)) // ", beta = " // format_real(beta) &
+               & // ": status " // int_text(stat) // " or a non-finite output")
+            if (allocated(error)) return
+            call check(error, maxval(outcome%evaluations(1:2)) <= goal_piece_evaluations &
+               & .and. outcome%evaluations(3) == 0_ik, "n = " &
+               & // format_real(piece_exponents(i)) // ", beta = " // format_real(beta) &
+               & // ": evaluations " // int_text(int(outcome%evaluations(1))) // ", " &
+               & // int_text(int(outcome%evaluations(2))) // ", " &
+               & // int_text(int(outcome%evaluations(3))) // " (goal <= " &
+               & // int_text(goal_piece_evaluations) // ", no third)")
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine test_graded_pieces_evaluations
+
+   !> The times are continuous across the seams where a phase starts to be cut: at
+   !> beta = cc_max_beta (restitution) and where ln(1 + beta) passes
+   !> cc_max_compression_le (compression, beta near 147). Four contacts a step
+   !> h = 2**-40 beta apart, two on each side (checked with power_phase_pieces): the
+   !> times change by about 1e4 ulps per step, smoothly, so the second differences
+   !> t(k-1) - 2 t(k) + t(k+1) are rounding noise, and a jump J at the seam would add
+   !> J to them.
+   subroutine test_graded_pieces_seams(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp) :: beta0, t(-1:2, 3), d, cut(0:max_pieces), bound, step
+      integer :: i, k, m, phase, np, stat, first
+      logical :: split(-8:8)
+
+      do i = 1, size(piece_exponents)
+         do phase = compression_branch, restitution_branch
+            if (phase == restitution_branch) then
+               beta0 = cc_max_beta
+            else
+               beta0 = exp(cc_max_compression_le) - 1.0_wp
+            end if
+            step = beta0 * 2.0_wp**(-40)
+            ! the seam: the first step k with the phase cut, k - 1 not
+            do k = -8, 8
+               call power_phase_pieces(seam_contact(piece_exponents(i), beta0 &
+                  & + real(k, wp) * step), phase, split(k), bound, cut, np, stat)
+            end do
+            first = 99
+            do k = 8, -7, -1
+               if (split(k) .and. .not. split(k - 1)) first = k
+            end do
+            call check(error, first <= 7, "n = " // format_real(piece_exponents(i)) &
+               & // ", phase " // int_text(phase) // ": no seam within 8 steps of beta = " &
+               & // format_real(beta0))
+            if (allocated(error)) return
+            ! t(k, :): k = -1, 0 uncut, 1, 2 cut
+            do k = -1, 2
+               t(k, :) = seam_times(seam_contact(piece_exponents(i), beta0 &
+                  & + real(first - 1 + k, wp) * step))
+            end do
+            do m = 1, 3
+               do k = 0, 1
+                  d = (t(k - 1, m) - 2.0_wp * t(k, m) + t(k + 1, m)) / spacing(t(0, m))
+                  call check(error, abs(d) <= goal_seam, "n = " &
+                     & // format_real(piece_exponents(i)) // ", phase " // int_text(phase) &
+                     & // ": time " // int_text(m) // " jumps by " // format_real(d) &
+                     & // " ulp at the seam beta = " &
+                     & // format_real(beta0 + real(first, wp) * step))
+                  if (allocated(error)) return
+               end do
+            end do
+         end do
+      end do
+   contains
+      !> The contact with exponent n and beta = b (V = 1, so that beta is exact)
+      function seam_contact(n, b) result(contact)
+         real(wp), intent(in) :: n, b
+         type(contact_type) :: contact
+         contact = contact_type(mass=1.0_wp, stiffness=1.0_wp, exponent=n, &
+            & velocity=1.0_wp, damping=b)
+      end function seam_contact
+      !> Time at the peak, compression time and contact time of a contact
+      function seam_times(contact) result(times)
+         type(contact_type), intent(in) :: contact
+         real(wp) :: times(3)
+         type(outcome_type) :: outcome
+         integer :: stat_
+         call impact(contact, outcome, stat_)
+         times = [outcome%time_at_peak_force, outcome%compression_time, &
+            & outcome%contact_time]
+      end function seam_times
+   end subroutine test_graded_pieces_seams
 
 end module test_impact

@@ -12,8 +12,8 @@ module test_modified_cc
    use testdrive, only : new_unittest, unittest_type, error_type, test_failed
    use hcimpact_check, only : format_real, reference_path
    use hcimpact_kinds, only : wp
-   use hcimpact_modified_cc, only : cc_max_degree, cc_moments, cc_coefficients, cc_sum, &
-      & cc_tail, cc_converged, cc_end_share, cc_node
+   use hcimpact_modified_cc, only : cc_max_degree, cc_moments, cc_moments_pair, &
+      & cc_coefficients, cc_sum, cc_tail, cc_converged, cc_end_share, cc_node
    implicit none
    private
 
@@ -52,7 +52,8 @@ contains
          & new_unittest("integral-exp", test_integral_exp), &
          & new_unittest("integral-reciprocal", test_integral_recip), &
          & new_unittest("accepts-resolved", test_accepts_resolved), &
-         & new_unittest("refuses-unresolved", test_refuses_unresolved) &
+         & new_unittest("refuses-unresolved", test_refuses_unresolved), &
+         & new_unittest("moments-pair", test_moments_pair) &
          & ]
    end subroutine collect_modified_cc
 
@@ -356,5 +357,38 @@ contains
          end do
       end do
    end subroutine test_refuses_unresolved
+
+   !> cc_moments_pair gives, to the bit, what two cc_moments calls give (the complete
+   !> moments, s = 1 and C = 2, and the incomplete ones for s, C): `impact` relies on it
+   !> for the time of the peak. Degrees 12, 24, 48; several exponents and shares.
+   subroutine test_moments_pair(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: exponents(4) = [0.1_wp, 1.0_wp, 1.5_wp, 7.42_wp]
+      real(wp), parameter :: shares(4) = [0.999_wp, 0.75_wp, 0.3_wp, 5.0e-4_wp]
+      integer, parameter :: degrees(3) = [12, 24, 48]
+      real(wp) :: complete(0:cc_max_degree), partial(0:cc_max_degree)
+      real(wp) :: one(0:cc_max_degree), two(0:cc_max_degree), c, big_c
+      integer :: i, j, k, n
+
+      do i = 1, size(exponents)
+         c = 1.0_wp / (exponents(i) + 1.0_wp)
+         do j = 1, size(shares)
+            big_c = 2.0_wp * shares(j)**c
+            do k = 1, size(degrees)
+               n = degrees(k)
+               call cc_moments_pair(c, exponents(i) + 1.0_wp, shares(j), big_c, n, complete, &
+                  & partial)
+               call cc_moments(c, exponents(i) + 1.0_wp, 1.0_wp, 2.0_wp, n, one)
+               call cc_moments(c, exponents(i) + 1.0_wp, shares(j), big_c, n, two)
+               if (any(complete(0:n) /= one(0:n)) .or. any(partial(0:n) /= two(0:n))) then
+                  call test_failed(error, "cc_moments_pair differs from cc_moments", &
+                     & "n = " // format_real(exponents(i)) // ", s = " &
+                     & // format_real(shares(j)) // ", degree " // format_real(real(n, wp)))
+                  return
+               end if
+            end do
+         end do
+      end do
+   end subroutine test_moments_pair
 
 end module test_modified_cc
