@@ -58,20 +58,8 @@ module hcimpact_trajectory
    implicit none
    private
 
-   ! The double-double operators, inline (impact_dd.inc): hcimpact_double_double's own
-   ! cannot be inlined across modules, and this module applies ~100 per impact.
-   interface operator(+)
-      module procedure :: add_dd_dd, add_dd_r, add_r_dd
-   end interface operator(+)
-   interface operator(-)
-      module procedure :: sub_dd_dd, sub_dd_r, sub_r_dd, neg_dd
-   end interface operator(-)
-   interface operator(*)
-      module procedure :: mul_dd_dd, mul_dd_r, mul_r_dd
-   end interface operator(*)
-   interface operator(/)
-      module procedure :: div_dd_dd, div_dd_r, div_r_dd
-   end interface operator(/)
+   ! The double-double operators, inline (see impact_dd_ops.inc)
+   include "impact_dd_ops.inc"
 
    public :: trajectory_type, new_trajectory, phase_integrand, phase_density, phase_end_time
    public :: compression_phase, restitution_phase
