@@ -39,7 +39,7 @@ module hcimpact_double_double
    implicit none
    private
 
-   public :: dd_real, dd, two_sum, two_prod
+   public :: dd_real, dd, two_sum, two_prod, dd_two_prod_ext
    public :: operator(+), operator(-), operator(*), operator(/)
    public :: dd_exp, dd_log, dd_sqrt, dd_scale
 
@@ -373,29 +373,6 @@ module hcimpact_double_double
 
 contains
 
-   !> The double x as a double-double number.
-   elemental function dd(x) result(a)
-      !> Value
-      real(wp), intent(in) :: x
-      !> x + 0
-      type(dd_real) :: a
-      a = dd_real(x, 0.0_wp)
-   end function dd
-
-   !> Exact sum: a + b = s%hi + s%lo with s%hi = fl(a + b) (Knuth).
-   elemental function two_sum(a, b) result(s)
-      !> Summand
-      real(wp), intent(in) :: a
-      !> Summand
-      real(wp), intent(in) :: b
-      !> The sum, exactly
-      type(dd_real) :: s
-      real(wp) :: bv
-      s%hi = a + b
-      bv = s%hi - a
-      s%lo = (a - (s%hi - bv)) + (b - bv)
-   end function two_sum
-
    !> Exact sum when |a| >= |b| or a = 0 (Dekker).
    elemental function quick_two_sum(a, b) result(s)
       real(wp), intent(in) :: a, b
@@ -437,8 +414,10 @@ contains
    end subroutine split
 
    !> Exact product: a b = p%hi + p%lo with p%hi = fl(a b) (Dekker), as long as the
-   !> product neither overflows nor falls into the subnormal range.
-   elemental function two_prod(a, b) result(p)
+   !> product neither overflows nor falls into the subnormal range; factors beyond
+   !> 2^996 are split at a smaller scale. `two_prod` (dd_ops.inc) hands such products
+   !> here.
+   elemental function dd_two_prod_ext(a, b) result(p)
       !> Factor
       real(wp), intent(in) :: a
       !> Factor
@@ -458,7 +437,7 @@ contains
          call split(b, bh, bl)
          p%lo = ((ah * bh - p%hi) + ah * bl + al * bh) + al * bl
       end if
-   end function two_prod
+   end function dd_two_prod_ext
 
    !> 2^k for -1022 <= k <= 1023, built from its bits (no call to scale or ldexp).
    elemental function pow2(k) result(x)
@@ -479,135 +458,6 @@ contains
       c%lo = scale(a%lo, k)
    end function dd_scale
 
-   ! The sum is the accurate one (two two_sums): its relative error is about 2^-105
-   ! even when a and b nearly cancel, which the sloppy one (a single two_sum) is not.
-   elemental function add_dd_dd(a, b) result(c)
-      type(dd_real), intent(in) :: a, b
-      type(dd_real) :: c
-      type(dd_real) :: s, t
-      s = two_sum(a%hi, b%hi)
-      t = two_sum(a%lo, b%lo)
-      s = quick_two_sum(s%hi, s%lo + t%hi)
-      c = quick_two_sum(s%hi, s%lo + t%lo)
-   end function add_dd_dd
-
-   elemental function add_dd_r(a, b) result(c)
-      type(dd_real), intent(in) :: a
-      real(wp), intent(in) :: b
-      type(dd_real) :: c
-      type(dd_real) :: s
-      s = two_sum(a%hi, b)
-      c = quick_two_sum(s%hi, s%lo + a%lo)
-   end function add_dd_r
-
-   elemental function add_r_dd(a, b) result(c)
-      real(wp), intent(in) :: a
-      type(dd_real), intent(in) :: b
-      type(dd_real) :: c
-      c = add_dd_r(b, a)
-   end function add_r_dd
-
-   elemental function neg_dd(a) result(c)
-      type(dd_real), intent(in) :: a
-      type(dd_real) :: c
-      c = dd_real(-a%hi, -a%lo)
-   end function neg_dd
-
-   elemental function sub_dd_dd(a, b) result(c)
-      type(dd_real), intent(in) :: a, b
-      type(dd_real) :: c
-      type(dd_real) :: s, t
-      s = two_sum(a%hi, -b%hi)
-      t = two_sum(a%lo, -b%lo)
-      s = quick_two_sum(s%hi, s%lo + t%hi)
-      c = quick_two_sum(s%hi, s%lo + t%lo)
-   end function sub_dd_dd
-
-   elemental function sub_dd_r(a, b) result(c)
-      type(dd_real), intent(in) :: a
-      real(wp), intent(in) :: b
-      type(dd_real) :: c
-      c = add_dd_r(a, -b)
-   end function sub_dd_r
-
-   elemental function sub_r_dd(a, b) result(c)
-      real(wp), intent(in) :: a
-      type(dd_real), intent(in) :: b
-      type(dd_real) :: c
-      c = add_dd_r(neg_dd(b), a)
-   end function sub_r_dd
-
-   elemental function mul_dd_dd(a, b) result(c)
-      type(dd_real), intent(in) :: a, b
-      type(dd_real) :: c
-      real(wp) :: p, err
-      type(dd_real) :: q
-      p = a%hi * b%hi
-      if (abs(a%hi) <= split_max .and. abs(b%hi) <= split_max .and. abs(p) <= split_max) then
-         err = product_error(a%hi, b%hi, p)       ! two_prod's usual case, inline
-      else
-         q = two_prod(a%hi, b%hi)
-         err = q%lo
-      end if
-      c = quick_two_sum(p, err + (a%hi * b%lo + a%lo * b%hi))
-   end function mul_dd_dd
-
-   elemental function mul_dd_r(a, b) result(c)
-      type(dd_real), intent(in) :: a
-      real(wp), intent(in) :: b
-      type(dd_real) :: c
-      real(wp) :: p, err
-      type(dd_real) :: q
-      p = a%hi * b
-      if (abs(a%hi) <= split_max .and. abs(b) <= split_max .and. abs(p) <= split_max) then
-         err = product_error(a%hi, b, p)          ! two_prod's usual case, inline
-      else
-         q = two_prod(a%hi, b)
-         err = q%lo
-      end if
-      c = quick_two_sum(p, err + a%lo * b)
-   end function mul_dd_r
-
-   elemental function mul_r_dd(a, b) result(c)
-      real(wp), intent(in) :: a
-      type(dd_real), intent(in) :: b
-      type(dd_real) :: c
-      c = mul_dd_r(b, a)
-   end function mul_r_dd
-
-   !> a / b by long division: three partial quotients.
-   elemental function div_dd_dd(a, b) result(c)
-      type(dd_real), intent(in) :: a, b
-      type(dd_real) :: c
-      real(wp) :: q1, q2, q3
-      type(dd_real) :: r
-      q1 = a%hi / b%hi
-      r = sub_dd_dd(a, mul_dd_r(b, q1))
-      q2 = r%hi / b%hi
-      r = sub_dd_dd(r, mul_dd_r(b, q2))
-      q3 = r%hi / b%hi
-      c = add_dd_r(quick_two_sum(q1, q2), q3)
-   end function div_dd_dd
-
-   elemental function div_dd_r(a, b) result(c)
-      type(dd_real), intent(in) :: a
-      real(wp), intent(in) :: b
-      type(dd_real) :: c
-      real(wp) :: q1, q2
-      type(dd_real) :: r
-      q1 = a%hi / b
-      r = sub_dd_dd(a, two_prod(q1, b))
-      q2 = r%hi / b
-      r = sub_dd_dd(r, two_prod(q2, b))
-      c = add_dd_r(quick_two_sum(q1, q2), r%hi / b)
-   end function div_dd_r
-
-   elemental function div_r_dd(a, b) result(c)
-      real(wp), intent(in) :: a
-      type(dd_real), intent(in) :: b
-      type(dd_real) :: c
-      c = div_dd_dd(dd(a), b)
-   end function div_r_dd
 
    !> Square root of a >= 0 (one Newton correction of the double root).
    elemental function dd_sqrt(a) result(c)
@@ -897,5 +747,8 @@ contains
          c%lo = v - (c%hi - t)
       end if
    end function dd_log
+
+   ! dd, two_sum, two_prod and the operators (shared with the modules that inline them)
+   include "dd_ops.inc"
 
 end module hcimpact_double_double

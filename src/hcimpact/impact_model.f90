@@ -38,7 +38,7 @@ module hcimpact_impact_model
       & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
       & hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_libm, only : log1p, expm1
-   use hcimpact_double_double, only : dd_real, dd_two_prod_ext => two_prod, dd_exp, dd_log
+   use hcimpact_double_double, only : dd_real, dd_two_prod_ext, dd_exp, dd_log
    use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
    use hcimpact_restitution_law, only : restitution_inverse
    use hcimpact_modified_cc, only : cc_max_degree, cc_moments, cc_moments_pair, &
@@ -53,8 +53,8 @@ module hcimpact_impact_model
    implicit none
    private
 
-   ! The double-double operators, inline (see impact_dd_ops.inc)
-   include "impact_dd_ops.inc"
+   ! The double-double operators, inline (see dd_ops.inc)
+   include "dd_ops_interfaces.inc"
 
    public :: contact_type, outcome_type
    public :: impact, impact_law, velocity_at_depth, time_law, time_law_samples
@@ -1857,6 +1857,6 @@ contains
       stat = hcimpact_err_domain
    end subroutine reject_unrepresentable
 
-   include "impact_dd.inc"
+   include "dd_ops.inc"
 
 end module hcimpact_impact_model

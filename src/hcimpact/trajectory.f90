@@ -50,7 +50,7 @@
 module hcimpact_trajectory
    use hcimpact_kinds, only : wp, ik
    use hcimpact_libm, only : log1p, expm1
-   use hcimpact_double_double, only : dd_real, dd_two_prod_ext => two_prod, dd_exp, dd_log
+   use hcimpact_double_double, only : dd_real, dd_two_prod_ext, dd_exp, dd_log
    use hcimpact_lambertw, only : lambert_w0p1
    use hcimpact_quadrature, only : integrand_type, quadrature_result, tanh_sinh, &
       & quadrature_success, tanh_sinh_max_levels
@@ -58,8 +58,8 @@ module hcimpact_trajectory
    implicit none
    private
 
-   ! The double-double operators, inline (see impact_dd_ops.inc)
-   include "impact_dd_ops.inc"
+   ! The double-double operators, inline (see dd_ops.inc)
+   include "dd_ops_interfaces.inc"
 
    public :: trajectory_type, new_trajectory, phase_integrand, phase_density, phase_end_time
    public :: compression_phase, restitution_phase
@@ -698,6 +698,6 @@ contains
       length = abs(tr%l_end(phase)%hi)
    end function phase_length_hi
 
-   include "impact_dd.inc"
+   include "dd_ops.inc"
 
 end module hcimpact_trajectory
