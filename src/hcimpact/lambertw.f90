@@ -14,7 +14,8 @@
 !> with one final rounding of a dominant term plus a small correction; no iteration.
 !> - Next to the branch point (p = +-sqrt(2(1 + e z)) < 2**-6, s = +-sqrt(2t) < 2**-6):
 !>   the series at the branch point (DLMF 4.13.6), z + 1/e exact with 1/e split in two
-!>   doubles; for 1 + W from t, s carries its rounding error as a low part.
+!>   doubles; W from its odd and even parts in q = p**2 (lambertw_branch.inc), which
+!>   overlap the square root; for 1 + W from t, s carries its rounding error as a low part.
 !> - Elsewhere, "geometric" tables (tools/make_lambertw_tables.py): the key x (an exact
 !>   double: z + 1/e_hi for z <= -1/4, |z|, z, t, or ln|z| as a double-double) is cut
 !>   into intervals [2**k (1 + j/32), 2**k (1 + (j+1)/32)) found from the bits of x (no
@@ -75,6 +76,9 @@ module hcimpact_lambertw
    real(wp), parameter :: fast_dmax = fast_max**2 / (2.0_wp * e_hi)
    !> The same bound on z + 1/e_hi (one addition less on the other paths)
    real(wp), parameter :: fast_dmax_hi = fast_dmax - inv_e_lo
+   !> Below this z + 1/e_hi, q = p**2 < 2**-16 and the series at the branch point stops at
+   !> p**6 (lambertw_branch_short.inc)
+   real(wp), parameter :: short_dmax_hi = 2.0_wp**(-16) / (2.0_wp * e_hi) - inv_e_lo
    !> t below which s = sqrt(2t) < fast_max (plain Taylor series at the branch point)
    real(wp), parameter :: fast_tmax = 0.5_wp * fast_max**2
    !> ln 2 in two parts, k*ln2_hi exact for |k| < 2**21 (lambertw_ln.inc)
@@ -101,36 +105,42 @@ contains
       !> W0(z)
       real(wp) :: w
 
-      real(wp) :: key, key_lo, c1_lo, d, d2, y_lo, x, m, f, g, g2, p, kr, y1, lh, ll
+      real(wp) :: key, key_lo, c1_lo, d, d2, y_lo, x, m, f, g, g2, p, kr, y1, lh, ll, q, q2, a, b
       integer :: row, shift, j
 
       ! The branch point's neighbourhood first, with as few tests as possible: for
       ! z <= -1/4, d = z + 1/e_hi is exact (Sterbenz): the key of the table `wa`, and with
       ! the low part of 1/e the exact offset from the branch point; d = 0 is the double
-      ! nearest -1/e, and d < 0 lies outside the domain. Each branch ends in its result
+      ! nearest -1/e, and d < 0 lies outside the domain. d < fast_dmax_hi only for such z
+      ! (beyond -1/4, d > 0.1), so the tests on d come first, the shorter series first. Each branch ends in its result
       ! (no early return), which lets the compiler lay the common paths out straight.
+      ! NaN fails every comparison: it is tested for last, off the common paths.
       c1_lo = 0.0_wp
-      if (ieee_is_nan(z)) then
-         w = quiet_nan
-      else if (z <= near_zmax) then
-         d = z + inv_e_hi
-         if (d < fast_dmax_hi) then
-            if (d > 0.0_wp) then
-               w = branch_series(sqrt((2.0_wp * e_hi) * (d + inv_e_lo)))
-            else if (d >= 0.0_wp) then
-               w = -1.0_wp
-            else
-               w = quiet_nan
-            end if
+      d = z + inv_e_hi
+      if (d < short_dmax_hi) then
+         if (d > 0.0_wp) then
+            q = (2.0_wp * e_hi) * (d + inv_e_lo)
+            include "lambertw_branch_short.inc"
+            w = -1.0_wp + (sqrt(q) * a + q * b)
+         else if (d >= 0.0_wp) then
+            w = -1.0_wp
          else
-            row = geo_row(d, wa_base, wa_off)
-            key = d
-            include "lambertw_eval.inc"
-            w = geo_tab(2, row) + y_lo
+            w = quiet_nan
          end if
+      else if (d < fast_dmax_hi) then
+         q = (2.0_wp * e_hi) * (d + inv_e_lo)
+         include "lambertw_branch.inc"
+         w = -1.0_wp + (sqrt(q) * a + q * b)
       else if (z <= -small_zmax) then
-         key = -z
-         row = geo_row(key, wc_base, wc_off)
+         if (z <= near_zmax) then
+            ! Table `wa`, key d = z + 1/e_hi (exact for z <= -1/4)
+            key = d
+            row = geo_row(d, wa_base, wa_off)
+         else
+            ! Table `wc`, key -z
+            key = -z
+            row = geo_row(key, wc_base, wc_off)
+         end if
          include "lambertw_eval.inc"
          w = geo_tab(2, row) + y_lo
       else if (z < small_zmax) then
@@ -142,6 +152,8 @@ contains
          w = geo_tab(2, row) + y_lo
       else if (z > huge(z)) then
          w = z
+      else if (ieee_is_nan(z)) then
+         w = quiet_nan
       else
          ! W0 as a function of y = ln z: ln z is a double-double (absolute error ~2e-18),
          ! and dW/dy = W/(1 + W) < 1, so its error stays far below an ulp of W > 5.
@@ -169,31 +181,33 @@ contains
       !> W-1(z)
       real(wp) :: w
 
-      real(wp) :: key, key_lo, c1_lo, d, d2, y_lo, x, m, f, g, g2, p, kr, y1, lh, ll
+      real(wp) :: key, key_lo, c1_lo, d, d2, y_lo, x, m, f, g, g2, p, kr, y1, lh, ll, q, q2, a, b
       integer :: row, shift, j
 
       ! Tests ordered as in lambert_w0: the branch point's neighbourhood first, each
-      ! branch ending in its result.
+      ! branch ending in its result; NaN fails every comparison and ends in the last.
       c1_lo = 0.0_wp
-      if (ieee_is_nan(z)) then
-         w = quiet_nan
-      else if (z <= near_zmax) then
-         d = z + inv_e_hi
-         if (d < fast_dmax_hi) then
-            if (d > 0.0_wp) then
-               w = branch_series(-sqrt((2.0_wp * e_hi) * (d + inv_e_lo)))
-            else if (d >= 0.0_wp) then
-               w = -1.0_wp
-            else
-               w = quiet_nan
-            end if
+      d = z + inv_e_hi
+      if (d < short_dmax_hi) then
+         if (d > 0.0_wp) then
+            q = (2.0_wp * e_hi) * (d + inv_e_lo)
+            include "lambertw_branch_short.inc"
+            w = -1.0_wp + (q * b - sqrt(q) * a)
+         else if (d >= 0.0_wp) then
+            w = -1.0_wp
          else
-            ! Table `wb`, key d = z + 1/e_hi (exact for z <= -1/4)
-            key = d
-            row = geo_row(d, wb_base, wb_off)
-            include "lambertw_eval.inc"
-            w = geo_tab(2, row) + y_lo
+            w = quiet_nan
          end if
+      else if (d < fast_dmax_hi) then
+         q = (2.0_wp * e_hi) * (d + inv_e_lo)
+         include "lambertw_branch.inc"
+         w = -1.0_wp + (q * b - sqrt(q) * a)
+      else if (z <= near_zmax) then
+         ! Table `wb`, key d = z + 1/e_hi (exact for z <= -1/4)
+         key = d
+         row = geo_row(d, wb_base, wb_off)
+         include "lambertw_eval.inc"
+         w = geo_tab(2, row) + y_lo
       else if (z <= -tiny_zmax) then
          ! Table `we`, key -z
          key = -z
@@ -382,15 +396,6 @@ contains
    ! ---------------------------------------------------------------------------------
    ! Building blocks
    ! ---------------------------------------------------------------------------------
-
-   !> W = -1 + p + c2 p**2 + ... + c8 p**8 at the branch point for |p| < 2**-6 (DLMF 4.13.6;
-   !> the coefficients are row 0 of the p table). The first omitted term is below 2**-64
-   !> and p + p**2 T(p) is summed before the -1, so the result is rounded essentially once.
-   elemental function branch_series(p) result(w)
-      real(wp), intent(in) :: p
-      real(wp) :: w
-      w = -1.0_wp + (p + p * p * series_tail(p_coef(2:8, 0), p))
-   end function branch_series
 
    !> c(1) + c(2) x + ... + c(7) x**6 by Estrin's scheme (short dependency chain)
    pure function series_tail(c, x) result(r)

@@ -307,6 +307,14 @@ def nearest_exp(y):
         return nearest_double(v)
 
 
+def branch_series_switches():
+    """z where lambertw.f90 switches from the series at the branch point to p**6 to the
+    one to p**8 (q = p**2 = 2**-16) and from that to the table `wa`/`wb` (q = 2**-12): its
+    bounds on z + 1/e_hi, 2**-k/(2 e_hi) - (1/e)_lo, as the compiler rounds them."""
+    return [(2.0**-k / (2 * 2.718281828459045) + 1.2428753672788363e-17) - INV_E_HI
+            for k in (16, 12)]
+
+
 def seam_points(func):
     """Every seam of the tables of lambertw.f90 for func, with one double either side:
     the interval boundaries of each geometric table (in its key: z + 1/e_hi, |z|, z, t,
@@ -317,13 +325,14 @@ def seam_points(func):
         zs += [z for z in geo_seams(-6, 9) if z <= 1024.0]
         zs += [nearest_exp(y) for y in geo_seams(2, 9) if y < 709.7]
         zs += [-0.25, -2.0**-6, 2.0**-6, 1024.0, 2.0**-60, -2.0**-60, HUGE]
-        zs += [(2.0**-12 / (2 * 2.718281828459045) + 1.2428753672788363e-17) - INV_E_HI]
+        zs += branch_series_switches()
         return [z for z in double_windows(zs, 1, double_below_branch()) if z <= HUGE]
     if func == "wm1":
         zs = [d - INV_E_HI for d in geo_seams(-15, -4) if d - INV_E_HI <= -0.25]
         zs += [-s for s in geo_seams(-20, -3) if -0.25 <= -s <= -2.0**-20]
         zs += [-v for v in (nearest_exp(-y) for y in geo_seams(3, 9)) if v is not None]
         zs += [-0.25, -2.0**-20, -TINY_NORMAL]
+        zs += branch_series_switches()
         points = double_windows(zs, 1, double_below_branch())
         return [z for z in points if z < 0]
     top = 4 if func == "w0p1" else 9
