@@ -3,11 +3,12 @@
 // Speed of the real Lambert W branches of hcimpact against Boost.Math and GSL.
 //
 // For every region of inputs the program builds N inputs deterministically,
-// then times throughput loops (sum of f(x[i]) over the array, into a volatile
-// sink) for each implementation. One measurement repeats the loop until at
-// least --min-ms milliseconds have passed; --repeats measurements are taken,
+// then times throughput loops (y[i] = f(x[i]) over the array) for each
+// implementation. One measurement repeats the loop until at least --min-ms
+// milliseconds have passed; --repeats rounds of measurements are taken,
 // interleaving the implementations of a region (the order is reversed every
-// other round), and the median ns/call is reported with the min and max.
+// other round). Reported: the median ns/call with the min and max, and the
+// ratio to a base row as the median of the per-round ratios.
 //
 // Timings depend on the machine and its load; they are never asserted.
 // Output: Markdown on stdout.
@@ -446,7 +447,8 @@ int main(int argc, char** argv) {
     else
         std::printf("Throughput mode: y[i] = f(x[i]) over the array; the calls are independent and may "
                     "overlap in the processor.\n\n");
-    std::printf("Ratio: median time over the median time of the row named in \"vs\". "
+    std::printf("Ratio: median over the measurements of the time over the time of the row named in "
+                "\"vs\" in the same round. "
                 "Goals: ours W0 <= %.1fx Boost W0; ours W-1 <= %.1fx Boost W-1; "
                 "each 1+W form <= %.1fx Boost W0 on the corresponding z = -exp(-1-t).\n\n",
                 kGoalW0, kGoalWm1, kGoalP1);
@@ -465,10 +467,16 @@ int main(int argc, char** argv) {
             const double med = median(c.ns);
             const double lo = *std::min_element(c.ns.begin(), c.ns.end());
             const double hi = *std::max_element(c.ns.begin(), c.ns.end());
-            double base = 0.0;
-            for (const auto& b : r.cases)
-                if (b.function == c.base) base = median(b.ns);
-            const double ratio = (base > 0.0) ? med / base : 0.0;
+            // The ratio is the median of the per-round ratios: both rows of a round
+            // were measured close together, so a slow phase of the machine (another
+            // job, a clock change) moves both and cancels out.
+            double ratio = 0.0;
+            for (const auto& b : r.cases) {
+                if (b.function != c.base || b.ns.size() != c.ns.size()) continue;
+                std::vector<double> q(c.ns.size());
+                for (std::size_t k = 0; k < q.size(); ++k) q[k] = c.ns[k] / b.ns[k];
+                ratio = median(q);
+            }
             std::string goal = "";
             if (c.goal > 0.0) {
                 char buf[64];

@@ -79,6 +79,14 @@ module hcimpact_lambertw
    !> Below this z + 1/e_hi, q = p**2 < 2**-16 and the series at the branch point stops at
    !> p**6 (lambertw_branch_short.inc)
    real(wp), parameter :: short_dmax_hi = 2.0_wp**(-16) / (2.0_wp * e_hi) - inv_e_lo
+   !> Its bits: 0 < d < short_dmax_hi is 0 < bits(d) < short_dmax_bits, one range test on
+   !> integers that NaN, -0 and negative d fail too, without the ordered comparison of a
+   !> NaN that raises the invalid flag
+   integer(int64), parameter :: short_dmax_bits = transfer(short_dmax_hi, 0_int64)
+   !> The bits of fast_dmax_hi, 2**-6 and 1/e_hi (tests of lambert_w0 on the bits of d and |z|)
+   integer(int64), parameter :: fast_dmax_bits = transfer(fast_dmax_hi, 0_int64)
+   integer(int64), parameter :: small_bits = transfer(small_zmax, 0_int64)
+   integer(int64), parameter :: inv_e_bits = transfer(inv_e_hi, 0_int64)
    !> t below which s = sqrt(2t) < fast_max (plain Taylor series at the branch point)
    real(wp), parameter :: fast_tmax = 0.5_wp * fast_max**2
    !> ln 2 in two parts, k*ln2_hi exact for |k| < 2**21 (lambertw_ln.inc)
@@ -107,31 +115,27 @@ contains
 
       real(wp) :: key, key_lo, c1_lo, d, d2, y_lo, x, m, f, g, g2, p, kr, y1, lh, ll, q, q2, a, b
       integer :: row, shift, j
+      integer(int64) :: bits
 
       ! The branch point's neighbourhood first, with as few tests as possible: for
       ! z <= -1/4, d = z + 1/e_hi is exact (Sterbenz): the key of the table `wa`, and with
       ! the low part of 1/e the exact offset from the branch point; d = 0 is the double
       ! nearest -1/e, and d < 0 lies outside the domain. d < fast_dmax_hi only for such z
-      ! (beyond -1/4, d > 0.1), so the tests on d come first, the shorter series first. Each branch ends in its result
-      ! (no early return), which lets the compiler lay the common paths out straight.
-      ! NaN fails every comparison: it is tested for last, off the common paths.
+      ! (beyond -1/4, d > 0.1), so the tests on d come first, the shorter series first.
+      ! Each branch ends in its result (no early return), which lets the compiler lay the
+      ! common paths out straight. The first test is on the bits of d (short_dmax_bits);
+      ! NaN is tested for next, before any ordered comparison: with NaN it raises the
+      ! invalid flag (and traps in a build with -ffpe-trap=invalid).
       c1_lo = 0.0_wp
       d = z + inv_e_hi
-      if (d < short_dmax_hi) then
-         if (d > 0.0_wp) then
-            q = (2.0_wp * e_hi) * (d + inv_e_lo)
-            include "lambertw_branch_short.inc"
-            w = -1.0_wp + (sqrt(q) * a + q * b)
-         else if (d >= 0.0_wp) then
-            w = -1.0_wp
-         else
-            w = quiet_nan
-         end if
-      else if (d < fast_dmax_hi) then
+      bits = transfer(d, 0_int64)
+      if (bits > 0_int64 .and. bits < short_dmax_bits) then
          q = (2.0_wp * e_hi) * (d + inv_e_lo)
-         include "lambertw_branch.inc"
+         include "lambertw_branch_short.inc"
          w = -1.0_wp + (sqrt(q) * a + q * b)
-      else if (z <= -small_zmax) then
+      else if (bits >= fast_dmax_bits .and. mag_bits(z) >= small_bits &
+         & .and. mag_bits(z) < inv_e_bits) then
+         ! -1/e_hi < z <= -2**-6 with d >= fast_dmax_hi, tested on the bits (NaN fails)
          if (z <= near_zmax) then
             ! Table `wa`, key d = z + 1/e_hi (exact for z <= -1/4)
             key = d
@@ -143,17 +147,29 @@ contains
          end if
          include "lambertw_eval.inc"
          w = geo_tab(2, row) + y_lo
-      else if (z < small_zmax) then
+      else if (transfer(abs(z), 0_int64) < small_bits) then
+         ! |z| < 2**-6, tested on the bits (NaN fails)
          w = w0_small_z(z)
+      else if (ieee_is_nan(z)) then
+         w = quiet_nan
+      else if (d < fast_dmax_hi) then
+         if (d > 0.0_wp) then
+            q = (2.0_wp * e_hi) * (d + inv_e_lo)
+            include "lambertw_branch.inc"
+            w = -1.0_wp + (sqrt(q) * a + q * b)
+         else if (d >= 0.0_wp) then
+            w = -1.0_wp
+         else
+            w = quiet_nan
+         end if
       else if (z < mid_zmax) then
+         ! 2**-6 <= z < 2**10 (the tests above leave no other z here)
          key = z
          row = geo_row(z, wd_base, wd_off)
          include "lambertw_eval.inc"
          w = geo_tab(2, row) + y_lo
       else if (z > huge(z)) then
          w = z
-      else if (ieee_is_nan(z)) then
-         w = quiet_nan
       else
          ! W0 as a function of y = ln z: ln z is a double-double (absolute error ~2e-18),
          ! and dW/dy = W/(1 + W) < 1, so its error stays far below an ulp of W > 5.
@@ -183,25 +199,29 @@ contains
 
       real(wp) :: key, key_lo, c1_lo, d, d2, y_lo, x, m, f, g, g2, p, kr, y1, lh, ll, q, q2, a, b
       integer :: row, shift, j
+      integer(int64) :: bits
 
-      ! Tests ordered as in lambert_w0: the branch point's neighbourhood first, each
-      ! branch ending in its result; NaN fails every comparison and ends in the last.
+      ! Tests ordered as in lambert_w0: the branch point's neighbourhood (bits first,
+      ! then NaN), each branch ending in its result.
       c1_lo = 0.0_wp
       d = z + inv_e_hi
-      if (d < short_dmax_hi) then
+      bits = transfer(d, 0_int64)
+      if (bits > 0_int64 .and. bits < short_dmax_bits) then
+         q = (2.0_wp * e_hi) * (d + inv_e_lo)
+         include "lambertw_branch_short.inc"
+         w = -1.0_wp + (q * b - sqrt(q) * a)
+      else if (ieee_is_nan(z)) then
+         w = quiet_nan
+      else if (d < fast_dmax_hi) then
          if (d > 0.0_wp) then
             q = (2.0_wp * e_hi) * (d + inv_e_lo)
-            include "lambertw_branch_short.inc"
+            include "lambertw_branch.inc"
             w = -1.0_wp + (q * b - sqrt(q) * a)
          else if (d >= 0.0_wp) then
             w = -1.0_wp
          else
             w = quiet_nan
          end if
-      else if (d < fast_dmax_hi) then
-         q = (2.0_wp * e_hi) * (d + inv_e_lo)
-         include "lambertw_branch.inc"
-         w = -1.0_wp + (q * b - sqrt(q) * a)
       else if (z <= near_zmax) then
          ! Table `wb`, key d = z + 1/e_hi (exact for z <= -1/4)
          key = d
@@ -431,6 +451,14 @@ contains
    !> (it would lengthen the hot path): every caller's range of keys is an exact
    !> inequality on the same double that lies inside its table, and the Debug build
    !> checks the bounds.
+   !> The bits of -z as an integer: for z < 0 they order as -z does; NaN gives more than
+   !> those of any number
+   elemental function mag_bits(z) result(m)
+      real(wp), intent(in) :: z
+      integer(int64) :: m
+      m = transfer(-z, 0_int64)
+   end function mag_bits
+
    elemental function geo_row(x, base, off) result(i)
       real(wp), intent(in) :: x
       integer, intent(in) :: base, off
