@@ -123,9 +123,10 @@ contains
       ! nearest -1/e, and d < 0 lies outside the domain. d < fast_dmax_hi only for such z
       ! (beyond -1/4, d > 0.1), so the tests on d come first, the shorter series first.
       ! Each branch ends in its result (no early return), which lets the compiler lay the
-      ! common paths out straight. The first test is on the bits of d (short_dmax_bits);
-      ! NaN is tested for next, before any ordered comparison: with NaN it raises the
-      ! invalid flag (and traps in a build with -ffpe-trap=invalid).
+      ! common paths out straight. The first tests are range tests on bits (the short
+      ! series on d, the tables `wa`/`wc` on d and -z, the small-|z| form on |z|), which
+      ! NaN fails; NaN is tested for after them, before any ordered comparison: with NaN
+      ! that raises the invalid flag (and traps in a build with -ffpe-trap=invalid).
       c1_lo = 0.0_wp
       d = z + inv_e_hi
       bits = transfer(d, 0_int64)
