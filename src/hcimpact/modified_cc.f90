@@ -35,6 +35,19 @@
 !> converge hands all its values to the next. Convergence is judged by the last two
 !> coefficients (an analytic F has geometrically decaying a_k; their sum bounds the
 !> neglected tail and the aliasing error when the decay is faster than 1/2 per degree).
+!>
+!> The whole contact of a small-beta impact has a singularity of the same order at both
+!> ends: its rule uses the symmetric weight (1 - x^2)^(-alpha) (alpha = 1 - c) and the
+!> moments M_k = int_-1^1 (1 - x^2)^(-alpha) T_k dx, Q_k(y) = int_y^1 (same) dx. With
+!> x = cos(theta), nu = 1 - 2 alpha, and the integration by parts of
+!> d/dtheta [sin^(nu+1) cos(k theta)] they obey (theta_y = acos y, s = (1 - y^2)^(1-alpha))
+!>
+!>     (k+1+nu) Q_(k+1) = 2 s T_k(y) + (k-1-nu) Q_(k-1),    Q_1 = s/(nu+1),
+!>
+!> and M_k the same with s = 0 (M_1 = 0); |k-1-nu| < k+1+nu: the forward recurrence
+!> damps its errors. M_0 = sqrt(pi) Gamma(1-alpha)/Gamma(3/2-alpha) from a Chebyshev
+!> table (tools/make_gegenbauer_table.py); Q_0(y) = M_0/2 - int_0^y (1 - x^2)^(-alpha) dx,
+!> the last by its power series for |y| <= 1/2.
 !> See doc/quadrature.md.
 module hcimpact_modified_cc
    use hcimpact_kinds, only : wp
@@ -44,6 +57,7 @@ module hcimpact_modified_cc
    public :: cc_max_degree, cc_moments, cc_moments_pair, cc_coefficients, cc_sum, cc_tail, &
       & cc_converged
    public :: cc_end_share, cc_turn_share, cc_node, inv_end_share_hi, inv_end_share_lo
+   public :: sym_m0, sym_moments, sym_partial_moments, sym_q0, sym_q0_near_end, sym_series_max
 
    !> Largest degree N of the rules (nodes of every rule are among its N + 1)
    integer, parameter :: cc_max_degree = 48
@@ -112,6 +126,26 @@ module hcimpact_modified_cc
    real(wp), parameter :: cos_odd48(0:23, 0:23) = reshape([((merge(real(cos(pi_xp &
       & * real((2 * i_ + 1) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 23), &
       & i_ = 0, 23), j_ = 0, 23)], [24, 24])
+
+   !> Largest |y| for which sym_q0 sums its series (terms fall like y^2 per step)
+   real(wp), parameter :: sym_series_max = 0.5_wp
+
+! BEGIN GENERATED (tools/make_gegenbauer_table.py)
+   !> Chebyshev coefficients of Gamma(a + 1)/Gamma(a + 1/2) in t = 2a - 1 on
+   !> a in [0, 1] (largest relative error of the series 4.8e-19)
+   integer, parameter :: gamma_ratio_terms = 26
+   real(wp), parameter :: gamma_ratio_c0(2) = [0.866650769496302_wp, 2.3427745861985013e-17_wp]
+   real(wp), parameter :: gamma_ratio_c1(2) = [0.27943049691747673_wp, 9.596155628525831e-18_wp]
+   real(wp), parameter :: gamma_ratio_c(2:25) = [ &
+      & -0.019960668703532653_wp, 0.002598685361474483_wp, -0.0003948152833967102_wp, &
+      & 6.376940445818292e-05_wp, -1.0597496398716859e-05_wp, 1.7867336517860292e-06_wp, &
+      & -3.035654943024611e-07_wp, 5.1793917559040564e-08_wp, -8.857978064942612e-09_wp, &
+      & 1.5169690695229992e-09_wp, -2.599896442165651e-10_wp, 4.4579033652117226e-11_wp, &
+      & -7.645728723086847e-12_wp, 1.3115156317726404e-12_wp, -2.2499190563921933e-13_wp, &
+      & 3.8599625168091036e-14_wp, -6.622357889629328e-15_wp, 1.1361876415139594e-15_wp, &
+      & -1.949360186093393e-16_wp, 3.344543415990613e-17_wp, -5.73829910532464e-18_wp, &
+      & 9.84533426843277e-19_wp, -1.689189228035182e-19_wp, 2.898187415787308e-20_wp ]
+! END GENERATED (tools/make_gegenbauer_table.py)
 
 contains
 
@@ -343,5 +377,186 @@ contains
       ok = cc_tail(n, a, moment) <= tol * abs(total) &
          & + 4.0_wp * epsilon(1.0_wp) * fmax * abs(moment(0))
    end function cc_converged
+
+   !> M_0 = int_-1^1 (1 - x^2)^(-alpha) dx = sqrt(pi) Gamma(a)/Gamma(a + 1/2) as hi + lo,
+   !> for a = 1 - alpha = a_hi + a_lo in (0, 1]: sqrt(pi) f(a)/a with f(a) =
+   !> Gamma(a + 1)/Gamma(a + 1/2) from its Chebyshev series in t = 2a - 1, the first two
+   !> terms in double-double, the rest (below 0.023 f in all) by Clenshaw's sum in
+   !> double. About 1e-18 relative.
+   pure subroutine sym_m0(a_hi, a_lo, m0)
+      real(wp), intent(in) :: a_hi, a_lo
+      real(wp), intent(out) :: m0(2)
+      real(wp), parameter :: sqrt_pi(2) = [1.772453850905516_wp, -7.666586499825799e-17_wp]
+      real(wp) :: t, tl, b1, b2, b0, tail, ph, pl, sh, sl, qh, ql, rh, rl, e
+      integer :: k
+      ! t = 2a - 1 as t + tl (2 a_hi is exact)
+      call exact_sum(2.0_wp * a_hi, -1.0_wp, t, tl)
+      tl = tl + 2.0_wp * a_lo
+      ! sum_{k>=2} c_k T_k(t), Clenshaw
+      b1 = 0.0_wp
+      b2 = 0.0_wp
+      do k = gamma_ratio_terms - 1, 2, -1
+         b0 = gamma_ratio_c(k) + 2.0_wp * t * b1 - b2
+         b2 = b1
+         b1 = b0
+      end do
+      ! the step k = 1 with c_1 = 0, then c_0 = 0 + t b_1 - b_2
+      b0 = 2.0_wp * t * b1 - b2
+      tail = t * b0 - b1
+      ! c_1 t exactly (hi + lo), then + c_0 + tail
+      call exact_product(gamma_ratio_c1(1), t, ph, pl)
+      pl = pl + (gamma_ratio_c1(1) * tl + gamma_ratio_c1(2) * t)
+      call exact_sum(gamma_ratio_c0(1), ph, sh, sl)
+      sl = sl + ((gamma_ratio_c0(2) + pl) + tail)
+      call fast_sum(sh, sl, qh, ql)
+      ! times sqrt(pi)
+      call exact_product(qh, sqrt_pi(1), rh, rl)
+      rl = rl + (qh * sqrt_pi(2) + ql * sqrt_pi(1))
+      call fast_sum(rh, rl, qh, ql)
+      ! divided by a: q = qh/a_hi, then the rest (q_h + q_l - q a)/a
+      rh = qh / a_hi
+      call exact_product(rh, a_hi, ph, pl)
+      e = ((((qh - ph) - pl) + ql) - rh * a_lo) / a_hi
+      call fast_sum(rh, e, m0(1), m0(2))
+   end subroutine sym_m0
+
+   !> Complete moments M_0 .. M_n of the symmetric weight (M_0 given, its double part),
+   !> and the reciprocals 1/(k + 1 + nu), k = 1 .. n - 1, that sym_partial_moments uses
+   !> too (a division in the recurrence's chain cost four times a product)
+   pure subroutine sym_moments(nu, m0, n, moment, inv_den)
+      !> nu = 1 - 2 alpha, in (-1, 1)
+      real(wp), intent(in) :: nu
+      !> M_0 (rounded)
+      real(wp), intent(in) :: m0
+      !> Highest degree
+      integer, intent(in) :: n
+      real(wp), intent(out) :: moment(0:)
+      real(wp), intent(out) :: inv_den(cc_max_degree)
+      integer :: k
+      do k = 1, n - 1
+         inv_den(k) = 1.0_wp / (real(k + 1, wp) + nu)
+      end do
+      moment(0) = m0
+      moment(1) = 0.0_wp
+      do k = 1, n - 1, 2
+         moment(k + 1) = moment(k - 1) * ((real(k - 1, wp) - nu) * inv_den(k))
+      end do
+      moment(3:n:2) = 0.0_wp
+   end subroutine sym_moments
+
+   !> Incomplete moments Q_k(y) = int_y^1 (1 - x^2)^(-alpha) T_k dx, k = 0 .. n, given
+   !> Q_0 (sym_q0, rounded here), s = (1 - y^2)^(1 - alpha) and sym_moments' inv_den
+   pure subroutine sym_partial_moments(nu, y, s, q0, n, inv_den, moment)
+      real(wp), intent(in) :: nu, y, s, q0
+      integer, intent(in) :: n
+      real(wp), intent(in) :: inv_den(cc_max_degree)
+      real(wp), intent(out) :: moment(0:)
+      real(wp) :: drive(cc_max_degree), t0, t1, t2
+      integer :: k
+      ! the driving terms 2 s T_k(y) first: the recurrence is then one product and one
+      ! sum per step
+      t0 = 1.0_wp
+      t1 = y
+      do k = 1, n - 1
+         drive(k) = 2.0_wp * s * t1 * inv_den(k)
+         t2 = 2.0_wp * y * t1 - t0
+         t0 = t1
+         t1 = t2
+      end do
+      moment(0) = q0
+      moment(1) = s / (nu + 1.0_wp)
+      do k = 1, n - 1
+         moment(k + 1) = drive(k) + ((real(k - 1, wp) - nu) * inv_den(k)) * moment(k - 1)
+      end do
+   end subroutine sym_partial_moments
+
+   !> Q_0(y) = int_y^1 (1 - x^2)^(-alpha) dx = M_0/2 - D(y) for |y| <= sym_series_max,
+   !> y = y_hi + y_lo, as hi + lo: D(y) = sum_j (alpha)_j/j! y^(2j+1)/(2j+1), its
+   !> first term y in double-double, the rest in double (below 0.05 |y|).
+   pure subroutine sym_q0(alpha, y_hi, y_lo, m0, q0)
+      real(wp), intent(in) :: alpha, y_hi, y_lo, m0(2)
+      real(wp), intent(out) :: q0(2)
+      ! 1/j and 1/(2j + 1), j = 1 .. 64
+      integer :: jj
+      real(wp), parameter :: inv_j(64) = 1.0_wp / real([(jj, jj = 1, 64)], wp)
+      real(wp), parameter :: inv_odd(64) = 1.0_wp / real([(2 * jj + 1, jj = 1, 64)], wp)
+      real(wp) :: y2, p, rest, h, l
+      integer :: j
+      y2 = y_hi * y_hi
+      p = 1.0_wp
+      rest = 0.0_wp
+      do j = 1, 64
+         p = p * ((alpha + real(j - 1, wp)) * inv_j(j)) * y2
+         rest = rest + p * inv_odd(j)
+         if (p < 1.0e-20_wp) exit
+      end do
+      ! M_0/2 - y - y rest
+      call exact_sum(0.5_wp * m0(1), -y_hi, h, l)
+      l = l + ((0.5_wp * m0(2) - y_lo) - y_hi * rest)
+      call fast_sum(h, l, q0(1), q0(2))
+   end subroutine sym_q0
+
+   !> Q_0(y) = int_y^1 (1 - x^2)^(-alpha) dx for y = 1 - u, 0 < u <= 1/2, as hi + lo:
+   !> with x = 1 - t, (1 - x^2)^(-alpha) = (2t)^(-alpha) (1 - t/2)^(-alpha), so
+   !> Q_0 = P sum_j (alpha)_j/j! (u/2)^j/(j + 1 - alpha), P = 2^(-alpha) u^(1-alpha)
+   !> (given as hi + lo: the caller forms it in double-double), the first term
+   !> 1/(1 - alpha) = n + 1 (np1 as hi + lo), the rest (below 1/4 of it) in double.
+   pure subroutine sym_q0_near_end(alpha, u, np1, pref, q0)
+      real(wp), intent(in) :: alpha, u, np1(2), pref(2)
+      real(wp), intent(out) :: q0(2)
+      integer :: jj
+      real(wp), parameter :: inv_j(64) = 1.0_wp / real([(jj, jj = 1, 64)], wp)
+      real(wp) :: p, rest, h, l, ph, pl, c
+      integer :: j
+      c = 1.0_wp - alpha
+      p = 1.0_wp
+      rest = 0.0_wp
+      do j = 1, 64
+         p = p * ((alpha + real(j - 1, wp)) * inv_j(j)) * (0.5_wp * u)
+         rest = rest + p / (real(j, wp) + c)
+         if (p < 1.0e-20_wp) exit
+      end do
+      ! (np1 + rest) * pref
+      call exact_sum(np1(1), rest, h, l)
+      l = l + np1(2)
+      call exact_product(h, pref(1), ph, pl)
+      pl = pl + (h * pref(2) + l * pref(1))
+      call fast_sum(ph, pl, q0(1), q0(2))
+   end subroutine sym_q0_near_end
+
+   !> a + b = s + e exactly (Knuth's TwoSum)
+   elemental subroutine exact_sum(a, b, s, e)
+      real(wp), intent(in) :: a, b
+      real(wp), intent(out) :: s, e
+      real(wp) :: v
+      s = a + b
+      v = s - a
+      e = (a - (s - v)) + (b - v)
+   end subroutine exact_sum
+
+   !> a + b = s + e exactly for |a| >= |b| (Dekker's FastTwoSum)
+   elemental subroutine fast_sum(a, b, s, e)
+      real(wp), intent(in) :: a, b
+      real(wp), intent(out) :: s, e
+      s = a + b
+      e = b - (s - a)
+   end subroutine fast_sum
+
+   !> a b = p + e exactly (Dekker's product with Veltkamp's splitting; |a|, |b| and
+   !> |a b| below 2**996, which the callers' arguments are)
+   elemental subroutine exact_product(a, b, p, e)
+      real(wp), intent(in) :: a, b
+      real(wp), intent(out) :: p, e
+      real(wp), parameter :: splitter = 134217729.0_wp
+      real(wp) :: t, ah, al, bh, bl
+      p = a * b
+      t = splitter * a
+      ah = t - (t - a)
+      al = a - ah
+      t = splitter * b
+      bh = t - (t - b)
+      bl = b - bh
+      e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
+   end subroutine exact_product
 
 end module hcimpact_modified_cc

@@ -77,6 +77,10 @@ module hcimpact_trajectory
    real(wp), parameter :: k_series_max = 1.0e-5_wp
    !> Below this |u|, h(u)/u^2 is its Taylor series in double-double
    real(wp), parameter :: h_series_max = 0.125_wp
+   !> 1/j for j = 1, ..., 24 (the series of h(u)/u^2 multiply by them: a division per
+   !> term cost more than the sum)
+   integer, private :: jj_
+   real(wp), parameter :: inv_integer(24) = 1.0_wp / real([(jj_, jj_ = 1, 24)], wp)
    !> Bound on every Newton iteration of this module
    integer, parameter :: max_newton = 60
    !> A Newton step below this share of the variable is at the noise of the quadrature
@@ -179,14 +183,20 @@ contains
       type(dd_real) :: hq
       ! 1/3 as two doubles
       type(dd_real), parameter :: third = dd_real(1.0_wp / 3.0_wp, 1.850371707708594e-17_wp)
-      real(wp) :: x, tail
+      real(wp) :: x, x2, even, odd, tail
       integer :: j
       if (abs(u%hi) < h_series_max) then
+         ! tail = sum_{i=0}^{19} (-x)^i/(i + 5) as even - x odd, two Horner chains in x^2
+         ! side by side (one chain of 20 steps was the latency of this function)
          x = u%hi
-         tail = 1.0_wp / 24.0_wp
-         do j = 21, 3, -1
-            tail = 1.0_wp / real(j + 2, wp) - x * tail
+         x2 = x * x
+         even = inv_integer(23)
+         odd = inv_integer(24)
+         do j = 21, 5, -2
+            even = even * x2 + inv_integer(j)
+            odd = odd * x2 + inv_integer(j + 1)
          end do
+         tail = even - x * odd
          ! 1/2 - u/3 + u^2/4 - u^3 tail
          hq = u * u
          hq = ((0.5_wp - u * third) + 0.25_wp * hq) - hq * (x * tail)
@@ -199,18 +209,24 @@ contains
    !> h(u)/u^2 with h(u) = u - ln(1 + u), for u > -1, in double precision (for the
    !> double-precision stages of Newton iterations; about 1e-15 relative).
    !>
-   !> Series sum_j (-u)^j/(j + 2) for |u| < 1/8 (18 terms), else (u - ln(1 + u))/u^2.
+   !> Series sum_j (-u)^j/(j + 2) for |u| < 1/8 (20 terms), else (u - ln(1 + u))/u^2.
    elemental function h_over_square(u) result(hq)
       !> Argument, u > -1
       real(wp), intent(in) :: u
       !> h(u)/u^2
       real(wp) :: hq
+      real(wp) :: u2, even, odd
       integer :: j
       if (abs(u) < h_series_max) then
-         hq = 1.0_wp / 20.0_wp
-         do j = 17, 0, -1
-            hq = 1.0_wp / real(j + 2, wp) - u * hq
+         ! sum_{j=0}^{19} (-u)^j/(j + 2) as even - u odd (two chains in u^2, no division)
+         u2 = u * u
+         even = inv_integer(20)
+         odd = inv_integer(21)
+         do j = 18, 2, -2
+            even = even * u2 + inv_integer(j)
+            odd = odd * u2 + inv_integer(j + 1)
          end do
+         hq = even - u * odd
       else
          hq = ((u - log1p(u)) / u) / u
       end if

@@ -28,7 +28,7 @@ module test_impact
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &
       & velocity_at_depth, time_law, time_law_samples, damping_for_restitution, &
       & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta, &
-      & power_phase_pieces, max_pieces, cc_max_beta, cc_max_compression_le
+      & power_phase_pieces, max_pieces, cc_max_beta, cc_max_compression_le, end_piece_le
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome, c_impact
@@ -1236,15 +1236,17 @@ contains
    ! ------------------------------------------------------------------------------
 
    !> The cuts of a cut phase tile it: 0 = cut(0) < cut(1) < ... < cut(np) < length,
-   !> np < max_pieces, and are graded as power_phase_split intends. Compression: no
-   !> plain piece is wider than 2.5 times its distance from the end of contact (the
-   !> singularity), and the distances from the end grow by 3 from the last cut (the
-   !> peak) on; restitution: the cuts lie at L = beta l = 4, 12, 36, below 3/4 of the
-   !> phase. Whether a phase is cut follows the thresholds cc_max_beta (restitution)
-   !> and cc_max_compression_le (compression, on ln(1 + beta)).
+   !> np < max_pieces, and are graded as power_phase_split intends. Compression: the
+   !> end piece is end_piece_le wide in L = beta l (or half the phase), no plain piece
+   !> is wider than 1.25 times its distance from the end of contact (the singularity),
+   !> and the distances from the end double from the end piece on; restitution: the
+   !> cuts lie at L = 4, 12, 36 (phase shorter than 35 in L), 6, 24 (shorter than 150)
+   !> or 6, 27, below 3/4 of the phase and 40. Whether a phase is cut follows the
+   !> thresholds cc_max_beta (restitution) and cc_max_compression_le (compression, on
+   !> ln(1 + beta)).
    subroutine test_graded_pieces_tile(error)
       type(error_type), allocatable, intent(out) :: error
-      real(wp) :: cut(0:max_pieces), bound, beta, ratio
+      real(wp) :: cut(0:max_pieces), bound, beta, ratio, first
       integer :: i, k, j, np, stat, phase
       logical :: split
       character(len=:), allocatable :: label
@@ -1277,24 +1279,40 @@ contains
                   & // format_real(bound) // "]")
                if (allocated(error)) return
                if (phase == compression_branch) then
+                  ! the end piece: end_piece_le wide in L (or half the phase)
+                  call check(error, beta * (bound - cut(np)) >= (1.0_wp - 1.0e-9_wp) &
+                     & * min(end_piece_le, 0.5_wp * beta * bound), label &
+                     & // ": end piece " // format_real(beta * (bound - cut(np))) // " wide in L")
+                  if (allocated(error)) return
                   do j = 1, np
-                     call check(error, cut(j) - cut(j - 1) <= 2.5_wp * (bound - cut(j)) &
+                     call check(error, cut(j) - cut(j - 1) <= 1.25_wp * (bound - cut(j)) &
                         & * (1.0_wp + 1.0e-9_wp), label // ": piece " // int_text(j) &
-                        & // " wider than 2.5 times its distance from the end")
+                        & // " wider than 1.25 times its distance from the end")
                      if (allocated(error)) return
                   end do
                   do j = 2, np
                      ratio = (bound - cut(j - 1)) / (bound - cut(j))
-                     call check(error, abs(ratio - 3.0_wp) < 1.0e-6_wp, label &
+                     call check(error, abs(ratio - 2.0_wp) < 1.0e-6_wp, label &
                         & // ": distances from the end grow by " // format_real(ratio))
                      if (allocated(error)) return
                   end do
                else
+                  ! first cut and ratio by the length of the phase in L
+                  if (beta * bound < 35.0_wp) then
+                     first = 4.0_wp
+                     ratio = 3.0_wp
+                  else if (beta * bound < 150.0_wp) then
+                     first = 6.0_wp
+                     ratio = 4.0_wp
+                  else
+                     first = 6.0_wp
+                     ratio = 4.5_wp
+                  end if
                   do j = 1, np
-                     call check(error, abs(beta * cut(j) - 4.0_wp * 3.0_wp**(j - 1)) &
-                        & <= 1.0e-12_wp * 3.0_wp**j .and. beta * cut(j) <= 0.75_wp &
-                        & * beta * bound, label // ": cut " // int_text(j) // " at L = " &
-                        & // format_real(beta * cut(j)))
+                     call check(error, abs(beta * cut(j) - first * ratio**(j - 1)) &
+                        & <= 1.0e-12_wp * ratio**j .and. beta * cut(j) <= 0.75_wp &
+                        & * beta * bound .and. beta * cut(j) <= 40.0_wp, label // ": cut " &
+                        & // int_text(j) // " at L = " // format_real(beta * cut(j)))
                      if (allocated(error)) return
                   end do
                end if
