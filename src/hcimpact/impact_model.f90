@@ -63,6 +63,7 @@ module hcimpact_impact_model
    public :: compression_branch, restitution_branch
    ! for the unit tests of the graded pieces
    public :: power_phase_pieces, max_pieces, cc_max_beta, cc_max_compression_le, end_piece_le
+   public :: whole_max_beta
 
    !> Smallest exponent n of the power law accepted (hcimpact_err_exponent below it).
    !> As n -> 0 the law c x^n tends to a step and the peak-force condition
@@ -669,7 +670,9 @@ contains
       integer :: form
 
       beta = model%f%tr%beta%hi
-      wmax = beta * max(b1, b2)
+      ! every form's |w| is below beta max(b1, b2)/2 (the end forms serve d <= b/2, the
+      ! turning point's the l in between)
+      wmax = 0.5_wp * beta * max(b1, b2)
       include "g2_terms.inc"
       do m = 0, count - 1
          i = first + m * step

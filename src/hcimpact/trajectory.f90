@@ -75,12 +75,15 @@ module hcimpact_trajectory
    !> Below this beta, k(beta) is its Taylor series (MODEL.md): the first omitted term,
    !> 40 beta^5/189, is below 3e-26
    real(wp), parameter :: k_series_max = 1.0e-5_wp
-   !> Below this |u|, h(u)/u^2 is its Taylor series in double-double
+   !> Below this |u|, h(u)/u^2 is its Taylor series (h_over_square)
    real(wp), parameter :: h_series_max = 0.125_wp
-   !> 1/j for j = 1, ..., 24 (the series of h(u)/u^2 multiply by them: a division per
+   !> Below this |u|, h(u)/u^2 is its Taylor series in double-double (h_over_square_dd:
+   !> up to 54 terms, cheaper than the logarithm in double-double)
+   real(wp), parameter :: h_series_max_dd = 0.5_wp
+   !> 1/j for j = 1, ..., 58 (the series of h(u)/u^2 multiply by them: a division per
    !> term cost more than the sum)
    integer, private :: jj_
-   real(wp), parameter :: inv_integer(24) = 1.0_wp / real([(jj_, jj_ = 1, 24)], wp)
+   real(wp), parameter :: inv_integer(58) = 1.0_wp / real([(jj_, jj_ = 1, 58)], wp)
    !> Bound on every Newton iteration of this module
    integer, parameter :: max_newton = 60
    !> A Newton step below this share of the variable is at the noise of the quadrature
@@ -172,10 +175,12 @@ contains
 
    !> h(u)/u^2 with h(u) = u - ln(1 + u), for u > -1, in double-double.
    !>
-   !> Series sum_j (-u)^j/(j + 2) for |u| < 1/8: its first three terms in double-double,
-   !> the rest, u^3 (-1/5 + u/6 - ...), in double (20 terms); the double's rounding is
-   !> below 1e-16 |u|^3/5, under 1e-19 of the value. Else ((u - ln(1 + u))/u)/u with
-   !> 1 + u formed exactly.
+   !> Series sum_j (-u)^j/(j + 2) for |u| < 1/2: its first three terms in double-double,
+   !> the rest, u^3 (-1/5 + u/6 - ...), in double (20, 28 or 54 terms for |u| below 1/8,
+   !> 1/4, 1/2: the first omitted term is below 1e-18 of the value); the double part is
+   !> below 0.06 of the value, its rounding below 1e-17 of it. Else
+   !> ((u - ln(1 + u))/u)/u with 1 + u formed exactly (a logarithm in double-double,
+   !> which cost twice the long series).
    elemental function h_over_square_dd(u) result(hq)
       !> Argument, u > -1
       type(dd_real), intent(in) :: u
@@ -184,15 +189,22 @@ contains
       ! 1/3 as two doubles
       type(dd_real), parameter :: third = dd_real(1.0_wp / 3.0_wp, 1.850371707708594e-17_wp)
       real(wp) :: x, x2, even, odd, tail
-      integer :: j
-      if (abs(u%hi) < h_series_max) then
-         ! tail = sum_{i=0}^{19} (-x)^i/(i + 5) as even - x odd, two Horner chains in x^2
-         ! side by side (one chain of 20 steps was the latency of this function)
+      integer :: j, top
+      if (abs(u%hi) < h_series_max_dd) then
+         ! tail = sum_{i=0}^{top+1} (-x)^i/(i + 5) as even - x odd, two Horner chains in
+         ! x^2 side by side (one chain was the latency of this function)
          x = u%hi
          x2 = x * x
-         even = inv_integer(23)
-         odd = inv_integer(24)
-         do j = 21, 5, -2
+         if (abs(x) < 0.125_wp) then
+            top = 18
+         else if (abs(x) < 0.25_wp) then
+            top = 26
+         else
+            top = 52
+         end if
+         even = inv_integer(top + 5)
+         odd = inv_integer(top + 6)
+         do j = top + 3, 5, -2
             even = even * x2 + inv_integer(j)
             odd = odd * x2 + inv_integer(j + 1)
          end do
@@ -318,7 +330,7 @@ contains
       !> Its trajectory
       type(trajectory_type) :: tr
       type(dd_real) :: hb, u, lm, kb, phi, ea
-      real(wp) :: b, kb0, c
+      real(wp) :: b, kb0, c, step
       integer :: it
 
       tr%beta = beta
@@ -361,13 +373,22 @@ contains
             else
                lm = dd(-1.0_wp) - hb
             end if
-            do it = 1, 2
+            ! (from a start good to a double, one step; from L = -1 - h + A, or where
+            ! 1 - k beta is small and its logarithm has lost digits, up to three)
+            do it = 1, 3
                ea = dd_exp(lm)
                phi = ((ea - 1.0_wp) - lm) - hb
                ! e^L - 1 <= -1/2 here; the step in double is exact enough for its size
-               lm = lm - phi%hi / (ea%hi - 1.0_wp)
+               step = phi%hi / (ea%hi - 1.0_wp)
+               lm = lm - step
+               if (abs(step) <= 1.0e-15_wp * abs(lm%hi)) exit
             end do
-            tr%a = dd_exp(lm)
+            if (abs(step) <= 1.0e-15_wp * abs(lm%hi)) then
+               ! A = e^L = e^(L + step) e^(-step): the last exponential, moved by the step
+               tr%a = ea - ea * (step - 0.5_wp * step * step)
+            else
+               tr%a = dd_exp(lm)
+            end if
             kb = 1.0_wp - tr%a
          end if
          tr%k = kb / beta

@@ -786,12 +786,33 @@ def make_cases():
     # the worst case of that sweep before the cut moved to L_e = 5 (time of the peak
     # 4.6 ulp off), with its exact inputs
     cases.append(dict(m=0.37, c=3.1e7, n=0.1, V=1.3, b=9289.395041464571, tag="large-beta"))
+    # The whole-contact rule (issue #4, one rule with the symmetric weight for
+    # beta <= 1.8): exponents 0.1 ... 10 at small and moderate beta, and the seam
+    # beta = 1.8 where the phases take over; own seed, appended.
+    rng3 = random.Random(SEED + 5)
+    combos3 = [(2e-4, 5e9, 0.3), (7.0, 2e6, 4.0), (0.05, 3e12, 30.0), (300.0, 1e4, 2e-3)]
+    whole = []
+    for j in range(48):
+        n = 10.0 ** rng3.uniform(-1, 1)
+        u = rng3.random()
+        if u < 0.1:
+            beta = 0.0
+        elif u < 0.8:
+            beta = 10.0 ** rng3.uniform(-6, math.log10(1.8))
+        else:
+            beta = rng3.uniform(1.6, 2.2)
+        whole.append((n, beta))
+    for n in (0.1, 0.5, 1.0, 1.5, 2.0, 3.0, 10.0):
+        whole.append((n, 1.8))
+    for j, (n, beta) in enumerate(whole):
+        m, c, V = combos3[j % 4]
+        cases.append(dict(m=m, c=c, n=n, V=V, b=beta / V, tag="whole-contact"))
     for cs in cases:
         for key in ("m", "c", "n", "V", "b"):
             cs[key] = float(cs[key])
         assert 1e-6 <= cs["m"] <= 1e3 and 1e3 <= cs["c"] <= 1e13
         assert 1e-6 <= cs["V"] <= 1e3 and cs["b"] >= 0
-        assert 1.0 <= cs["n"] <= 3.0 or cs["tag"] == "large-beta"
+        assert 1.0 <= cs["n"] <= 3.0 or cs["tag"] in ("large-beta", "whole-contact")
     return cases
 
 

@@ -28,7 +28,8 @@ module test_impact
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &
       & velocity_at_depth, time_law, time_law_samples, damping_for_restitution, &
       & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta, &
-      & power_phase_pieces, max_pieces, cc_max_beta, cc_max_compression_le, end_piece_le
+      & power_phase_pieces, max_pieces, cc_max_beta, cc_max_compression_le, end_piece_le, &
+      & whole_max_beta
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome, c_impact
@@ -54,8 +55,9 @@ module test_impact
    !> Largest number of integrand evaluations of one quadrature for beta <= 100
    integer, parameter :: goal_evaluations = 200
    !> Largest number of evaluations of one quadrature on graded pieces, beta up to 1e12
-   !> and n in 0.1 .. 10 (about 240 are needed: 5 to 8 pieces of 25 to 49 values)
-   integer, parameter :: goal_piece_evaluations = 400
+   !> and n in 0.1 .. 10 (113 are needed: 2 to 4 pieces of 13 to 49 values, and the
+   !> peak's rule; the first layout took up to 240)
+   integer, parameter :: goal_piece_evaluations = 150
    !> Largest second difference of a time across a seam of the graded pieces, in ulp:
    !> the rounding noise of three values of up to goal_max = 4 ulps error each, less
    !> than that in practice (7 seen: for n = 0.1 the time of the peak just below the
@@ -147,7 +149,8 @@ contains
          & new_unittest("fuzz-findings", test_fuzz_findings), &
          & new_unittest("graded-pieces-tile", test_graded_pieces_tile), &
          & new_unittest("graded-pieces-evaluations", test_graded_pieces_evaluations), &
-         & new_unittest("graded-pieces-seams", test_graded_pieces_seams) &
+         & new_unittest("graded-pieces-seams", test_graded_pieces_seams), &
+         & new_unittest("whole-contact-seam", test_whole_contact_seam) &
          & ]
    end subroutine collect_impact
 
@@ -1425,5 +1428,42 @@ contains
             & outcome%contact_time]
       end function seam_times
    end subroutine test_graded_pieces_seams
+
+   !> The times are continuous across beta = whole_max_beta, where one rule over the
+   !> whole contact (symmetric weight, no restitution evaluations) hands over to the
+   !> rules on the two phases: four contacts a step 2**-40 beta apart, two on each side
+   !> (checked through the evaluation counts), whose second differences stay within
+   !> goal_seam ulps, as at the seams of the graded pieces.
+   subroutine test_whole_contact_seam(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(outcome_type) :: outcome
+      real(wp) :: t(-1:2, 3), d, beta
+      integer :: i, k, m, stat
+      do i = 1, size(piece_exponents)
+         do k = -1, 2
+            beta = whole_max_beta * (1.0_wp + real(k, wp) * 2.0_wp**(-40))
+            call impact(contact_type(mass=1.0_wp, stiffness=1.0_wp, &
+               & exponent=piece_exponents(i), velocity=1.0_wp, damping=beta), outcome, stat)
+            call check(error, stat == hcimpact_ok .and. ((k <= 0) .eqv. &
+               & (outcome%evaluations(2) == 0_ik)), "n = " // format_real(piece_exponents(i)) &
+               & // ", beta = " // format_real(beta) // ": status " // int_text(stat) &
+               & // ", the rule over the whole contact " // merge("not taken", "taken    ", &
+               & k <= 0) // " (evaluations " // int_text(int(outcome%evaluations(1))) // ", " &
+               & // int_text(int(outcome%evaluations(2))) // ")")
+            if (allocated(error)) return
+            t(k, :) = [outcome%time_at_peak_force, outcome%compression_time, &
+               & outcome%contact_time]
+         end do
+         do m = 1, 3
+            do k = 0, 1
+               d = (t(k - 1, m) - 2.0_wp * t(k, m) + t(k + 1, m)) / spacing(t(0, m))
+               call check(error, abs(d) <= goal_seam, "n = " &
+                  & // format_real(piece_exponents(i)) // ": time " // int_text(m) &
+                  & // " jumps by " // format_real(d) // " ulp at beta = whole_max_beta")
+               if (allocated(error)) return
+            end do
+         end do
+      end do
+   end subroutine test_whole_contact_seam
 
 end module test_impact

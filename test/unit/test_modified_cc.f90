@@ -13,7 +13,11 @@ module test_modified_cc
    use hcimpact_check, only : format_real, reference_path
    use hcimpact_kinds, only : wp
    use hcimpact_modified_cc, only : cc_max_degree, cc_moments, cc_moments_pair, &
-      & cc_coefficients, cc_sum, cc_tail, cc_converged, cc_end_share, cc_node
+      & cc_coefficients, cc_sum, cc_tail, cc_converged, cc_end_share, cc_node, sym_m0, &
+      & sym_moments, sym_partial_moments, sym_q0, sym_q0_near_end, sym_series_max
+   use hcimpact_libm, only : log1p
+   use hcimpact_double_double, only : dd_real, dd_log, dd_exp, two_sum, operator(+), &
+      & operator(-), operator(*), operator(/)
    implicit none
    private
 
@@ -27,6 +31,14 @@ module test_modified_cc
    !> The forward recurrence is stable, but its rounding errors accumulate: about
    !> 4e-17 k^2 J_0 up to k = 24 for the smallest s (5e-4), then linearly (5e-14 at 48)
    real(wp), parameter :: moment_unit = 4.0e-16_wp
+   !> Bound on the errors of the symmetric weight's moments, in units of the largest
+   !> |Q_j| of the same (n, y): sym_unit (1 + k/8) (the recurrence damps its errors; they
+   !> grow with k only through the driving terms). Measured: 3.7e-16 (1 + k/8) at worst,
+   !> n = 0.1, y = 0.95, k = 3 (the rounding of s and of the driving terms 2 s T_k(y))
+   real(wp), parameter :: sym_unit = 5.0e-16_wp
+   !> Bound on the relative error of M_0 (sym_m0): its Chebyshev table is good to 5e-19,
+   !> its double-double steps to about 1e-18; 1e-17 is a tenth of an ulp
+   real(wp), parameter :: m0_bound = 1.0e-17_wp
    !> Bound on the relative error of a resolved integral (the rule's rounding: the
    !> moments' errors times the coefficients, and the noise of the transform)
    real(wp), parameter :: integral_bound = 1.0e-15_wp
@@ -53,7 +65,9 @@ contains
          & new_unittest("integral-reciprocal", test_integral_recip), &
          & new_unittest("accepts-resolved", test_accepts_resolved), &
          & new_unittest("refuses-unresolved", test_refuses_unresolved), &
-         & new_unittest("moments-pair", test_moments_pair) &
+         & new_unittest("moments-pair", test_moments_pair), &
+         & new_unittest("symmetric-m0", test_symmetric_m0), &
+         & new_unittest("symmetric-moments", test_symmetric_moments) &
          & ]
    end subroutine collect_modified_cc
 
@@ -390,5 +404,101 @@ contains
          end do
       end do
    end subroutine test_moments_pair
+
+   !> The symmetric weight's moments as the whole-contact rule of the impact forms them
+   !> (alpha = n/(n+1), 1 - alpha = 1/(n+1) in double-double; Q_0 by the series for
+   !> |y| <= 1/2, else from the impact end with 2^(-alpha) u^(1-alpha) in
+   !> double-double), for y = -1 the complete moments M_k.
+   subroutine symmetric_of(n, y, moment, m0)
+      real(wp), intent(in) :: n, y
+      real(wp), intent(out) :: moment(0:cc_max_degree), m0(2)
+      type(dd_real), parameter :: ln2 = dd_real(0.6931471805599453_wp, &
+         & 2.3190468138462996e-17_wp)
+      type(dd_real) :: np1, a, alpha, u, pref
+      real(wp) :: nu, s, q0(2), inv_den(cc_max_degree)
+      np1 = two_sum(n, 1.0_wp)
+      a = 1.0_wp / np1
+      alpha = n * a
+      nu = (1.0_wp - 2.0_wp * alpha%hi) - 2.0_wp * alpha%lo
+      call sym_m0(a%hi, a%lo, m0)
+      call sym_moments(nu, m0(1), cc_max_degree, moment, inv_den)
+      if (y <= -1.0_wp) return
+      if (y <= sym_series_max) then
+         s = exp(a%hi * log1p(-y * y))
+         call sym_q0(alpha%hi, y, 0.0_wp, m0, q0)
+      else
+         u = 1.0_wp - dd_real(y, 0.0_wp)
+         s = exp(a%hi * (log(u%hi) + log1p(y)))
+         pref = dd_exp(a * dd_log(u) - alpha * ln2)
+         call sym_q0_near_end(alpha%hi, u%hi, [np1%hi, np1%lo], [pref%hi, pref%lo], q0)
+      end if
+      call sym_partial_moments(nu, y, s, q0(1), cc_max_degree, inv_den, moment)
+   end subroutine symmetric_of
+
+   !> M_0 = sqrt(pi) Gamma(1/(n+1))/Gamma(1/2 + 1/(n+1)) rounds to the reference (to
+   !> within m0_bound), for the eight exponents of the reference file (rows y = -1, k = 0)
+   subroutine test_symmetric_m0(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(reference_table) :: table
+      real(wp) :: moment(0:cc_max_degree), m0(2), err, worst
+      integer :: i, checked
+      call read_table(table, error)
+      if (allocated(error)) return
+      checked = 0
+      worst = 0.0_wp
+      do i = 1, size(table%value)
+         if (table%kind(i) /= "sym" .or. table%s(i) > -1.0_wp .or. table%k(i) /= 0) cycle
+         call symmetric_of(table%n(i), -1.0_wp, moment, m0)
+         ! the reference is read into a double (rounded once): M_0 = hi + lo must lie
+         ! within half an ulp of it (plus m0_bound), i.e. round to it
+         err = abs((m0(1) - table%value(i)) + m0(2)) / table%value(i) &
+            & - 0.5_wp * spacing(table%value(i)) / table%value(i)
+         worst = max(worst, err)
+         checked = checked + 1
+         if (err > m0_bound) then
+            call test_failed(error, "M_0 off", "n = " // format_real(table%n(i)) // &
+               & ": relative error " // format_real(err))
+            return
+         end if
+      end do
+      if (checked < size(exponents)) call test_failed(error, "too few M_0 rows")
+   end subroutine test_symmetric_m0
+
+   !> Complete and incomplete moments of the symmetric weight against the references:
+   !> every k <= 48, y in {-1, -0.4, 0, 0.3, 0.5, 0.6, 0.8, 0.95} (both forms of Q_0)
+   subroutine test_symmetric_moments(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(reference_table) :: table
+      real(wp) :: moment(0:cc_max_degree), m0(2), err, worst, scale
+      integer :: i, checked, worst_row
+      call read_table(table, error)
+      if (allocated(error)) return
+      checked = 0
+      worst = 0.0_wp
+      worst_row = 0
+      do i = 1, size(table%value)
+         if (table%kind(i) /= "sym") cycle
+         call symmetric_of(table%n(i), table%s(i), moment, m0)
+         ! the largest |Q_j| of the same (n, y): next to y = 1, Q_0 is small against
+         ! the driving terms 2 s T_k(y) of the recurrence
+         scale = maxval(abs(table%value(i - table%k(i):i - table%k(i) + cc_max_degree)))
+         err = abs(moment(table%k(i)) - table%value(i)) &
+            & / (sym_unit * (1.0_wp + real(table%k(i), wp) / 8.0_wp) * scale)
+         if (err > worst) then
+            worst = err
+            worst_row = i
+         end if
+         checked = checked + 1
+      end do
+      if (checked < 3000) then
+         call test_failed(error, "too few symmetric-moment rows")
+      else if (worst > 1.0_wp) then
+         i = worst_row
+         call test_failed(error, "symmetric moment Q_k(y) off", "n = " // &
+            & format_real(table%n(i)) // ", y = " // format_real(table%s(i)) // ", k = " &
+            & // format_real(real(table%k(i), wp)) // ": error " // format_real(worst) &
+            & // " times the bound")
+      end if
+   end subroutine test_symmetric_moments
 
 end module test_modified_cc
