@@ -38,7 +38,7 @@ module hcimpact_impact_model
       & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
       & hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_libm, only : log1p, expm1
-   use hcimpact_double_double, only : dd_real, dd_two_prod_ext, dd_exp, dd_log
+   use hcimpact_double_double, only : dd_real, dd_two_prod_ext, dd_exp, dd_log, dd_sqrt
    use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
    use hcimpact_restitution_law, only : restitution_inverse
    use hcimpact_modified_cc, only : cc_max_degree, cc_moments, cc_moments_pair, &
@@ -100,6 +100,9 @@ module hcimpact_impact_model
    !> Up to this beta one rule with the symmetric weight covers the whole contact
    !> (power_whole_cc)
    real(wp), parameter :: whole_max_beta = 1.8_wp
+   !> Above this beta the whole-contact rule starts at degree 16 (degree 12 was not
+   !> accepted beyond about 0.55; 16 is, up to whole_max_beta: 17 evaluations, not 25)
+   real(wp), parameter :: whole_16_beta = 0.5_wp
    !> Width in L = beta l of the compression's end piece when the phase is cut: the
    !> complex singularities L_e +- 2 pi i lie at a Bernstein ellipse rho = 5.5 of it,
    !> degree 24 converges (at 6, rho = 4.8, it sometimes needed 48)
@@ -329,7 +332,10 @@ contains
          stat = hcimpact_err_domain
          return
       end if
-      model%time_unit = model%x_max / (np1 * hq * contact%velocity)
+      ! x_max/((n+1) H V): products with 1/(n+1) and 1/H (both to 2**-104), one quotient
+      ! by the double V
+      model%time_unit = (model%x_max * model%inv_np1_dd &
+         & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
    end subroutine new_power_model
 
    !> The constants only the time law needs: those of `power_end_time` (only the time
@@ -569,17 +575,26 @@ contains
          & .and. xp%hi >= -sym_series_max)) return
       call sym_m0(model%inv_np1_dd%hi, model%inv_np1_dd%lo, m0)
 
+      ! degrees 12, 24, 48 (nested); above whole_16_beta, where 12 is not accepted,
+      ! 16 (every third node of the 48 grid) and then 48
       first = 0
       degree = 12
+      if (model%f%tr%beta%hi > whole_16_beta) degree = 16
       do while (degree <= cc_max_degree)
          stride = cc_max_degree / degree
          if (first == 0) then
             call whole_nodes(model, length, b1, b2, kk, sq, 0, stride, degree + 1, f, converged)
             evaluations = evaluations + int(degree + 1, ik)
-         else
+         else if (2 * first == degree) then
             call whole_nodes(model, length, b1, b2, kk, sq, stride, 2 * stride, degree / 2, &
                & f, converged)
             evaluations = evaluations + int(degree / 2, ik)
+         else
+            ! from 16 to 48: the nodes 3j + 1 and 3j + 2
+            call whole_nodes(model, length, b1, b2, kk, sq, 1, 3, first, f, converged)
+            if (converged) call whole_nodes(model, length, b1, b2, kk, sq, 2, 3, first, f, &
+               & converged)
+            evaluations = evaluations + int(2 * first, ik)
          end if
          if (.not. converged) return
          converged = .false.
@@ -597,7 +612,11 @@ contains
             converged = .true.
             exit
          end if
-         degree = 2 * degree
+         if (degree == 16) then
+            degree = cc_max_degree
+         else
+            degree = 2 * degree
+         end if
       end do
       if (.not. converged) return
       ! contact: the rule and the slivers the rounded ends leave (density about 1)
@@ -632,8 +651,13 @@ contains
          ! next to the impact: u = 1 - y (exact for y >= 1/2), P = 2^(-alpha) u^(1-alpha)
          u = 1.0_wp - y
          s = exp(model%f%inv_np1 * (log(u%hi) + log1p(y%hi)))
-         pref = dd_exp(model%inv_np1_dd * dd_log(u) &
-            & - dd_real(model%f%alpha_hi, model%f%alpha_lo) * ln2)
+         if (model%f%alpha_hi == 0.5_wp .and. model%f%alpha_lo == 0.0_wp) then
+            ! n = 1: sqrt(u/2), a fifth of the cost
+            pref = dd_sqrt(0.5_wp * u)
+         else
+            pref = dd_exp(model%inv_np1_dd * dd_log(u) &
+               & - dd_real(model%f%alpha_hi, model%f%alpha_lo) * ln2)
+         end if
          call sym_q0_near_end(model%f%alpha_hi, u%hi, [model%np1_dd%hi, model%np1_dd%lo], &
             & [pref%hi, pref%lo], q0)
       end if
@@ -1296,7 +1320,11 @@ contains
          hu = h_over_square(b * qd)
          step = (n * qd + np1 * b * (qd * qd * hu - h)) / (n + np1 * b * qd / (1.0_wp + b * qd))
          qd = qd - step
-         if (.not. abs(step) > 4.0_wp * epsilon(1.0_wp) * qd) exit
+         ! quadratic convergence: after a step below 1e-8 q the error is below
+         ! |F''| q/(2 F') 1e-16 q <= (n+1)/(8n) 1e-16 q (F'' = (n+1) beta/(1+u)^2,
+         ! F' >= n, u/(1+u)^2 <= 1/4), which the step in double-double below squares;
+         ! one more step in double would only confirm it
+         if (.not. abs(step) > 1.0e-8_wp * qd) exit
       end do
       ! The double iteration leaves q within a few ulps: one step in double-double
       ! squares that error. H(beta q) at the final q is the value at the start of the

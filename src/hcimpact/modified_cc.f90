@@ -110,6 +110,14 @@ module hcimpact_modified_cc
    real(wp), parameter :: cos_odd12(0:7, 0:5) = reshape([((merge(real(cos(pi_xp &
       & * real((4 * (2 * i_ + 1)) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 5), &
       & i_ = 0, 7), j_ = 0, 5)], [8, 6])
+   !> cos(pi j (2m)/16), m, j = 0 .. 8 (degree 16: every third node of the 48 grid)
+   real(wp), parameter :: cos_even16(0:11, 0:8) = reshape([((merge(real(cos(pi_xp &
+      & * real((6 * i_) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 8), &
+      & i_ = 0, 11), j_ = 0, 8)], [12, 9])
+   !> cos(pi j (2m+1)/16), m, j = 0 .. 7
+   real(wp), parameter :: cos_odd16(0:7, 0:7) = reshape([((real(cos(pi_xp &
+      & * real((3 * (2 * i_ + 1)) * j_, xp) / cc_max_degree), wp), &
+      & i_ = 0, 7), j_ = 0, 7)], [8, 8])
    !> cos(pi j (2m)/24), m, j = 0 .. 12
    real(wp), parameter :: cos_even24(0:15, 0:12) = reshape([((merge(real(cos(pi_xp &
       & * real((4 * i_) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 12), &
@@ -243,9 +251,9 @@ contains
 
    !> Chebyshev coefficients a_k, k = 0 .. n, of the interpolant of f at the nodes
    !> x_j = cos(pi j/n): a_k = (2/n) sum''_j f_j cos(pi j k/n) (first and last halved).
-   !> n must divide cc_max_degree; f(j) is the value at node j of this rule.
+   !> n is 12, 16, 24 or 48; f(j) is the value at node j of this rule.
    pure subroutine cc_coefficients(n, f, a)
-      !> Degree: 12, 24 or 48
+      !> Degree: 12, 16, 24 or 48
       integer, intent(in) :: n
       !> Values at the n + 1 nodes
       real(wp), intent(in) :: f(0:)
@@ -268,6 +276,8 @@ contains
       select case (n)
       case (12)
          call fold_transform(half, even, odd, cos_even12, cos_odd12, scale, a)
+      case (16)
+         call fold_transform(half, even, odd, cos_even16, cos_odd16, scale, a)
       case (24)
          call fold_transform(half, even, odd, cos_even24, cos_odd24, scale, a)
       case default

@@ -180,7 +180,7 @@ contains
    !> (2 for m = 0 and m = N, whose terms the sum halves), and the rule gives J_m.
    subroutine test_exactness(error)
       type(error_type), allocatable, intent(out) :: error
-      integer, parameter :: degrees(3) = [12, 24, 48]
+      integer, parameter :: degrees(4) = [12, 16, 24, 48]
       real(wp) :: f(0:cc_max_degree), a(0:cc_max_degree), moment(0:cc_max_degree), x, t0, &
          & t1, t2, expected, total
       integer :: id, n, m, j, k
@@ -340,7 +340,7 @@ contains
    !> must say so, with a tail bound that is not below the actual error.
    subroutine test_refuses_unresolved(error)
       type(error_type), allocatable, intent(out) :: error
-      integer, parameter :: degrees(3) = [12, 24, 48]
+      integer, parameter :: degrees(4) = [12, 16, 24, 48]
       real(wp) :: total, tail, best, best_tail
       logical :: converged
       integer :: i, id
@@ -379,7 +379,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       real(wp), parameter :: exponents(4) = [0.1_wp, 1.0_wp, 1.5_wp, 7.42_wp]
       real(wp), parameter :: shares(4) = [0.999_wp, 0.75_wp, 0.3_wp, 5.0e-4_wp]
-      integer, parameter :: degrees(3) = [12, 24, 48]
+      integer, parameter :: degrees(4) = [12, 16, 24, 48]
       real(wp) :: complete(0:cc_max_degree), partial(0:cc_max_degree)
       real(wp) :: one(0:cc_max_degree), two(0:cc_max_degree), c, big_c
       integer :: i, j, k, n
