@@ -180,7 +180,7 @@ def work_precision_table(rows):
     return "\n".join(lines)
 
 
-def goals(rows):
+def goals(rows, ratio_rows=None):
     out = []
     # 1. contact time within 100 rtol for rtol 1e-4 ... 1e-11, every contact
     worst = {}
@@ -216,11 +216,27 @@ def goals(rows):
             speed.setdefault(r["method"], []).append(num(r, "seconds") / num(c, "seconds"))
             ce = max(max_err(c), 2.0 ** -53)
             acc.setdefault(r["method"], []).append(max_err(r) / ce)
-    sp = "; ".join("%s: %.1f\u00d7 (median), %.1f\u00d7 to %.1f\u00d7" % (
+    how = "the times of the work-precision runs"
+    if ratio_rows:
+        # interleaved rounds (work_precision.f90 --ratio): the median of per-round ratios
+        speed = {"adams": [float(r["ratio_adams"]) for r in ratio_rows],
+                 "bdf": [float(r["ratio_bdf"]) for r in ratio_rows]}
+        how = "per contact the median of per-round ratios (goal_ratio.csv)"
+    sp = "; ".join("%s: %.1f\u00d7 (median over the contacts), %.1f\u00d7 to %.1f\u00d7" % (
         LABELS[m], statistics.median(v), min(v), max(v)) for m, v in sorted(speed.items()))
+    sp += "; " + how
+    below = sorted(set(i for v in speed.values() for i, x in enumerate(v) if x < 100))
+    smed = min(statistics.median(v) for v in speed.values())
     smin = min(min(v) for v in speed.values())
+    if smin >= 100:
+        verdict = "met (every contact)"
+    elif smed >= 100:
+        verdict = ("met in the median; %d of %d contacts below (%.0f\u00d7 at worst)"
+                   % (len(below), len(list(speed.values())[0]), smin))
+    else:
+        verdict = "missed (median %.0f\u00d7)" % smed
     out.append(("closed forms at least 100\u00d7 faster than CVODE at rtol = 1e-10",
-                "met" if smin >= 100 else "missed (%.0f\u00d7 at worst)" % smin, sp))
+                verdict, sp))
     ac = "; ".join("%s: %.1e\u00d7 (median), at least %.1e\u00d7" % (
         LABELS[m], statistics.median(v), min(v)) for m, v in sorted(acc.items()))
     amin = min(min(v) for v in acc.values())
@@ -230,6 +246,19 @@ def goals(rows):
     lines = ["| goal | result | numbers |", "|---|---|---|"]
     for g, res, nums in out:
         lines.append("| %s | **%s** | %s |" % (g, res, nums))
+    if ratio_rows:
+        lines.append("")
+        lines.append("Speed per contact at rtol = 1e-10 (interleaved rounds; times are the "
+                     "medians of the rounds, ratios the medians of the per-round ratios):")
+        lines.append("")
+        lines.append("| contact | n | \u03b2 | V | closed forms (\u00b5s) | CVODE Adams (\u00b5s) "
+                     "| CVODE BDF (\u00b5s) | Adams / closed | BDF / closed |")
+        lines.append("|---|---|---|---|---|---|---|---|---|")
+        for r in ratio_rows:
+            lines.append("| %s | %g | %g | %g | %.2f | %.0f | %.0f | %.0f\u00d7 | %.0f\u00d7 |" % (
+                r["case"], float(r["n"]), float(r["beta"]), float(r["V"]),
+                1e6 * float(r["closed_seconds"]), 1e6 * float(r["adams_seconds"]),
+                1e6 * float(r["bdf_seconds"]), float(r["ratio_adams"]), float(r["ratio_bdf"])))
     # equal-error comparison: the cheapest CVODE run whose error reaches 1e-12
     lines.append("")
     lines.append("Equal error. No CVODE or SciPy run reaches the closed forms' accuracy; "
@@ -343,7 +372,9 @@ def main():
         figure(wp, args.figure)
         print("figure: %s" % args.figure)
     table = work_precision_table(wp)
-    goal_md, goal_list = goals(wp)
+    ratio_path = os.path.join(args.dir, "goal_ratio.csv")
+    ratio_rows = read(ratio_path) if os.path.exists(ratio_path) else None
+    goal_md, goal_list = goals(wp, ratio_rows)
     print(table)
     print()
     print(goal_md)

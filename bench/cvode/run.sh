@@ -6,6 +6,9 @@
 # run them and the SciPy script, and write the CSV files (bench/cvode/*.csv), the
 # figure doc/figures/work_precision.png and the generated tables of doc/cvode.md.
 #
+# The goal's speed ratio at rtol = 1e-10 is measured in interleaved rounds
+# (bench/cvode/goal_ratio.csv, see work_precision.f90).
+#
 # Usage (from anywhere): bench/cvode/run.sh [options]
 #   --quick        one measurement per setting, short ones; the stability grid on
 #                  the steel ball's size only. Writes to $TMPDIR/hcimpact_cvode_quick
@@ -36,7 +39,7 @@ while [ $# -gt 0 ]; do
         --no-scipy) scipy=0 ;;
         --build) shift; build="$1" ;;
         --no-build) do_build=0 ;;
-        -h|--help) sed -n '4,21p' "$0"; exit 0 ;;
+        -h|--help) sed -n '4,24p' "$0"; exit 0 ;;
         *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
     esac
     shift
@@ -74,7 +77,8 @@ if [ "$reference" -eq 1 ]; then
     $PYTHON bench/cvode/make_reference.py
 fi
 set -x
-"$bin/bench_cvode_work_precision" bench/cvode/reference.csv "$out/work_precision.csv" $quick
+"$bin/bench_cvode_work_precision" bench/cvode/reference.csv "$out/work_precision.csv" $quick \
+    --ratio "$out/goal_ratio.csv"
 { set +x; } 2>/dev/null
 if [ "$scipy" -eq 1 ]; then
     set -x

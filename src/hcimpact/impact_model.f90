@@ -208,8 +208,10 @@ module hcimpact_impact_model
       type(dd_real) :: np1_dd
       !> 1/(n + 1) (to 2**-105 relative)
       type(dd_real) :: inv_np1_dd
-      !> ln x_max and x_max (m)
+      !> ln x_max and x_max (m). For n = 1 with `energy_ok`, x_max is a square root and
+      !> ln_x_max only its double part (ln_x_max_dd false: dd_log(x_max) where needed)
       type(dd_real) :: ln_x_max, x_max
+      logical :: ln_x_max_dd = .true.
       !> c x_max^n (N), set by set_end_times (the time law only)
       type(dd_real) :: force_unit
       !> Seconds per unit of the integrals: x_max/((n+1) H V)
@@ -310,7 +312,15 @@ contains
          energy = ((np1 * contact%mass) * contact%velocity) * contact%velocity * hq
          model%energy = energy
          base = energy / contact%stiffness
-         model%ln_x_max = dd_log(base) * model%inv_np1_dd
+         if (alpha%hi == 0.5_wp .and. alpha%lo == 0.0_wp) then
+            ! n = 1: x_max = sqrt(base), one root instead of a logarithm and an
+            ! exponential in double-double (base is within the range: energy_ok)
+            model%x_max = dd_sqrt(base)
+            model%ln_x_max = dd(log(model%x_max%hi))
+            model%ln_x_max_dd = .false.
+         else
+            model%ln_x_max = dd_log(base) * model%inv_np1_dd
+         end if
       else
          ln_v = dd_log(dd(contact%velocity))
          model%ln_x_max = (dd_log(np1) + dd_log(dd(contact%mass)) + ln_v + ln_v &
@@ -320,7 +330,7 @@ contains
          stat = hcimpact_err_domain
          return
       end if
-      model%x_max = dd_exp(model%ln_x_max)
+      if (model%ln_x_max_dd) model%x_max = dd_exp(model%ln_x_max)
       ! c x_max^n (force_unit) only serves the time law: set_end_times forms it; ln c to
       ! within ln 2 (the margin from log_limit to overflow is 19)
       if (abs(ec * ln2 + contact%exponent * model%ln_x_max%hi) > log_limit) then
@@ -531,12 +541,13 @@ contains
    !>     G = (S (L/2)^2/(H d_c d_r))^(-alpha),
    !>
    !> G analytic: its nearest singularities are the complex zeros of S (Im L = +-2 pi),
-   !> far away for small beta, so degree 12 (beta up to about 0.5) or 24 suffices where the
-   !> two one-sided rules of the phases took 25 nodes each. Moments of the symmetric
-   !> weight: hcimpact_modified_cc's sym_*; the compression and the time of the peak are
-   !> the incomplete integrals from the turning point and from the peak (|x| <= 1/2, else
-   !> `converged` false and the caller takes the phases one by one). Each node uses the
-   !> form of S for its nearest point among the two ends and the turning point.
+   !> far away for small beta, so degree 12 (beta up to 0.5) or 16 suffices where the two
+   !> one-sided rules of the phases took 25 nodes each. Moments of the symmetric weight:
+   !> hcimpact_modified_cc's sym_*; the compression and the time of the peak are the
+   !> incomplete integrals from the turning point and from the peak to the impact (the
+   !> turning point must lie within |x| <= 1/2, else, or if degree 48 is not accepted,
+   !> `converged` is false and the caller takes the phases one by one). Each node uses
+   !> the form of S for its nearest point among the two ends and the turning point.
    pure subroutine power_whole_cc(model, lp, dur, tpeak, evaluations, converged)
       type(power_model), intent(in) :: model
       !> l of the peak force
@@ -1156,8 +1167,13 @@ contains
       outcome%time_at_peak_force = t%hi
       ! x_peak = x_max (1 - y)^(1/(n+1)); F = c x_peak^n (1 + u), which is
       ! (n+1) m V^2 H (1 - y) (1 + u)/x_peak since c x_peak^(n+1) = c x_max^(n+1) (1 - y)
-      t = model%ln_x_max + dd_log(1.0_wp - y) * model%inv_np1_dd
-      xp = dd_exp(t)
+      if (model%ln_x_max_dd) then
+         t = model%ln_x_max + dd_log(1.0_wp - y) * model%inv_np1_dd
+         xp = dd_exp(t)
+      else
+         ! n = 1: x_max sqrt(1 - y)
+         xp = model%x_max * dd_sqrt(1.0_wp - y)
+      end if
       outcome%compression_at_peak_force = xp%hi
       if (model%energy_ok) then
          t = model%energy * (1.0_wp - y) * (u + 1.0_wp) / xp
@@ -1392,6 +1408,7 @@ contains
       end if
       ! y = 1 - (x/x_max)^(n+1), in double-double
       if (x > 0.0_wp) then
+         if (.not. model%ln_x_max_dd) model%ln_x_max = dd_log(model%x_max)
          yd = 1.0_wp - dd_exp((dd_log(dd(x)) - model%ln_x_max) * two_sum(model%n, 1.0_wp))
       else
          yd = dd(1.0_wp)
