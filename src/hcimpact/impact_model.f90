@@ -560,8 +560,8 @@ contains
       logical, intent(out) :: converged
       real(wp) :: f(0:cc_max_degree), g(0:cc_max_degree), a(0:cc_max_degree)
       real(wp) :: moment(0:cc_max_degree)
-      real(wp) :: m0(2), lin(2), b1, b2, length, nu, fmax, alpha, inv_den(cc_max_degree)
-      type(dd_real) :: ls, sq, kk, total, num, x0, xp
+      real(wp) :: lin(2), b1, b2, length, nu, fmax, alpha, inv_den(cc_max_degree)
+      type(dd_real) :: ls, sq, kk, total, num, x0, xp, m0
       integer :: degree, stride, first
 
       converged = .false.
@@ -579,12 +579,12 @@ contains
       ! the turning point and the peak in x: x = 1 - 2 d_c/L, L = b1 + b2 - ls%lo, and
       ! the turning point's d_c is b1 (the nodes place l = b1 - d_c), the peak's b1 - lp
       num = two_sum(b2, -b1) - ls%lo
-      x0 = dd_over(num, length)
-      xp = dd_over(num + 2.0_wp * lp, length)
+      x0 = num / length
+      xp = (num + 2.0_wp * lp) / length
       ! (the peak lies between the turning point and the impact: x0 <= xp < 1)
       if (.not. (abs(x0%hi) <= sym_series_max .and. xp%hi < 1.0_wp &
          & .and. xp%hi >= -sym_series_max)) return
-      call sym_m0(model%inv_np1_dd%hi, model%inv_np1_dd%lo, m0)
+      m0 = sym_m0(model%inv_np1_dd)
 
       ! degrees 12, 24, 48 (nested); above whole_16_beta, where 12 is not accepted,
       ! 16 (every third node of the 48 grid) and then 48
@@ -616,8 +616,8 @@ contains
          g(0:degree) = (f(0:cc_max_degree:stride) - lin(1)) &
             & - lin(2) * cc_node(0:cc_max_degree:stride)
          call cc_coefficients(degree, g, a)
-         call sym_moments(nu, m0(1), degree, moment, inv_den)
-         total = (two_prod(lin(1), m0(1)) + lin(1) * m0(2)) + cc_sum(degree, a, moment)
+         call sym_moments(nu, m0%hi, degree, moment, inv_den)
+         total = lin(1) * m0 + cc_sum(degree, a, moment)
          fmax = maxval(abs(g(0:degree)))
          if (cc_converged(degree, a, moment, total%hi, fmax, model%f%rtol)) then
             converged = .true.
@@ -645,19 +645,19 @@ contains
    !> times L/2
    pure function whole_part(model, y, m0, nu, inv_den, degree, a, lin, length) result(t)
       type(power_model), intent(in) :: model
-      type(dd_real), intent(in) :: y
-      real(wp), intent(in) :: m0(2), nu, inv_den(cc_max_degree)
+      type(dd_real), intent(in) :: y, m0
+      real(wp), intent(in) :: nu, inv_den(cc_max_degree)
       integer, intent(in) :: degree
       real(wp), intent(in) :: a(0:cc_max_degree), lin(2), length
       type(dd_real) :: t
       ! ln 2 as hi + lo
       type(dd_real), parameter :: ln2 = dd_real(0.6931471805599453_wp, &
          & 2.3190468138462996e-17_wp)
-      real(wp) :: s, q0(2), partial(0:cc_max_degree)
-      type(dd_real) :: u, pref
+      real(wp) :: s, partial(0:cc_max_degree)
+      type(dd_real) :: u, pref, q0
       if (y%hi <= sym_series_max) then
          s = exp(model%f%inv_np1 * log1p(-y%hi * y%hi))
-         call sym_q0(model%f%alpha_hi, y%hi, y%lo, m0, q0)
+         q0 = sym_q0(model%f%alpha_hi, y, m0)
       else
          ! next to the impact: u = 1 - y (exact for y >= 1/2), P = 2^(-alpha) u^(1-alpha)
          u = 1.0_wp - y
@@ -669,24 +669,12 @@ contains
             pref = dd_exp(model%inv_np1_dd * dd_log(u) &
                & - dd_real(model%f%alpha_hi, model%f%alpha_lo) * ln2)
          end if
-         call sym_q0_near_end(model%f%alpha_hi, u%hi, [model%np1_dd%hi, model%np1_dd%lo], &
-            & [pref%hi, pref%lo], q0)
+         q0 = sym_q0_near_end(model%f%alpha_hi, u%hi, model%np1_dd, pref)
       end if
-      call sym_partial_moments(nu, y%hi, s, q0(1), degree, inv_den, partial)
-      t = ((two_prod(lin(1), q0(1)) + (lin(1) * q0(2) + lin(2) * partial(1))) &
-         & + cc_sum(degree, a, partial)) * (0.5_wp * length)
+      call sym_partial_moments(nu, y%hi, s, q0%hi, degree, inv_den, partial)
+      t = ((lin(1) * q0 + lin(2) * partial(1)) + cc_sum(degree, a, partial)) &
+         & * (0.5_wp * length)
    end function whole_part
-
-   !> num/den for a double den, as hi + lo
-   elemental function dd_over(num, den) result(q)
-      type(dd_real), intent(in) :: num
-      real(wp), intent(in) :: den
-      type(dd_real) :: q
-      type(dd_real) :: r
-      q%hi = num%hi / den
-      r = two_prod(q%hi, den)
-      q%lo = (((num%hi - r%hi) - r%lo) + num%lo) / den
-   end function dd_over
 
    !> G of power_whole_cc at the nodes i = first, first + step, ... (count of them) of
    !> the degree-48 grid; `ok` false when a value is not finite and positive.

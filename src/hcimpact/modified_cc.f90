@@ -51,6 +51,8 @@
 !> See doc/quadrature.md.
 module hcimpact_modified_cc
    use hcimpact_kinds, only : wp
+   use hcimpact_double_double, only : dd_real, two_sum, two_prod, operator(+), &
+      & operator(-), operator(*), operator(/)
    implicit none
    private
 
@@ -388,47 +390,34 @@ contains
          & + 4.0_wp * epsilon(1.0_wp) * fmax * abs(moment(0))
    end function cc_converged
 
-   !> M_0 = int_-1^1 (1 - x^2)^(-alpha) dx = sqrt(pi) Gamma(a)/Gamma(a + 1/2) as hi + lo,
-   !> for a = 1 - alpha = a_hi + a_lo in (0, 1]: sqrt(pi) f(a)/a with f(a) =
-   !> Gamma(a + 1)/Gamma(a + 1/2) from its Chebyshev series in t = 2a - 1, the first two
-   !> terms in double-double, the rest (below 0.023 f in all) by Clenshaw's sum in
-   !> double. About 1e-18 relative.
-   pure subroutine sym_m0(a_hi, a_lo, m0)
-      real(wp), intent(in) :: a_hi, a_lo
-      real(wp), intent(out) :: m0(2)
-      real(wp), parameter :: sqrt_pi(2) = [1.772453850905516_wp, -7.666586499825799e-17_wp]
-      real(wp) :: t, tl, b1, b2, b0, tail, ph, pl, sh, sl, qh, ql, rh, rl, e
+   !> M_0 = int_-1^1 (1 - x^2)^(-alpha) dx = sqrt(pi) Gamma(a)/Gamma(a + 1/2) for
+   !> a = 1 - alpha in (0, 1]: sqrt(pi) f(a)/a with f(a) = Gamma(a + 1)/Gamma(a + 1/2)
+   !> from its Chebyshev series in t = 2a - 1, the first two terms in double-double, the
+   !> rest (below 0.023 f in all) by Clenshaw's sum in double. About 5e-18 relative.
+   pure function sym_m0(a) result(m0)
+      !> 1 - alpha = 1/(n+1)
+      type(dd_real), intent(in) :: a
+      type(dd_real) :: m0
+      type(dd_real), parameter :: sqrt_pi = dd_real(1.772453850905516_wp, &
+         & -7.666586499825799e-17_wp)
+      type(dd_real) :: t
+      real(wp) :: b0, b1, b2, tail
       integer :: k
-      ! t = 2a - 1 as t + tl (2 a_hi is exact)
-      call exact_sum(2.0_wp * a_hi, -1.0_wp, t, tl)
-      tl = tl + 2.0_wp * a_lo
+      t = two_sum(2.0_wp * a%hi, -1.0_wp) + 2.0_wp * a%lo
       ! sum_{k>=2} c_k T_k(t), Clenshaw
       b1 = 0.0_wp
       b2 = 0.0_wp
       do k = gamma_ratio_terms - 1, 2, -1
-         b0 = gamma_ratio_c(k) + 2.0_wp * t * b1 - b2
+         b0 = gamma_ratio_c(k) + 2.0_wp * t%hi * b1 - b2
          b2 = b1
          b1 = b0
       end do
       ! the step k = 1 with c_1 = 0, then c_0 = 0 + t b_1 - b_2
-      b0 = 2.0_wp * t * b1 - b2
-      tail = t * b0 - b1
-      ! c_1 t exactly (hi + lo), then + c_0 + tail
-      call exact_product(gamma_ratio_c1(1), t, ph, pl)
-      pl = pl + (gamma_ratio_c1(1) * tl + gamma_ratio_c1(2) * t)
-      call exact_sum(gamma_ratio_c0(1), ph, sh, sl)
-      sl = sl + ((gamma_ratio_c0(2) + pl) + tail)
-      call fast_sum(sh, sl, qh, ql)
-      ! times sqrt(pi)
-      call exact_product(qh, sqrt_pi(1), rh, rl)
-      rl = rl + (qh * sqrt_pi(2) + ql * sqrt_pi(1))
-      call fast_sum(rh, rl, qh, ql)
-      ! divided by a: q = qh/a_hi, then the rest (q_h + q_l - q a)/a
-      rh = qh / a_hi
-      call exact_product(rh, a_hi, ph, pl)
-      e = ((((qh - ph) - pl) + ql) - rh * a_lo) / a_hi
-      call fast_sum(rh, e, m0(1), m0(2))
-   end subroutine sym_m0
+      b0 = 2.0_wp * t%hi * b1 - b2
+      tail = t%hi * b0 - b1
+      m0 = ((dd_real(gamma_ratio_c0(1), gamma_ratio_c0(2)) &
+         & + dd_real(gamma_ratio_c1(1), gamma_ratio_c1(2)) * t) + tail) * sqrt_pi / a
+   end function sym_m0
 
    !> Complete moments M_0 .. M_n of the symmetric weight (M_0 given, its double part),
    !> and the reciprocals 1/(k + 1 + nu), k = 1 .. n - 1, that sym_partial_moments uses
@@ -480,19 +469,20 @@ contains
       end do
    end subroutine sym_partial_moments
 
-   !> Q_0(y) = int_y^1 (1 - x^2)^(-alpha) dx = M_0/2 - D(y) for |y| <= sym_series_max,
-   !> y = y_hi + y_lo, as hi + lo: D(y) = sum_j (alpha)_j/j! y^(2j+1)/(2j+1), its
-   !> first term y in double-double, the rest in double (below 0.05 |y|).
-   pure subroutine sym_q0(alpha, y_hi, y_lo, m0, q0)
-      real(wp), intent(in) :: alpha, y_hi, y_lo, m0(2)
-      real(wp), intent(out) :: q0(2)
+   !> Q_0(y) = int_y^1 (1 - x^2)^(-alpha) dx = M_0/2 - D(y) for |y| <= sym_series_max:
+   !> D(y) = sum_j (alpha)_j/j! y^(2j+1)/(2j+1), its first term y in double-double, the
+   !> rest in double (below 0.05 |y|).
+   pure function sym_q0(alpha, y, m0) result(q0)
+      real(wp), intent(in) :: alpha
+      type(dd_real), intent(in) :: y, m0
+      type(dd_real) :: q0
       ! 1/j and 1/(2j + 1), j = 1 .. 64
       integer :: jj
       real(wp), parameter :: inv_j(64) = 1.0_wp / real([(jj, jj = 1, 64)], wp)
       real(wp), parameter :: inv_odd(64) = 1.0_wp / real([(2 * jj + 1, jj = 1, 64)], wp)
-      real(wp) :: y2, p, rest, h, l
+      real(wp) :: y2, p, rest
       integer :: j
-      y2 = y_hi * y_hi
+      y2 = y%hi * y%hi
       p = 1.0_wp
       rest = 0.0_wp
       do j = 1, 64
@@ -501,22 +491,21 @@ contains
          if (p < 1.0e-20_wp) exit
       end do
       ! M_0/2 - y - y rest
-      call exact_sum(0.5_wp * m0(1), -y_hi, h, l)
-      l = l + ((0.5_wp * m0(2) - y_lo) - y_hi * rest)
-      call fast_sum(h, l, q0(1), q0(2))
-   end subroutine sym_q0
+      q0 = (0.5_wp * m0 - y) - y%hi * rest
+   end function sym_q0
 
-   !> Q_0(y) = int_y^1 (1 - x^2)^(-alpha) dx for y = 1 - u, 0 < u <= 1/2, as hi + lo:
-   !> with x = 1 - t, (1 - x^2)^(-alpha) = (2t)^(-alpha) (1 - t/2)^(-alpha), so
+   !> Q_0(y) = int_y^1 (1 - x^2)^(-alpha) dx for y = 1 - u, 0 < u <= 1/2: with x = 1 - t,
+   !> (1 - x^2)^(-alpha) = (2t)^(-alpha) (1 - t/2)^(-alpha), so
    !> Q_0 = P sum_j (alpha)_j/j! (u/2)^j/(j + 1 - alpha), P = 2^(-alpha) u^(1-alpha)
-   !> (given as hi + lo: the caller forms it in double-double), the first term
-   !> 1/(1 - alpha) = n + 1 (np1 as hi + lo), the rest (below 1/4 of it) in double.
-   pure subroutine sym_q0_near_end(alpha, u, np1, pref, q0)
-      real(wp), intent(in) :: alpha, u, np1(2), pref(2)
-      real(wp), intent(out) :: q0(2)
+   !> (the caller forms it in double-double), the first term 1/(1 - alpha) = n + 1 in
+   !> double-double, the rest (below 1/4 of it) in double.
+   pure function sym_q0_near_end(alpha, u, np1, pref) result(q0)
+      real(wp), intent(in) :: alpha, u
+      type(dd_real), intent(in) :: np1, pref
+      type(dd_real) :: q0
       integer :: jj
       real(wp), parameter :: inv_j(64) = 1.0_wp / real([(jj, jj = 1, 64)], wp)
-      real(wp) :: p, rest, h, l, ph, pl, c
+      real(wp) :: p, rest, c
       integer :: j
       c = 1.0_wp - alpha
       p = 1.0_wp
@@ -526,47 +515,7 @@ contains
          rest = rest + p / (real(j, wp) + c)
          if (p < 1.0e-20_wp) exit
       end do
-      ! (np1 + rest) * pref
-      call exact_sum(np1(1), rest, h, l)
-      l = l + np1(2)
-      call exact_product(h, pref(1), ph, pl)
-      pl = pl + (h * pref(2) + l * pref(1))
-      call fast_sum(ph, pl, q0(1), q0(2))
-   end subroutine sym_q0_near_end
-
-   !> a + b = s + e exactly (Knuth's TwoSum)
-   elemental subroutine exact_sum(a, b, s, e)
-      real(wp), intent(in) :: a, b
-      real(wp), intent(out) :: s, e
-      real(wp) :: v
-      s = a + b
-      v = s - a
-      e = (a - (s - v)) + (b - v)
-   end subroutine exact_sum
-
-   !> a + b = s + e exactly for |a| >= |b| (Dekker's FastTwoSum)
-   elemental subroutine fast_sum(a, b, s, e)
-      real(wp), intent(in) :: a, b
-      real(wp), intent(out) :: s, e
-      s = a + b
-      e = b - (s - a)
-   end subroutine fast_sum
-
-   !> a b = p + e exactly (Dekker's product with Veltkamp's splitting; |a|, |b| and
-   !> |a b| below 2**996, which the callers' arguments are)
-   elemental subroutine exact_product(a, b, p, e)
-      real(wp), intent(in) :: a, b
-      real(wp), intent(out) :: p, e
-      real(wp), parameter :: splitter = 134217729.0_wp
-      real(wp) :: t, ah, al, bh, bl
-      p = a * b
-      t = splitter * a
-      ah = t - (t - a)
-      al = a - ah
-      t = splitter * b
-      bh = t - (t - b)
-      bl = b - bh
-      e = ((ah * bh - p) + ah * bl + al * bh) + al * bl
-   end subroutine exact_product
+      q0 = (np1 + rest) * pref
+   end function sym_q0_near_end
 
 end module hcimpact_modified_cc

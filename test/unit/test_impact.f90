@@ -1366,8 +1366,8 @@ contains
    !> J to them.
    subroutine test_graded_pieces_seams(error)
       type(error_type), allocatable, intent(out) :: error
-      real(wp) :: beta0, t(-1:2, 3), d, cut(0:max_pieces), bound, step
-      integer :: i, k, m, phase, np, stat, first
+      real(wp) :: beta0, t(-1:2, 3), cut(0:max_pieces), bound, step
+      integer :: i, k, phase, np, stat, first
       logical :: split(-8:8)
 
       do i = 1, size(piece_exponents)
@@ -1396,17 +1396,10 @@ contains
                t(k, :) = seam_times(seam_contact(piece_exponents(i), beta0 &
                   & + real(first - 1 + k, wp) * step))
             end do
-            do m = 1, 3
-               do k = 0, 1
-                  d = (t(k - 1, m) - 2.0_wp * t(k, m) + t(k + 1, m)) / spacing(t(0, m))
-                  call check(error, abs(d) <= goal_seam, "n = " &
-                     & // format_real(piece_exponents(i)) // ", phase " // int_text(phase) &
-                     & // ": time " // int_text(m) // " jumps by " // format_real(d) &
-                     & // " ulp at the seam beta = " &
-                     & // format_real(beta0 + real(first, wp) * step))
-                  if (allocated(error)) return
-               end do
-            end do
+            call check_seam(error, t, "n = " // format_real(piece_exponents(i)) &
+               & // ", phase " // int_text(phase) // ", at the seam beta = " &
+               & // format_real(beta0 + real(first, wp) * step))
+            if (allocated(error)) return
          end do
       end do
    contains
@@ -1437,8 +1430,8 @@ contains
    subroutine test_whole_contact_seam(error)
       type(error_type), allocatable, intent(out) :: error
       type(outcome_type) :: outcome
-      real(wp) :: t(-1:2, 3), d, beta
-      integer :: i, k, m, stat
+      real(wp) :: t(-1:2, 3), beta
+      integer :: i, k, stat
       do i = 1, size(piece_exponents)
          do k = -1, 2
             beta = whole_max_beta * (1.0_wp + real(k, wp) * 2.0_wp**(-40))
@@ -1454,16 +1447,28 @@ contains
             t(k, :) = [outcome%time_at_peak_force, outcome%compression_time, &
                & outcome%contact_time]
          end do
-         do m = 1, 3
-            do k = 0, 1
-               d = (t(k - 1, m) - 2.0_wp * t(k, m) + t(k + 1, m)) / spacing(t(0, m))
-               call check(error, abs(d) <= goal_seam, "n = " &
-                  & // format_real(piece_exponents(i)) // ": time " // int_text(m) &
-                  & // " jumps by " // format_real(d) // " ulp at beta = whole_max_beta")
-               if (allocated(error)) return
-            end do
-         end do
+         call check_seam(error, t, "n = " // format_real(piece_exponents(i)) &
+            & // ", at beta = whole_max_beta")
+         if (allocated(error)) return
       end do
    end subroutine test_whole_contact_seam
+
+   !> The second differences t(k-1) - 2 t(k) + t(k+1), k = 0, 1, of the three times
+   !> (peak, compression, contact) of four contacts across a seam, within goal_seam ulps
+   subroutine check_seam(error, t, label)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), intent(in) :: t(-1:2, 3)
+      character(len=*), intent(in) :: label
+      real(wp) :: d
+      integer :: k, m
+      do m = 1, 3
+         do k = 0, 1
+            d = (t(k - 1, m) - 2.0_wp * t(k, m) + t(k + 1, m)) / spacing(t(0, m))
+            call check(error, abs(d) <= goal_seam, label // ": time " // int_text(m) &
+               & // " jumps by " // format_real(d) // " ulp")
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine check_seam
 
 end module test_impact

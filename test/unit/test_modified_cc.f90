@@ -150,20 +150,9 @@ contains
          scale = abs(table%value(i - table%k(i)))
          bound = moment_unit * (1.0_wp + real(table%k(i), wp)**2 / 8.0_wp)
          err = abs(moment(table%k(i)) - table%value(i)) / (bound * scale)
-         if (err > worst) then
-            worst = err
-            worst_row = i
-         end if
-         checked = checked + 1
+         call track_worst(err, i, worst, worst_row, checked)
       end do
-      if (checked < 300) then
-         call test_failed(error, "too few moment rows: the reference file is incomplete")
-      else if (worst > 1.0_wp) then
-         i = worst_row
-         call test_failed(error, "moment J_k(s) off", "n = " // format_real(table%n(i)) &
-            & // ", s = " // format_real(table%s(i)) // ", k = " // format_real(real( &
-            & table%k(i), wp)) // ": error " // format_real(worst) // " times the bound")
-      end if
+      call report_worst(error, table, "moment J_k(s)", "s", checked, 300, worst, worst_row)
    end subroutine check_moments
 
    subroutine test_complete_moments(error)
@@ -411,28 +400,29 @@ contains
    !> double-double), for y = -1 the complete moments M_k.
    subroutine symmetric_of(n, y, moment, m0)
       real(wp), intent(in) :: n, y
-      real(wp), intent(out) :: moment(0:cc_max_degree), m0(2)
+      real(wp), intent(out) :: moment(0:cc_max_degree)
+      type(dd_real), intent(out) :: m0
       type(dd_real), parameter :: ln2 = dd_real(0.6931471805599453_wp, &
          & 2.3190468138462996e-17_wp)
-      type(dd_real) :: np1, a, alpha, u, pref
-      real(wp) :: nu, s, q0(2), inv_den(cc_max_degree)
+      type(dd_real) :: np1, a, alpha, u, pref, q0
+      real(wp) :: nu, s, inv_den(cc_max_degree)
       np1 = two_sum(n, 1.0_wp)
       a = 1.0_wp / np1
       alpha = n * a
       nu = (1.0_wp - 2.0_wp * alpha%hi) - 2.0_wp * alpha%lo
-      call sym_m0(a%hi, a%lo, m0)
-      call sym_moments(nu, m0(1), cc_max_degree, moment, inv_den)
+      m0 = sym_m0(a)
+      call sym_moments(nu, m0%hi, cc_max_degree, moment, inv_den)
       if (y <= -1.0_wp) return
       if (y <= sym_series_max) then
          s = exp(a%hi * log1p(-y * y))
-         call sym_q0(alpha%hi, y, 0.0_wp, m0, q0)
+         q0 = sym_q0(alpha%hi, dd_real(y, 0.0_wp), m0)
       else
          u = 1.0_wp - dd_real(y, 0.0_wp)
          s = exp(a%hi * (log(u%hi) + log1p(y)))
          pref = dd_exp(a * dd_log(u) - alpha * ln2)
-         call sym_q0_near_end(alpha%hi, u%hi, [np1%hi, np1%lo], [pref%hi, pref%lo], q0)
+         q0 = sym_q0_near_end(alpha%hi, u%hi, np1, pref)
       end if
-      call sym_partial_moments(nu, y, s, q0(1), cc_max_degree, inv_den, moment)
+      call sym_partial_moments(nu, y, s, q0%hi, cc_max_degree, inv_den, moment)
    end subroutine symmetric_of
 
    !> M_0 = sqrt(pi) Gamma(1/(n+1))/Gamma(1/2 + 1/(n+1)) rounds to the reference (to
@@ -440,7 +430,8 @@ contains
    subroutine test_symmetric_m0(error)
       type(error_type), allocatable, intent(out) :: error
       type(reference_table) :: table
-      real(wp) :: moment(0:cc_max_degree), m0(2), err, worst
+      real(wp) :: moment(0:cc_max_degree), err, worst
+      type(dd_real) :: m0
       integer :: i, checked
       call read_table(table, error)
       if (allocated(error)) return
@@ -451,7 +442,7 @@ contains
          call symmetric_of(table%n(i), -1.0_wp, moment, m0)
          ! the reference is read into a double (rounded once): M_0 = hi + lo must lie
          ! within half an ulp of it (plus m0_bound), i.e. round to it
-         err = abs((m0(1) - table%value(i)) + m0(2)) / table%value(i) &
+         err = abs((m0%hi - table%value(i)) + m0%lo) / table%value(i) &
             & - 0.5_wp * spacing(table%value(i)) / table%value(i)
          worst = max(worst, err)
          checked = checked + 1
@@ -469,7 +460,8 @@ contains
    subroutine test_symmetric_moments(error)
       type(error_type), allocatable, intent(out) :: error
       type(reference_table) :: table
-      real(wp) :: moment(0:cc_max_degree), m0(2), err, worst, scale
+      real(wp) :: moment(0:cc_max_degree), err, worst, scale
+      type(dd_real) :: m0
       integer :: i, checked, worst_row
       call read_table(table, error)
       if (allocated(error)) return
@@ -484,21 +476,45 @@ contains
          scale = maxval(abs(table%value(i - table%k(i):i - table%k(i) + cc_max_degree)))
          err = abs(moment(table%k(i)) - table%value(i)) &
             & / (sym_unit * (1.0_wp + real(table%k(i), wp) / 8.0_wp) * scale)
-         if (err > worst) then
-            worst = err
-            worst_row = i
-         end if
-         checked = checked + 1
+         call track_worst(err, i, worst, worst_row, checked)
       end do
-      if (checked < 3000) then
-         call test_failed(error, "too few symmetric-moment rows")
+      call report_worst(error, table, "symmetric moment Q_k(y)", "y", checked, 3000, worst, &
+         & worst_row)
+   end subroutine test_symmetric_moments
+
+   !> Count a checked row and keep the largest error and its row (the caller starts
+   !> from worst = 0, worst_row = 0, checked = 0)
+   pure subroutine track_worst(err, row, worst, worst_row, checked)
+      real(wp), intent(in) :: err
+      integer, intent(in) :: row
+      real(wp), intent(inout) :: worst
+      integer, intent(inout) :: worst_row, checked
+      if (err > worst) then
+         worst = err
+         worst_row = row
+      end if
+      checked = checked + 1
+   end subroutine track_worst
+
+   !> Fail if fewer than `least` rows were checked or the largest error (in units of
+   !> its bound) exceeds 1, naming the row's n, its second column (`second`) and k
+   subroutine report_worst(error, table, what, second, checked, least, worst, worst_row)
+      type(error_type), allocatable, intent(out) :: error
+      type(reference_table), intent(in) :: table
+      character(len=*), intent(in) :: what, second
+      integer, intent(in) :: checked, least, worst_row
+      real(wp), intent(in) :: worst
+      integer :: i
+      if (checked < least) then
+         call test_failed(error, "too few rows for " // what // ": the reference file is &
+            &incomplete")
       else if (worst > 1.0_wp) then
          i = worst_row
-         call test_failed(error, "symmetric moment Q_k(y) off", "n = " // &
-            & format_real(table%n(i)) // ", y = " // format_real(table%s(i)) // ", k = " &
+         call test_failed(error, what // " off", "n = " // format_real(table%n(i)) &
+            & // ", " // second // " = " // format_real(table%s(i)) // ", k = " &
             & // format_real(real(table%k(i), wp)) // ": error " // format_real(worst) &
             & // " times the bound")
       end if
-   end subroutine test_symmetric_moments
+   end subroutine report_worst
 
 end module test_modified_cc
