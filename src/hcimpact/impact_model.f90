@@ -223,6 +223,9 @@ module hcimpact_impact_model
       logical :: energy_ok = .false.
       !> 1/H as the double nearest to it and the rest (the nodes multiply by it)
       real(wp) :: inv_hq(2) = 0.0_wp
+      !> 1/(beta_hi^2 H) = 1/h(beta) as two doubles (the phases' nodes with |beta l| > 2;
+      !> set by power_phase_times)
+      real(wp) :: inv_hb(2)
    end type power_model
 
 contains
@@ -579,12 +582,12 @@ contains
       ! the turning point and the peak in x: x = 1 - 2 d_c/L, L = b1 + b2 - ls%lo, and
       ! the turning point's d_c is b1 (the nodes place l = b1 - d_c), the peak's b1 - lp
       num = two_sum(b2, -b1) - ls%lo
-      x0 = num / length
-      xp = (num + 2.0_wp * lp) / length
+      x0 = over_double(num, length)
+      xp = over_double(num + 2.0_wp * lp, length)
       ! (the peak lies between the turning point and the impact: x0 <= xp < 1)
       if (.not. (abs(x0%hi) <= sym_series_max .and. xp%hi < 1.0_wp &
          & .and. xp%hi >= -sym_series_max)) return
-      m0 = sym_m0(model%inv_np1_dd)
+      m0 = sym_m0(model%inv_np1_dd, model%np1_dd)
 
       ! degrees 12, 24, 48 (nested); above whole_16_beta, where 12 is not accepted,
       ! 16 (every third node of the 48 grid) and then 48
@@ -675,6 +678,19 @@ contains
       t = ((lin(1) * q0 + lin(2) * partial(1)) + cc_sum(degree, a, partial)) &
          & * (0.5_wp * length)
    end function whole_part
+
+   !> num/den for a double den, as hi + lo to about 2**-104 (one quotient and the exact
+   !> remainder of its product; the three-digit quotient of the `/` operator is more than
+   !> x0 and xp need)
+   elemental function over_double(num, den) result(q)
+      type(dd_real), intent(in) :: num
+      real(wp), intent(in) :: den
+      type(dd_real) :: q
+      type(dd_real) :: r
+      q%hi = num%hi / den
+      r = two_prod(q%hi, den)
+      q%lo = (((num%hi - r%hi) - r%lo) + num%lo) / den
+   end function over_double
 
    !> G of power_whole_cc at the nodes i = first, first + step, ... (count of them) of
    !> the degree-48 grid; `ok` false when a value is not finite and positive.
@@ -1019,9 +1035,15 @@ contains
          end if
          include "g2_series.inc"
          if (.not. end_form) then
-            if (abs(w) > 2.0_wp) g = g2(w)
-            t = l * l * g
-            t = t * ih + t * il
+            if (abs(w) > 2.0_wp) then
+               ! l^2 G2(w)/H = (e^w - 1 - w)/h(beta): no cancellation for |w| > 2, one
+               ! exponential (expm1 and a quotient cost a third more)
+               t = (exp(w) - 1.0_wp) - w
+               t = t * model%inv_hb(1) + t * model%inv_hb(2)
+            else
+               t = l * l * g
+               t = t * ih + t * il
+            end if
             if (weighted) then
                z(i) = (1.0_wp - t) * inv_end_share_hi(i) + (1.0_wp - t) * inv_end_share_lo(i)
             else
@@ -1194,8 +1216,16 @@ contains
       real(wp) :: lin(2), lin2(2)
       integer :: degree, degree2, moment_degree
       logical :: done(2), split
+      type(dd_real) :: ihb
 
       stat = hcimpact_ok
+      ! 1/h(beta) for the nodes placed in l with |beta l| > 2 (power_nodes); beta = 0 has
+      ! none
+      if (model%f%tr%beta%hi > 0.0_wp) then
+         ihb = dd_real(model%inv_hq(1), model%inv_hq(2)) &
+            & / two_prod(model%f%tr%beta%hi, model%f%tr%beta%hi)
+         model%inv_hb = [ihb%hi, ihb%lo]
+      end if
       split = .false.
       tpeak = dd(0.0_wp)
       ! the complete moments of the weight (d/D)^(-alpha), c = 1 - alpha = 1/(n+1), and

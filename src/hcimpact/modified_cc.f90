@@ -51,10 +51,13 @@
 !> See doc/quadrature.md.
 module hcimpact_modified_cc
    use hcimpact_kinds, only : wp
-   use hcimpact_double_double, only : dd_real, two_sum, two_prod, operator(+), &
-      & operator(-), operator(*), operator(/)
+   use hcimpact_double_double, only : dd_real, dd_two_prod_ext
    implicit none
    private
+
+   ! The double-double operators, inline (see dd_ops.inc): sym_m0 and the Q_0 series
+   ! apply a dozen per impact, and calls across modules cost 8 % of a small-beta impact
+   include "dd_ops_interfaces.inc"
 
    public :: cc_max_degree, cc_moments, cc_moments_pair, cc_coefficients, cc_sum, cc_tail, &
       & cc_converged
@@ -391,12 +394,12 @@ contains
    end function cc_converged
 
    !> M_0 = int_-1^1 (1 - x^2)^(-alpha) dx = sqrt(pi) Gamma(a)/Gamma(a + 1/2) for
-   !> a = 1 - alpha in (0, 1]: sqrt(pi) f(a)/a with f(a) = Gamma(a + 1)/Gamma(a + 1/2)
+   !> a = 1 - alpha in (0, 1]: sqrt(pi) f(a) (1/a) with f(a) = Gamma(a + 1)/Gamma(a + 1/2)
    !> from its Chebyshev series in t = 2a - 1, the first two terms in double-double, the
    !> rest (below 0.023 f in all) by Clenshaw's sum in double. About 5e-18 relative.
-   pure function sym_m0(a) result(m0)
-      !> 1 - alpha = 1/(n+1)
-      type(dd_real), intent(in) :: a
+   pure function sym_m0(a, inv_a) result(m0)
+      !> 1 - alpha = 1/(n+1), and its reciprocal n + 1 (exact where a is not)
+      type(dd_real), intent(in) :: a, inv_a
       type(dd_real) :: m0
       type(dd_real), parameter :: sqrt_pi = dd_real(1.772453850905516_wp, &
          & -7.666586499825799e-17_wp)
@@ -416,7 +419,7 @@ contains
       b0 = 2.0_wp * t%hi * b1 - b2
       tail = t%hi * b0 - b1
       m0 = ((dd_real(gamma_ratio_c0(1), gamma_ratio_c0(2)) &
-         & + dd_real(gamma_ratio_c1(1), gamma_ratio_c1(2)) * t) + tail) * sqrt_pi / a
+         & + dd_real(gamma_ratio_c1(1), gamma_ratio_c1(2)) * t) + tail) * (sqrt_pi * inv_a)
    end function sym_m0
 
    !> Complete moments M_0 .. M_n of the symmetric weight (M_0 given, its double part),
@@ -517,5 +520,8 @@ contains
       end do
       q0 = (np1 + rest) * pref
    end function sym_q0_near_end
+
+   ! dd, two_sum, two_prod and the operators (shared with hcimpact_double_double)
+   include "dd_ops.inc"
 
 end module hcimpact_modified_cc

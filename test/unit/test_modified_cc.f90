@@ -410,7 +410,7 @@ contains
       a = 1.0_wp / np1
       alpha = n * a
       nu = (1.0_wp - 2.0_wp * alpha%hi) - 2.0_wp * alpha%lo
-      m0 = sym_m0(a)
+      m0 = sym_m0(a, np1)
       call sym_moments(nu, m0%hi, cc_max_degree, moment, inv_den)
       if (y <= -1.0_wp) return
       if (y <= sym_series_max) then
