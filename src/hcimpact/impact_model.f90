@@ -582,8 +582,8 @@ contains
       ! the turning point and the peak in x: x = 1 - 2 d_c/L, L = b1 + b2 - ls%lo, and
       ! the turning point's d_c is b1 (the nodes place l = b1 - d_c), the peak's b1 - lp
       num = two_sum(b2, -b1) - ls%lo
-      x0 = over_double(num, length)
-      xp = over_double(num + 2.0_wp * lp, length)
+      x0 = num / length
+      xp = (num + 2.0_wp * lp) / length
       ! (the peak lies between the turning point and the impact: x0 <= xp < 1)
       if (.not. (abs(x0%hi) <= sym_series_max .and. xp%hi < 1.0_wp &
          & .and. xp%hi >= -sym_series_max)) return
@@ -679,19 +679,6 @@ contains
          & * (0.5_wp * length)
    end function whole_part
 
-   !> num/den for a double den, as hi + lo to about 2**-104 (one quotient and the exact
-   !> remainder of its product; the three-digit quotient of the `/` operator is more than
-   !> x0 and xp need)
-   elemental function over_double(num, den) result(q)
-      type(dd_real), intent(in) :: num
-      real(wp), intent(in) :: den
-      type(dd_real) :: q
-      type(dd_real) :: r
-      q%hi = num%hi / den
-      r = two_prod(q%hi, den)
-      q%lo = (((num%hi - r%hi) - r%lo) + num%lo) / den
-   end function over_double
-
    !> G of power_whole_cc at the nodes i = first, first + step, ... (count of them) of
    !> the degree-48 grid; `ok` false when a value is not finite and positive.
    pure subroutine whole_nodes(model, length, b1, b2, kk, sq, first, step, count, f, ok)
@@ -776,9 +763,9 @@ contains
    !> so the end piece may be long. `tol` of each piece is scaled by its share of the
    !> phase (the phase's time is at least its length in l, the density being >= 1).
    !> The time of the peak is a weighted rule of its own, from the peak to the end of
-   !> contact. Returns the end piece's rule and its length.
-   pure subroutine power_phase_split(model, phase, lp, moment, moment_degree, degree, a, &
-         & lin, end_length, duration, tpeak, evaluations, converged)
+   !> contact.
+   pure subroutine power_phase_split(model, phase, lp, moment, moment_degree, duration, &
+         & tpeak, evaluations, converged)
       type(power_model), intent(in) :: model
       integer, intent(in) :: phase
       !> l of the peak force (compression only): the time of the peak is the complete
@@ -791,13 +778,12 @@ contains
       type(dd_real), intent(out) :: tpeak
       real(wp), intent(inout) :: moment(0:cc_max_degree)
       integer, intent(inout) :: moment_degree
-      integer, intent(out) :: degree
-      real(wp), intent(out) :: a(0:cc_max_degree), lin(2), end_length
       type(dd_real), intent(out) :: duration
       integer(ik), intent(inout) :: evaluations
       logical, intent(out) :: converged
       real(wp) :: cut(0:max_pieces), bound, e0, tol, width, resid, f_turn, f_far
       real(wp) :: plain(0:cc_max_degree), a_p(0:cc_max_degree), lin_p(2), gap_end, prev_far
+      real(wp) :: end_length
       type(dd_real) :: part, s
       integer :: np, j, deg_p, plain_degree
 
@@ -840,8 +826,8 @@ contains
       e0 = -1.0_wp
       if (phase == compression_phase) e0 = 0.0_wp
       call power_piece_cc(model, phase, cut(np), end_length, gap_end, e0, .true., &
-         & tol, moment, moment_degree, degree, a, &
-         & lin, part, f_turn, f_far, evaluations, converged)
+         & tol, moment, moment_degree, deg_p, a_p, lin_p, part, f_turn, f_far, evaluations, &
+         & converged)
       if (.not. converged) return
       duration = duration + part + gap_end * prev_far
       ! from the impact to the peak: a weighted rule of its own on [lp, |l_end|] (a
@@ -1210,7 +1196,7 @@ contains
       integer(ik), intent(inout) :: ev(3)
       integer, intent(out) :: stat
       type(dd_real) :: t, ct
-      real(wp) :: half, c, s, length, length2, big_c, f_turn, f_far
+      real(wp) :: half, c, s, length, big_c, f_turn, f_far
       real(wp) :: moment(0:cc_max_degree), coef(0:cc_max_degree), coef2(0:cc_max_degree)
       real(wp) :: moment_peak(0:cc_max_degree)
       real(wp) :: lin(2), lin2(2)
@@ -1261,8 +1247,8 @@ contains
             & degree, coef, lin, dur(1), f_turn, f_far, ev(1), done(1))
          if (done(1)) dur(1) = dur(1) + model%f%tr%gap(compression_phase)
       else
-         call power_phase_split(model, compression_phase, lp, moment, moment_degree, degree, &
-            & coef, lin, length, dur(1), tpeak, ev(1), done(1))
+         call power_phase_split(model, compression_phase, lp, moment, moment_degree, dur(1), &
+            & tpeak, ev(1), done(1))
          split = done(1)
       end if
       if (.not. done(1)) call phase_duration(model%f, compression_phase, dur(1), ev(1), stat)
@@ -1278,8 +1264,8 @@ contains
             & ev(2), done(2))
          if (done(2)) dur(2) = dur(2) + model%f%tr%gap(restitution_phase)
       else
-         call power_phase_split(model, restitution_phase, lp, moment, moment_degree, degree2, &
-            & coef2, lin2, length2, dur(2), t, ev(2), done(2))
+         call power_phase_split(model, restitution_phase, lp, moment, moment_degree, dur(2), &
+            & t, ev(2), done(2))
       end if
       if (.not. done(2)) call phase_duration(model%f, restitution_phase, dur(2), ev(2), stat)
       if (stat /= hcimpact_ok) return

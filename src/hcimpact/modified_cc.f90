@@ -51,13 +51,10 @@
 !> See doc/quadrature.md.
 module hcimpact_modified_cc
    use hcimpact_kinds, only : wp
-   use hcimpact_double_double, only : dd_real, dd_two_prod_ext
+   use hcimpact_double_double, only : dd_real, two_sum, operator(+), operator(-), &
+      & operator(*)
    implicit none
    private
-
-   ! The double-double operators, inline (see dd_ops.inc): sym_m0 and the Q_0 series
-   ! apply a dozen per impact, and calls across modules cost 8 % of a small-beta impact
-   include "dd_ops_interfaces.inc"
 
    public :: cc_max_degree, cc_moments, cc_moments_pair, cc_coefficients, cc_sum, cc_tail, &
       & cc_converged
@@ -142,6 +139,9 @@ module hcimpact_modified_cc
 
    !> Largest |y| for which sym_q0 sums its series (terms fall like y^2 per step)
    real(wp), parameter :: sym_series_max = 0.5_wp
+   !> 1/j and 1/(2j + 1), j = 1 .. 64, for the series of Q_0
+   real(wp), parameter :: inv_j(64) = 1.0_wp / real([(i_, i_ = 1, 64)], wp)
+   real(wp), parameter :: inv_odd(64) = 1.0_wp / real([(2 * i_ + 1, i_ = 1, 64)], wp)
 
 ! BEGIN GENERATED (tools/make_gegenbauer_table.py)
    !> Chebyshev coefficients of Gamma(a + 1)/Gamma(a + 1/2) in t = 2a - 1 on
@@ -479,10 +479,6 @@ contains
       real(wp), intent(in) :: alpha
       type(dd_real), intent(in) :: y, m0
       type(dd_real) :: q0
-      ! 1/j and 1/(2j + 1), j = 1 .. 64
-      integer :: jj
-      real(wp), parameter :: inv_j(64) = 1.0_wp / real([(jj, jj = 1, 64)], wp)
-      real(wp), parameter :: inv_odd(64) = 1.0_wp / real([(2 * jj + 1, jj = 1, 64)], wp)
       real(wp) :: y2, p, rest
       integer :: j
       y2 = y%hi * y%hi
@@ -506,8 +502,6 @@ contains
       real(wp), intent(in) :: alpha, u
       type(dd_real), intent(in) :: np1, pref
       type(dd_real) :: q0
-      integer :: jj
-      real(wp), parameter :: inv_j(64) = 1.0_wp / real([(jj, jj = 1, 64)], wp)
       real(wp) :: p, rest, c
       integer :: j
       c = 1.0_wp - alpha
@@ -520,8 +514,5 @@ contains
       end do
       q0 = (np1 + rest) * pref
    end function sym_q0_near_end
-
-   ! dd, two_sum, two_prod and the operators (shared with hcimpact_double_double)
-   include "dd_ops.inc"
 
 end module hcimpact_modified_cc
