@@ -206,7 +206,7 @@ int hcimpact_two_body_velocities(double mass1, double mass2, double velocity1,
 
 /* ------------------------------------------------------------------------
  * One impact (issue #3): m x'' = -c x^n (1 + b x'), x(0) = 0, x'(0) = V.
- * Fortran: src/hcimpact/api_impact.f90 (module hcimpact_api_impact), physics in
+ * Fortran: src/hcimpact/capi/api_impact.f90 (module hcimpact_api_impact), physics in
  * hcimpact_impact_model; doc/impact.md.
  * ------------------------------------------------------------------------ */
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Write the tables and constants of the exponential in src/hcimpact/double_double.f90.
+"""Write the tables and constants of the exponential in src/hcimpact/numerics/double_double.f90.
 
 The block between the lines "! BEGIN GENERATED (tools/make_double_double_tables.py)"
 and "! END GENERATED" of the module is replaced; the rest of the file is left alone.
@@ -58,7 +58,7 @@ def array(name, lower, values):
 
 def main():
     path = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
-        os.path.dirname(__file__), "..", "src", "hcimpact", "double_double.f90")
+        os.path.dirname(__file__), "..", "src", "hcimpact", "numerics", "double_double.f90")
     n = 2 ** 16
     ln2 = mp.log(2)
 

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Write the Chebyshev table of the Gamma-function ratio in src/hcimpact/modified_cc.f90.
+"""Write the Chebyshev table of the Gamma-function ratio in src/hcimpact/numerics/modified_cc.f90.
 
 The whole-contact rule of the closed forms (hcimpact_modified_cc's sym_m0) needs the
 complete moment of the symmetric weight (1 - x^2)^(-alpha) on [-1, 1],
@@ -63,7 +63,7 @@ def fortran(d):
 
 def main():
     path = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
-        os.path.dirname(os.path.abspath(__file__)), "..", "src", "hcimpact", "modified_cc.f90")
+        os.path.dirname(os.path.abspath(__file__)), "..", "src", "hcimpact", "numerics", "modified_cc.f90")
     coef = chebyshev()
     # check the truncated series with the stored doubles
     stored = [mp.mpf(nearest(c)) for c in coef]

@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Write src/hcimpact/lambertw_tables.f90: the tables of Lambert W (lambertw.f90) and of
+"""Write src/hcimpact/special/lambertw_tables.f90: the tables of Lambert W (lambertw.f90) and of
 the restitution k(beta) (restitution_law.f90).
 
 * Geometric tables (GEO below), the ones lambertw.f90 evaluates on almost every path: a
@@ -399,7 +399,7 @@ def write_log(w):
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
-    out = os.path.join(here, "..", "src", "hcimpact", "lambertw_tables.f90")
+    out = os.path.join(here, "..", "src", "hcimpact", "special", "lambertw_tables.f90")
     lines = []
     w = lines.append
     w("! SPDX-License-Identifier: Apache-2.0")

@@ -4,7 +4,7 @@
 #
 # Consistency of the C and FORTRAN 77 interfaces with the Fortran sources:
 #   1. no binding label (bind(C, name="...") or the name of a bind(C) procedure
-#      without name=) and no FORTRAN 77 external (src/hcimpact/f77.f90) equals a
+#      without name=) and no FORTRAN 77 external (src/hcimpact/f77/f77.f90) equals a
 #      module name: gfortran miscompiles a call in a unit that uses module M when
 #      the unit also defines the label M (it became an infinite loop once);
 #   2. every hcimpact_* label of src/ and components/ is declared in
@@ -57,8 +57,8 @@ list(REMOVE_DUPLICATES modules)
 
 # FORTRAN 77 externals: the subroutines of f77.f90 outside any module
 set(f77_names "")
-if(EXISTS "${SOURCE_DIR}/src/hcimpact/f77.f90")
-  file(STRINGS "${SOURCE_DIR}/src/hcimpact/f77.f90" f77_lines REGEX "^subroutine[ \t]+[a-z0-9_]+")
+if(EXISTS "${SOURCE_DIR}/src/hcimpact/f77/f77.f90")
+  file(STRINGS "${SOURCE_DIR}/src/hcimpact/f77/f77.f90" f77_lines REGEX "^subroutine[ \t]+[a-z0-9_]+")
   foreach(line IN LISTS f77_lines)
     if(line MATCHES "^subroutine[ \t]+([a-z0-9_]+)")
       list(APPEND f77_names "${CMAKE_MATCH_1}")

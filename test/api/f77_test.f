@@ -1,6 +1,6 @@
 C     SPDX-License-Identifier: Apache-2.0
 C
-C     Test of the FORTRAN 77 entry points (src/hcimpact/f77.f90) from
+C     Test of the FORTRAN 77 entry points (src/hcimpact/f77/f77.f90) from
 C     a fixed-form program with implicit interfaces: values and INFO
 C     codes, good and bad arguments (doc/fortran77.md). Exit status 1
 C     (STOP 1) if a check fails.

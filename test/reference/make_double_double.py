@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Reference values of the double-double arithmetic (src/hcimpact/double_double.f90).
+"""Reference values of the double-double arithmetic (src/hcimpact/numerics/double_double.f90).
 
 Writes ``double_double.csv`` next to this script (or to ``--output``): one row per
 test point, ``region,func,a_hi,a_lo,b_hi,b_lo,ref_hi,ref_lo``. The inputs are exact

@@ -7,7 +7,7 @@
 !> is (y%hi - ref_hi) + (y%lo - ref_lo) (the first difference is exact when y is close),
 !> and the test asserts |error| <= bound |ref| (+ 2^-1074 for exp, whose results near
 !> and below the end of the normal range lose their trailing part), with the bounds
-!> documented in src/hcimpact/double_double.f90. Each test also checks that the result
+!> documented in src/hcimpact/numerics/double_double.f90. Each test also checks that the result
 !> is normalised, |y%lo| <= ulp(y%hi)/2.
 !>
 !> Safe under -ffpe-trap=invalid,zero,overflow: no NaN is compared, no logarithm of

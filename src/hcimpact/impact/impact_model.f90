@@ -55,7 +55,7 @@ module hcimpact_impact_model
    private
 
    ! The double-double operators, inline (see dd_ops.inc)
-   include "dd_ops_interfaces.inc"
+   include "../numerics/dd_ops_interfaces.inc"
 
    public :: contact_type, outcome_type
    public :: impact, impact_law, velocity_at_depth, time_law, time_law_samples
@@ -2172,6 +2172,6 @@ contains
       stat = hcimpact_err_domain
    end subroutine reject_unrepresentable
 
-   include "dd_ops.inc"
+   include "../numerics/dd_ops.inc"
 
 end module hcimpact_impact_model

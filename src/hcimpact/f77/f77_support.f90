@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> Helpers of the FORTRAN 77 entry points (src/hcimpact/f77.f90): the LAPACK-style
+!> Helpers of the FORTRAN 77 entry points (src/hcimpact/f77/f77.f90): the LAPACK-style
 !> INFO of a contact's arguments and the flat result array of one impact.
 module hcimpact_f77_support
    use, intrinsic :: iso_fortran_env, only : int64

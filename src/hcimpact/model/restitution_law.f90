@@ -353,6 +353,6 @@ contains
       ql = (((ah - ph) - pl) + al) / b
    end subroutine div_dd
 
-   include "ddarith.inc"
+   include "../numerics/ddarith.inc"
 
 end module hcimpact_restitution_law

@@ -509,7 +509,7 @@ contains
       call fast_two_sum(u, -du, uh, ul)
    end subroutine log1pmx_root
 
-   include "ddarith.inc"
+   include "../numerics/ddarith.inc"
 
    !> Square root of the double-double ah + al (ah > 0, normal and not huge).
    elemental subroutine sqrt_dd(ah, al, rh, rl)

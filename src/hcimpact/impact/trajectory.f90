@@ -59,7 +59,7 @@ module hcimpact_trajectory
    private
 
    ! The double-double operators, inline (see dd_ops.inc)
-   include "dd_ops_interfaces.inc"
+   include "../numerics/dd_ops_interfaces.inc"
 
    public :: trajectory_type, new_trajectory, phase_integrand, phase_density, phase_end_time
    public :: compression_phase, restitution_phase
@@ -738,6 +738,6 @@ contains
       length = abs(tr%l_end(phase)%hi)
    end function phase_length_hi
 
-   include "dd_ops.inc"
+   include "../numerics/dd_ops.inc"
 
 end module hcimpact_trajectory
