@@ -256,7 +256,8 @@ def impact(*, mass: Any, stiffness: Any, exponent: Any = 1.5, damping: Any = 0.0
       that fails, with its ``index``) or ``"nan"`` (failed impacts get NaN fields)
 
     Returns an :class:`ImpactResult` (restitution, energy_loss_ratio, rebound_velocity,
-    max_compression, peak_force, compression_at_peak_force, compression_time,
+    max_compression, peak_force, compression_at_peak_force, time_at_peak_force,
+    compression_time,
     contact_time): floats for scalar input, arrays of the broadcast shape otherwise.
     """
     if errors not in ("raise", "nan"):
@@ -275,7 +276,7 @@ def impact(*, mass: Any, stiffness: Any, exponent: Any = 1.5, damping: Any = 0.0
     contacts = np.empty((n, 5), dtype=np.float64)
     for j, a in enumerate(arrays):
         contacts[:, j] = a.reshape(-1)
-    outcomes = np.empty((n, 8), dtype=np.float64)
+    outcomes = np.empty((n, len(OUTCOME_FIELDS)), dtype=np.float64)
     statuses = np.zeros(n, dtype=np.intc)
     for start in range(0, n, _CHUNK):
         m = min(_CHUNK, n - start)
