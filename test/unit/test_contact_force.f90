@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> Tests of the contact-force element (hcimpact_contact_force) and the power law it
+!> Tests of the contact-force element (hcimpact_force_element) and the power law it
 !> evaluates (hcimpact_power_force):
 !> - every field against the mpmath references of test/reference/contact_force.csv
 !>   (make_contact_force.py: exact double inputs over the physical range, next to the
@@ -19,7 +19,7 @@ module test_contact_force
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_stiffness, &
       & hcimpact_err_exponent, hcimpact_err_damping, hcimpact_err_domain, &
       & hcimpact_err_elastic_law
-   use hcimpact_contact_force, only : contact_force_type, contact_force, contact_force_pair, &
+   use hcimpact_force_element, only : contact_force_type, contact_force, contact_force_pair, &
       & contact_force_wall
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
@@ -239,6 +239,14 @@ contains
       call check(error, above%dforce_dv > 0.0_wp .and. &
          & abs(above%dforce_dv - b * f0) <= 4.0_wp * epsilon(1.0_wp) * b * f0, &
          & "dF/dv = b f(x) right above the kink")
+      if (allocated(error)) return
+      ! clamp = .false.: the formula as written, pulling where 1 + b v < 0
+      call contact_force(c, n, b, x, -1.0_wp, e, clamp=.false.)
+      call check(error, abs(e%force + f0) <= 4.0_wp * epsilon(1.0_wp) * f0 .and. &
+         & abs(e%dforce_dx + n * f0 / x) <= 4.0_wp * epsilon(1.0_wp) * n * f0 / x .and. &
+         & abs(e%dforce_dv - b * f0) <= 4.0_wp * epsilon(1.0_wp) * b * f0 .and. &
+         & abs(e%dissipation - b * f0) <= 4.0_wp * epsilon(1.0_wp) * b * f0, &
+         & "unclamped at 1 + b v = -1: F = -f(x), dissipation b f(x) v^2")
    end subroutine test_clamp
 
    !> x <= 0 (incl. -0): every field is 0, whatever v.

@@ -3,7 +3,7 @@
 !> whole library: products of correctly rounded factors that never overflow or underflow
 !> on the way (a representable result is returned as such).
 !>
-!> hcimpact_elastic's `power_law` and the contact-force element (hcimpact_contact_force)
+!> hcimpact_elastic's `power_law` and the contact-force element (hcimpact_force_element)
 !> both evaluate the law here.
 module hcimpact_power_force
    use hcimpact_kinds, only : wp

@@ -23,6 +23,13 @@
 !>   dissipation is b f(x) v^2, clamped -f(x) v; both are >= 0.
 !> - In a single Hunt-Crossley impact 1 + b v > 0 all along (MODEL.md's first integral),
 !>   so the clamp only acts when other forces pull the bodies apart.
+!> - `clamp = .false.` gives the formula as written, F = f(x)(1 + b v) of either sign,
+!>   with its derivatives and the dissipation b f(x) v^2. An ODE solver that integrates
+!>   one impact on its own wants it: the line v = -1/b, which the exact motion never
+!>   crosses, then attracts a numerical solution that overshoots it, while the clamped
+!>   force leaves such a solution to drift (the CVODE component measured a contact
+!>   time 10 to 100 times less accurate with the clamp at b V = 100 and 1000, rtol
+!>   1e-6; doc/contact-force.md).
 !>
 !> Accuracy (power law): 1 + b v is formed from the exact product b v (an error-free
 !> product and sum), so it keeps its relative accuracy next to the clamp, where the
@@ -41,7 +48,7 @@
 !> Bad parameters get the statuses of the whole library (hcimpact_contact's
 !> `check_parameters`: stiffness > 0, exponent >= 1e-6, damping >= 0, all finite), a
 !> NaN or infinite x or v hcimpact_err_not_finite; every field is then NaN.
-module hcimpact_contact_force
+module hcimpact_force_element
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
@@ -87,7 +94,7 @@ contains
 
    !> The element of a power-law contact f = c x^n (see the module header).
    elemental subroutine power_contact_force(stiffness, exponent, damping, x, v, element, &
-         & stat)
+         & stat, clamp)
       !> Contact constant c in N/m^n, > 0
       real(wp), intent(in) :: stiffness
       !> Exponent n of the elastic law, >= 1e-6
@@ -102,11 +109,15 @@ contains
       type(contact_force_type), intent(out) :: element
       !> hcimpact_ok or the status of the first bad argument
       integer, intent(out), optional :: stat
+      !> Clamp the force at 0 where 1 + b v < 0 (default); false: the formula as written
+      !> (see the module header)
+      logical, intent(in), optional :: clamp
       integer :: status
 
       status = check_state(stiffness, exponent, damping, x, v)
       if (status == hcimpact_ok) then
-         element = power_element(stiffness, exponent, damping, x, dd(v))
+         element = power_element(stiffness, exponent, damping, x, dd(v), &
+            & clamp_default(clamp))
       else
          element = contact_force_type()
       end if
@@ -117,7 +128,7 @@ contains
    !> derivative at x; see hcimpact_elastic). Its accuracy is that of the law's
    !> procedures. A law that returns a value that is not finite, or a negative force or
    !> potential, gives hcimpact_err_elastic_law.
-   elemental subroutine law_contact_force(law, damping, x, v, element, stat)
+   elemental subroutine law_contact_force(law, damping, x, v, element, stat, clamp)
       !> The elastic law
       class(elastic_law), intent(in) :: law
       !> Damping b in s/m, >= 0
@@ -130,13 +141,16 @@ contains
       type(contact_force_type), intent(out) :: element
       !> hcimpact_ok or the status of the first bad argument
       integer, intent(out), optional :: stat
+      !> Clamp the force at 0 where 1 + b v < 0 (default); false: the formula as written
+      logical, intent(in), optional :: clamp
       integer :: status
 
       status = check_parameters(damping=damping)
       if (status == hcimpact_ok .and. .not. (ieee_is_finite(x) .and. ieee_is_finite(v))) &
          & status = hcimpact_err_not_finite
       element = contact_force_type()
-      if (status == hcimpact_ok) call law_element(law, damping, x, dd(v), element, status)
+      if (status == hcimpact_ok) call law_element(law, damping, x, dd(v), &
+         & clamp_default(clamp), element, status)
       if (present(stat)) stat = status
    end subroutine law_contact_force
 
@@ -183,7 +197,7 @@ contains
             ! apart (also by more than the largest double): no contact
             element = no_contact
          else if (ieee_is_finite(x) .and. ieee_is_finite(rate%hi)) then
-            element = power_element(stiffness, exponent, damping, x, rate)
+            element = power_element(stiffness, exponent, damping, x, rate, .true.)
          else
             ! an overlap or a relative speed beyond the double range
             element = contact_force_type()
@@ -240,6 +254,14 @@ contains
 
    ! ---------------------------------------------------------------------------------
 
+   !> The value of an optional `clamp`: true unless given false.
+   elemental function clamp_default(clamp) result(on)
+      logical, intent(in), optional :: clamp
+      logical :: on
+      on = .true.
+      if (present(clamp)) on = clamp
+   end function clamp_default
+
    !> Status of the arguments of a power-law element.
    elemental function check_state(stiffness, exponent, damping, x, v) result(stat)
       real(wp), intent(in) :: stiffness, exponent, damping, x, v
@@ -286,12 +308,14 @@ contains
       factor = s%hi + (s%lo + (p%lo + damping * rate%lo))
    end subroutine damping_factor
 
-   !> The power-law element for valid parameters and finite x, v (see the header).
-   elemental function power_element(c, n, b, x, rate) result(e)
+   !> The power-law element for valid parameters and finite x, v (see the header);
+   !> with `clamp` false the formula as written, negative where 1 + b v < 0.
+   elemental function power_element(c, n, b, x, rate, clamp) result(e)
       real(wp), intent(in) :: c, n, b, x
       type(dd_real), intent(in) :: rate
+      logical, intent(in) :: clamp
       type(contact_force_type) :: e
-      real(wp) :: s, bv, xn, speed
+      real(wp) :: s, bv, xn, speed, magnitude
       type(dd_real) :: np1
 
       if (.not. x > 0.0_wp) then
@@ -304,19 +328,23 @@ contains
       xn = x**n
       ! Pi = c x^n x/(n + 1)
       e%potential = power_product(xn, x, n, [c, x], np1%hi)
-      if (s > 0.0_wp) then
-         if (ieee_is_finite(s)) then
-            e%force = power_product(xn, x, n, [c, s], 1.0_wp)
+      if (s > 0.0_wp .or. .not. clamp) then
+         if (s == 0.0_wp) then
+            e%force = 0.0_wp
+            e%dforce_dx = 0.0_wp
+         else if (ieee_is_finite(s)) then
+            magnitude = abs(s)
+            e%force = sign(power_product(xn, x, n, [c, magnitude], 1.0_wp), s)
             ! dF/dx = n F/x, dF/dv = b c x^n
-            e%dforce_dx = power_product(xn, x, n, [c, s, n], x)
+            e%dforce_dx = sign(power_product(xn, x, n, [c, magnitude, n], x), s)
          else
             ! b v beyond the double range: 1 + b v = b v to far below an ulp
-            e%force = power_product(xn, x, n, [c, b, speed], 1.0_wp)
-            e%dforce_dx = power_product(xn, x, n, [c, b, speed, n], x)
+            e%force = sign(power_product(xn, x, n, [c, b, speed], 1.0_wp), s)
+            e%dforce_dx = sign(power_product(xn, x, n, [c, b, speed, n], x), s)
          end if
          if (b > 0.0_wp) then
             e%dforce_dv = power_product(xn, x, n, [c, b], 1.0_wp)
-            ! b f(x) v^2
+            ! (F - f(x)) v = b f(x) v^2
             e%dissipation = 0.0_wp
             if (speed > 0.0_wp) e%dissipation = power_product(xn, x, n, &
                & [c, b, speed, speed], 1.0_wp)
@@ -335,10 +363,11 @@ contains
    end function power_element
 
    !> The element of a user's law for a valid damping and finite x, v.
-   pure subroutine law_element(law, b, x, rate, e, stat)
+   pure subroutine law_element(law, b, x, rate, clamp, e, stat)
       class(elastic_law), intent(in) :: law
       real(wp), intent(in) :: b, x
       type(dd_real), intent(in) :: rate
+      logical, intent(in) :: clamp
       type(contact_force_type), intent(inout) :: e
       integer, intent(out) :: stat
       real(wp) :: f, fp, p, s, bv, speed
@@ -362,13 +391,13 @@ contains
       call damping_factor(b, rate, s, bv)
       speed = abs(rate%hi)
       e%potential = p
-      if (s > 0.0_wp) then
+      if (s > 0.0_wp .or. .not. clamp) then
          if (ieee_is_finite(s)) then
-            e%force = product_of([f, s])
-            e%dforce_dx = signed_product(fp, [s])
+            e%force = signed_product(s, [f])
+            e%dforce_dx = signed_product(fp, [abs(s)]) * sign(1.0_wp, s)
          else
-            e%force = product_of([f, b, speed])
-            e%dforce_dx = signed_product(fp, [b, speed])
+            e%force = sign(product_of([f, b, speed]), s)
+            e%dforce_dx = signed_product(fp, [b, speed]) * sign(1.0_wp, s)
          end if
          e%dforce_dv = product_of([f, b])
          e%dissipation = product_of([f, b, speed, speed])
@@ -380,4 +409,4 @@ contains
       end if
    end subroutine law_element
 
-end module hcimpact_contact_force
+end module hcimpact_force_element
