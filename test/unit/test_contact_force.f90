@@ -503,6 +503,14 @@ contains
                exit
             end if
          end do
+         write(output_unit, '(a, i0, a, es9.2, a, 4es9.2)') "  contact ", i, &
+            & ": energy bookkeeping drift ", drift, &
+            & "; relative differences from the closed forms (contact time, x_max, " // &
+            & "peak force, k):", abs(tc / outcome%contact_time - 1.0_wp), &
+            & abs(xmax / outcome%max_compression - 1.0_wp), &
+            & abs(fmax / outcome%peak_force - 1.0_wp), &
+            & abs(sqrt(max(0.0_wp, 1.0_wp - (yold(3) + theta * (y(3) - yold(3))) / e0)) &
+            & / outcome%restitution - 1.0_wp)
          call check(error, drift < 1.0e-9_wp, "energy bookkeeping drifts by " // &
             & trim(format_real(drift)))
          if (allocated(error)) return
