@@ -1,0 +1,35 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/*
+ * The part of the scene runner's operating-system layer (scene_system.f90) that Fortran
+ * cannot reach through bind(C): C macros (SIGXFSZ, SIG_IGN) and errno.
+ */
+#include <errno.h>
+#include <signal.h>
+#include <stddef.h>
+#include <string.h>
+
+/*
+ * Ignore SIGXFSZ, so that a write beyond a file size limit (ulimit -f) fails with EFBIG
+ * and is reported like a full disk, instead of killing the program halfway (the
+ * gfortran run-time library would otherwise catch the signal, print a backtrace and
+ * end the process, leaving its .partial files behind).
+ */
+void hcimpact_scene_ignore_file_size_signal(void)
+{
+#ifdef SIGXFSZ
+  signal(SIGXFSZ, SIG_IGN);
+#endif
+}
+
+/*
+ * The text of errno (the error of the C library call that failed last), copied into
+ * buffer without a terminator; returns its length (at most size).
+ */
+size_t hcimpact_scene_error_text(char *buffer, size_t size)
+{
+  const char *text = strerror(errno);
+  size_t length = strlen(text);
+  if (length > size) length = size;
+  memcpy(buffer, text, length);
+  return length;
+}
