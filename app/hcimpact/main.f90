@@ -12,7 +12,7 @@ program hcimpact_main
    use hcimpact_scene_ode, only : ode_available
    use hcimpact_scene_help, only : print_help, print_usage_hint
    use hcimpact_scene_system, only : is_terminal, write_standard_output, &
-      & ignore_file_size_signal
+      & ignore_output_signals
    implicit none
 
    type(scene_type) :: sc
@@ -21,9 +21,9 @@ program hcimpact_main
    logical :: replace(n_outputs), add(n_outputs), files, ok
    integer :: i, n, code
 
-   ! a file size limit then fails a write (reported, the partial files removed)
-   ! instead of killing the program
-   call ignore_file_size_signal()
+   ! a file size limit or a closed pipe then fails a write (reported, the partial files
+   ! removed) instead of killing the program
+   call ignore_output_signals()
    replace = .false.
    add = .false.
    files = .true.

@@ -9,15 +9,19 @@
 #include <string.h>
 
 /*
- * Ignore SIGXFSZ, so that a write beyond a file size limit (ulimit -f) fails with EFBIG
- * and is reported like a full disk, instead of killing the program halfway (the
- * gfortran run-time library would otherwise catch the signal, print a backtrace and
- * end the process, leaving its .partial files behind).
+ * Ignore SIGXFSZ and SIGPIPE, so that a write beyond a file size limit (ulimit -f) fails
+ * with EFBIG, and a write to a pipe whose reader has gone with EPIPE, and each is
+ * reported like a full disk, instead of killing the program halfway and leaving its
+ * .partial files and new directories behind (the gfortran run-time library would
+ * catch SIGXFSZ, print a backtrace and end the process).
  */
-void hcimpact_scene_ignore_file_size_signal(void)
+void hcimpact_scene_ignore_output_signals(void)
 {
 #ifdef SIGXFSZ
   signal(SIGXFSZ, SIG_IGN);
+#endif
+#ifdef SIGPIPE
+  signal(SIGPIPE, SIG_IGN);
 #endif
 }
 

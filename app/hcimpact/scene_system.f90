@@ -12,8 +12,8 @@
 !> existing name and follows no symbolic link (O_CREAT | O_EXCL).
 !>
 !> What bind(C) cannot reach (C macros, errno) is in scene_system.c: the text of the
-!> last error of a C call, and ignoring SIGXFSZ so that a file size limit fails a
-!> write (EFBIG) instead of killing the program.
+!> last error of a C call, and ignoring SIGXFSZ and SIGPIPE so that a file size limit
+!> or a closed pipe fails a write (EFBIG, EPIPE) instead of killing the program.
 !>
 !> The C names bound here are not module names of this program (gfortran miscompiles a
 !> binding label equal to a module name).
@@ -27,7 +27,7 @@ module hcimpact_scene_system
    public :: is_terminal, make_directory, rename_path, remove_path
    public :: directory_exists, file_exists, wall_clock
    public :: output_file, create_file, write_file, close_file, write_standard_output
-   public :: last_system_error, ignore_file_size_signal
+   public :: last_system_error, ignore_output_signals
 
    !> A file being written (a C stream)
    type :: output_file
@@ -97,8 +97,8 @@ module hcimpact_scene_system
          integer(c_size_t), value :: count
          integer(c_intptr_t) :: written
       end function c_write
-      subroutine ignore_file_size_signal() bind(C, name="hcimpact_scene_ignore_file_size_signal")
-      end subroutine ignore_file_size_signal
+      subroutine ignore_output_signals() bind(C, name="hcimpact_scene_ignore_output_signals")
+      end subroutine ignore_output_signals
       function c_error_text(buffer, size) bind(C, name="hcimpact_scene_error_text") &
             & result(length)
          import :: c_char, c_size_t

@@ -2,7 +2,7 @@
 # SPDX-License-Identifier: Apache-2.0
 """The scene runner against a hostile environment (issue 13): a full disk, a file size
 limit, symbolic links planted in the results directory, a standard output that cannot
-be written, and scene files that are not scene files (a directory, a device without
+be written (a full device, a closed pipe), and scene files that are not scene files (a directory, a device without
 end, a file of 100 MB, an empty file, a path with escape sequences).
 
 Usage: check_robustness.py PROGRAM WORKDIR CASE     (one case; exit 0 if it passes)
@@ -192,6 +192,29 @@ def case_standard_output_full(program, work):
     return None
 
 
+def case_closed_pipe(program, work):
+    """The standard output is a pipe whose reader has gone (hcimpact | head -1, after
+    head has ended): exit 1 ("Broken pipe"), not death by SIGPIPE halfway with the
+    .partial files and new directories left behind."""
+    base = fresh(work, "closed-pipe")
+    out = os.path.join(base, "par", "out")
+    reader, writer = os.pipe()
+    os.close(reader)
+    try:
+        # subprocess restores SIGPIPE to its default in the child: the program must
+        # ignore it itself
+        result = subprocess.run([program, "-o", out], stdout=writer, stderr=subprocess.PIPE,
+                                timeout=120)
+    finally:
+        os.close(writer)
+    expect(result.returncode == 1, f"exit code {result.returncode}, expected 1 "
+           + result.stderr.decode(errors="replace"))
+    expect(b"Broken pipe" in result.stderr, "the message must give the reason: "
+           + result.stderr.decode(errors="replace"))
+    expect(not os.path.exists(os.path.join(base, "par")), "the results were left behind")
+    return None
+
+
 def scene_refused(program, path, message, timeout=120):
     result = run(program, [path, "--no-files"], timeout=timeout)
     err = result.stderr.decode(errors="replace")
@@ -257,6 +280,7 @@ CASES = {
     "symlink-partial": case_symlink_partial,
     "parents-removed": case_parents_removed,
     "standard-output-full": case_standard_output_full,
+    "closed-pipe": case_closed_pipe,
     "directory-as-scene": case_directory_as_scene,
     "endless-input": case_endless_input,
     "huge-scene": case_huge_scene,
