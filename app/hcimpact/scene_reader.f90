@@ -172,6 +172,11 @@ contains
          end if
          if (at_end) exit
          n = n + 1
+         ! the byte order mark some editors put first (U+FEFF in UTF-8) is no text
+         if (n == 1 .and. len(line) >= 3) then
+            if (iachar(line(1:1)) == 239 .and. iachar(line(2:2)) == 187 &
+               & .and. iachar(line(3:3)) == 191) line = line(4:)
+         end if
          if (n > max_scene_lines) then
             error = shown // ": more than " // str(max_scene_lines) // " lines: a scene file" &
                & // " is a short text (is this the right file?)"
@@ -203,7 +208,7 @@ contains
             & // " scene to start from)"
          return
       end if
-      call read_scene_lines(lines(1:n), shown, stem(path), sc, error, replace, add)
+      call read_scene_lines(lines(1:n), shown, printable(stem(path)), sc, error, replace, add)
    end subroutine read_scene_file
 
    !> The next line of the file, whole, or `at_end`. Read in pieces; reading stops

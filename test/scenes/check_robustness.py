@@ -266,11 +266,21 @@ def case_empty_scene(program, work):
 
 def case_escape_in_path(program, work):
     """A path with escape sequences is quoted with them shown as '?', not sent to the
-    terminal."""
+    terminal: in an error message, and in the log and the default results directory
+    of a scene that runs."""
     base = fresh(work, "escape-in-path")
     path = os.path.join(base, "\x1b]0;title\x07.nml")
     err = scene_refused(program, path, os.path.join(base, "?]0;title?.nml: no such scene file"))
     expect("\x1b" not in err and "\x07" not in err, "control characters reached the terminal")
+    with open(path, "w") as fh:
+        fh.write("&scene speeds = 1 /\n&body1 mass = 0.1 /\n&contact stiffness = 1e10 /\n"
+                 "&damping b = 0.1 /\n")
+    result = run(program, [path], cwd=base)
+    expect(result.returncode == 0, "the scene must run", result)
+    expect(b"\x1b" not in result.stdout + result.stderr and b"\x07" not in result.stdout + result.stderr,
+           "control characters reached the terminal", result)
+    expect(os.path.isdir(os.path.join(base, "hcimpact-results", "?]0;title?")),
+           "the default results directory must be named with '?' for the control characters", result)
     return None
 
 
