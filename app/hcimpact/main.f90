@@ -3,24 +3,27 @@
 !> seed's steel ball), plans from the outputs it asks for, computes only those, prints
 !> the tables and writes the results directory. `hcimpact --help` explains everything.
 program hcimpact_main
-   use, intrinsic :: iso_fortran_env, only : output_unit, error_unit
+   use, intrinsic :: iso_fortran_env, only : error_unit
    use hcimpact_version_info, only : hcimpact_version_string
-   use hcimpact_scene_model, only : scene_type, n_outputs, output_index, output_names, &
+   use hcimpact_scene_model, only : scene_type, n_outputs, add_outputs, output_choices, &
       & figure_outputs, default_scene_lines
    use hcimpact_scene_reader, only : read_scene_file, read_default_scene
-   use hcimpact_scene_run, only : run_options, run_scene, exit_ok, exit_usage
+   use hcimpact_scene_run, only : run_options, run_scene, exit_ok, exit_failure, exit_usage
    use hcimpact_scene_ode, only : ode_available
    use hcimpact_scene_help, only : print_help, print_usage_hint
-   use hcimpact_scene_system, only : is_terminal
-   use hcimpact_scene_text, only : join, lower
+   use hcimpact_scene_system, only : is_terminal, write_standard_output, &
+      & ignore_output_signals
    implicit none
 
    type(scene_type) :: sc
    type(run_options) :: opts
    character(len=:), allocatable :: arg, scene_path, output_dir, error, list
-   logical :: replace(n_outputs), add(n_outputs), files
+   logical :: replace(n_outputs), add(n_outputs), files, ok
    integer :: i, n, code
 
+   ! a file size limit or a closed pipe then fails a write (reported, the partial files
+   ! removed) instead of killing the program
+   call ignore_output_signals()
    replace = .false.
    add = .false.
    files = .true.
@@ -31,21 +34,23 @@ program hcimpact_main
       arg = argument(i)
       select case (arg)
       case ("-h", "--help")
-         call print_help()
-         stop
+         call print_help(ok)
+         call finish(ok)
       case ("-V", "--version")
-         write(output_unit, '(a)') "hcimpact " // hcimpact_version_string
          if (ode_available) then
-            write(output_unit, '(a)') "components: core, cvode"
+            call write_standard_output("hcimpact " // hcimpact_version_string // new_line("a") &
+               & // "components: core, cvode" // new_line("a"), ok)
          else
-            write(output_unit, '(a)') "components: core (built without cvode)"
+            call write_standard_output("hcimpact " // hcimpact_version_string // new_line("a") &
+               & // "components: core (built without cvode)" // new_line("a"), ok)
          end if
-         stop
+         call finish(ok)
       case ("--show-default")
+         ok = .true.
          do code = 1, size(default_scene_lines)
-            write(output_unit, '(a)') trim(default_scene_lines(code))
+            if (ok) call write_standard_output(trim(default_scene_lines(code)) // new_line("a"), ok)
          end do
-         stop
+         call finish(ok)
       case ("-o", "--output")
          if (i == n) call usage_error("option " // arg // " needs a directory")
          i = i + 1
@@ -120,33 +125,21 @@ contains
    subroutine parse_outputs(text, wanted)
       character(len=*), intent(in) :: text
       logical, intent(inout) :: wanted(n_outputs)
-      integer :: start, comma, k
-      character(len=:), allocatable :: word
-      start = 1
-      do
-         comma = index(text(start:), ",")
-         if (comma == 0) then
-            word = trim(adjustl(text(start:)))
-         else
-            word = trim(adjustl(text(start:start + comma - 2)))
-         end if
-         select case (lower(word))
-         case ("")
-         case ("figures")
-            wanted = wanted .or. figure_outputs
-         case ("all")
-            wanted = .true.
-         case default
-            k = output_index(word)
-            if (k == 0) call usage_error("unknown output '" // word // "' (outputs: " &
-               & // join(output_names, ", ") // ", or figures, all)")
-            wanted(k) = .true.
-         end select
-         if (comma == 0) exit
-         start = start + comma
-      end do
+      character(len=:), allocatable :: unknown
+      call add_outputs(text, wanted, unknown)
+      if (len(unknown) > 0) call usage_error("unknown output '" // unknown // "' (outputs: " &
+         & // output_choices() // ")")
       if (.not. any(wanted)) call usage_error("--outputs: the list is empty")
    end subroutine parse_outputs
+
+   !> End after printing help or a version: exit status 1 if the standard output
+   !> could not take it.
+   subroutine finish(ok)
+      logical, intent(in) :: ok
+      if (ok) stop
+      write(error_unit, '(a)') "error: the standard output: writing failed"
+      stop exit_failure, quiet=.true.
+   end subroutine finish
 
    !> Report a bad command line and stop with exit_usage.
    subroutine usage_error(text)

@@ -2,7 +2,7 @@
 !> The text of `hcimpact --help`: usage, options, the scene format with an example,
 !> the outputs and the exit codes.
 module hcimpact_scene_help
-   use, intrinsic :: iso_fortran_env, only : output_unit
+   use hcimpact_scene_system, only : write_standard_output
    use hcimpact_scene_model, only : n_outputs, output_names, output_files, &
       & output_descriptions, default_scene_lines
    implicit none
@@ -12,9 +12,12 @@ module hcimpact_scene_help
 
 contains
 
-   !> Everything a user needs to run the program and write a scene.
-   subroutine print_help()
+   !> Everything a user needs to run the program and write a scene; ok is .false. if
+   !> the standard output could not take it.
+   subroutine print_help(ok)
+      logical, intent(out) :: ok
       integer :: i
+      ok = .true.
       call p("hcimpact: the Hunt-Crossley impact m x'' = -c x^n (1 + b x') of a body on a")
       call p("wall, or of two bodies, in closed form (Lambert W) and by quadrature.")
       call p("")
@@ -44,7 +47,8 @@ contains
       call p("  &scene    title = ""...""                 title of the tables and figures")
       call p("            speeds = 0.5, 1, 2            approach speeds V (m/s); for two")
       call p("                                          bodies the relative speed")
-      call p("            outputs = ""summary"", ...      see Outputs (default ""summary"")")
+      call p("            outputs = ""summary"", ...      see Outputs (default ""summary""); or")
+      call p("            outputs = ""summary,phase""     one text, as with --outputs")
       call p("  &body1    mass = 0.1                    the moving body's mass (kg), or for a")
       call p("            radius = 0.01, density = 7800 sphere its radius (m) and density")
       call p("                                          (kg/m^3)")
@@ -71,7 +75,9 @@ contains
       call p("            beta_max = 10                 range of the restitution curves")
       call p("            tolerances = 1e-4, 1e-6, 1e-8, 1e-10   CVODE relative tolerances")
       call p("A scene needs &body1, a stiffness (or Hertz's data), &damping and, for most")
-      call p("outputs, speeds. Mistakes are reported with the file, line and group.")
+      call p("outputs, speeds. Mistakes are reported with the file, line and group: each")
+      call p("name once per group, lines of at most 1024 characters (a list may go on over")
+      call p("several lines), numbers within the range of doubles.")
       call p("")
       call p("Outputs (files in the results directory):")
       do i = 1, n_outputs
@@ -106,13 +112,15 @@ contains
       call p("Exit status: 0 success; 1 a computation or a file failed (nothing is left")
       call p("half-written); 2 a bad command line or scene file; 3 an output needs a")
       call p("component this build lacks (CVODE).")
+   contains
+      !> One line on the standard output.
+      subroutine p(text)
+         character(len=*), intent(in) :: text
+         logical :: written
+         call write_standard_output(trim(text) // new_line("a"), written)
+         ok = ok .and. written
+      end subroutine p
    end subroutine print_help
-
-   !> One line on the standard output.
-   subroutine p(text)
-      character(len=*), intent(in) :: text
-      write(output_unit, '(a)') trim(text)
-   end subroutine p
 
    !> The hint after a usage error.
    subroutine print_usage_hint(unit)

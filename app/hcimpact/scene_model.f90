@@ -7,22 +7,27 @@
 module hcimpact_scene_model
    use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact_kinds, only : wp
+   use hcimpact_scene_text, only : lower
    implicit none
    private
 
    public :: body_type, scene_type, nan
    public :: n_outputs, output_names, output_files, output_descriptions, output_index
+   public :: add_outputs, output_choices
    public :: out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
       & out_lambertw, out_legacy, out_cvode
    public :: figure_outputs, default_scene_lines, max_speeds, scene_line_length
+   public :: max_scene_lines
 
    !> Quiet NaN
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
 
    !> Most approach speeds a scene may list
    integer, parameter :: max_speeds = 1000
-   !> Longest line of a scene file
+   !> Longest line of a scene file (trailing blanks aside)
    integer, parameter :: scene_line_length = 1024
+   !> Most lines of a scene file
+   integer, parameter :: max_scene_lines = 10000
 
    !> The outputs a scene can ask for
    integer, parameter :: out_summary = 1, out_sweep = 2, out_histories = 3, &
@@ -144,16 +149,67 @@ contains
       character(len=*), intent(in) :: name
       integer :: k
       character(len=len(name)) :: low
-      integer :: i, c
-      low = adjustl(name)
-      do i = 1, len(low)
-         c = iachar(low(i:i))
-         if (c >= iachar("A") .and. c <= iachar("Z")) low(i:i) = achar(c + 32)
-      end do
+      low = lower(adjustl(name))
       do k = 1, n_outputs
          if (trim(low) == trim(output_names(k))) return
       end do
       k = 0
    end function output_index
+
+   !> Add the outputs named in `text` to `wanted`: words separated by commas or blanks
+   !> ("summary,phase", "summary, phase"), `figures` and `all` standing for their sets.
+   !> `unknown` is the first word that names no output ("" if none).
+   pure subroutine add_outputs(text, wanted, unknown)
+      !> The list
+      character(len=*), intent(in) :: text
+      !> The outputs wanted so far
+      logical, intent(inout) :: wanted(n_outputs)
+      !> The first unknown word, or ""
+      character(len=:), allocatable, intent(out) :: unknown
+      integer :: start, finish, k
+      unknown = ""
+      finish = 0
+      do
+         ! the next word: from the first character that is no separator to the next one
+         start = finish + 1
+         do while (start <= len(text))
+            if (.not. is_separator(text(start:start))) exit
+            start = start + 1
+         end do
+         if (start > len(text)) exit
+         finish = start
+         do while (finish < len(text))
+            if (is_separator(text(finish + 1:finish + 1))) exit
+            finish = finish + 1
+         end do
+         k = output_index(text(start:finish))
+         if (k > 0) then
+            wanted(k) = .true.
+         else if (lower(text(start:finish)) == "figures") then
+            wanted = wanted .or. figure_outputs
+         else if (lower(text(start:finish)) == "all") then
+            wanted = .true.
+         else
+            unknown = text(start:finish)
+            return
+         end if
+      end do
+   contains
+      pure logical function is_separator(c)
+         character(len=1), intent(in) :: c
+         is_separator = c == "," .or. c == " " .or. c == achar(9)
+      end function is_separator
+   end subroutine add_outputs
+
+   !> The words an output list may hold, for messages.
+   pure function output_choices() result(text)
+      character(len=:), allocatable :: text
+      integer :: k
+      text = trim(output_names(1))
+      do k = 2, n_outputs
+         text = text // ", " // trim(output_names(k))
+      end do
+      text = text // ", or figures, all"
+   end function output_choices
 
 end module hcimpact_scene_model

@@ -3,24 +3,32 @@
 !> left looking like a result.
 !>
 !> Every file is written as `<name>.partial` and renamed to `<name>` only when the whole
-!> run has succeeded (`commit_results`); on failure the partial files are removed
-!> (`abandon_results`). On success, files of earlier runs that this run did not write
-!> (e.g. `phase.csv` when phase trajectories are no longer asked for) are removed, so
-!> the directory holds exactly this run's results. Only files whose names this
-!> program writes are ever touched.
+!> run has succeeded (`commit_results`); on failure the partial files, and the
+!> directories the run created, are removed (`abandon_results`). On success, files of
+!> earlier runs that this run did not write (e.g. `phase.csv` when phase trajectories
+!> are no longer asked for) are removed, so the directory holds exactly this run's
+!> results. Only files whose names this program writes are ever touched.
+!>
+!> Every write, the flush to the device and the close are checked (through the C
+!> library, hcimpact_scene_system): a file that could not be written whole makes the
+!> run fail, naming the file. A `.partial` file is created exclusively: a stale one
+!> (from a run that was killed) is removed first, and whatever stands in its place
+!> then (a symbolic link planted in between) makes the creation fail rather than be
+!> followed.
 !>
 !> CSV: one header row, `name [unit]` per column; numbers with 17 significant digits
 !> (they read back to the same double), `nan` for a value that does not exist.
 module hcimpact_scene_output
    use hcimpact_kinds, only : wp
    use hcimpact_scene_system, only : make_directory, rename_path, remove_path, &
-      & directory_exists, file_exists
+      & directory_exists, file_exists, output_file, create_file, write_file, close_file
    use hcimpact_scene_text, only : csv_real
    implicit none
    private
 
    public :: results_type, csv_type
-   public :: open_results, commit_results, abandon_results, csv_open, csv_row, csv_close
+   public :: open_results, commit_results, abandon_results
+   public :: csv_open, csv_row, csv_line, csv_close
    public :: all_result_files
 
    !> Every file name this program writes into a results directory
@@ -38,8 +46,8 @@ module hcimpact_scene_output
       character(len=:), allocatable :: path
       !> Whether files are written at all
       logical :: active = .false.
-      !> Whether this run created the directory (removed again if the run fails)
-      logical :: created = .false.
+      !> Lengths of the prefixes of `path` this run created (removed again if it fails)
+      integer, allocatable :: created(:)
       !> Names of the files written so far (as .partial)
       character(len=32) :: files(max_files) = ""
       integer :: n_files = 0
@@ -47,17 +55,21 @@ module hcimpact_scene_output
 
    !> One CSV file being written
    type :: csv_type
-      !> Fortran unit (newunit numbers are negative)
-      integer :: unit = 0
+      !> The file (a C stream)
+      type(output_file) :: file
       !> Whether the file is open
       logical :: opened = .false.
+      !> Whether a write has failed (reported by csv_close), and why
+      logical :: failed = .false.
+      character(len=:), allocatable :: reason
       integer :: columns = 0
-      character(len=:), allocatable :: name
+      !> Name in the results directory, and the path being written
+      character(len=:), allocatable :: name, path
    end type csv_type
 
 contains
 
-   !> Prepare the results directory `path` (created if missing).
+   !> Prepare the results directory `path` (created if missing, parents too).
    subroutine open_results(path, res, error)
       character(len=*), intent(in) :: path
       type(results_type), intent(out) :: res
@@ -70,20 +82,21 @@ contains
          n = n - 1
       end do
       res%path = path(1:n)
+      allocate(res%created(0))
       if (file_exists(res%path) .and. .not. directory_exists(res%path)) then
          error = res%path // ": exists and is not a directory (choose another with -o DIR)"
          return
       end if
-      res%created = .not. directory_exists(res%path)
-      call make_directory(res%path, ok)
+      call make_directory(res%path, ok, res%created)
       if (.not. ok) then
          error = res%path // ": cannot create the results directory"
+         call remove_created(res)
          return
       end if
       res%active = .true.
    end subroutine open_results
 
-   !> Open `<dir>/<name>.partial` for writing and register it; `header` holds the
+   !> Create `<dir>/<name>.partial` for writing and register it; `header` holds the
    !> column titles. A plain text file when header is empty.
    subroutine csv_open(res, name, header, csv, error)
       type(results_type), intent(inout) :: res
@@ -91,8 +104,9 @@ contains
       character(len=*), intent(in) :: header(:)
       type(csv_type), intent(out) :: csv
       character(len=:), allocatable, intent(out) :: error
-      character(len=256) :: msg
-      integer :: ios, i
+      character(len=:), allocatable :: line, reason
+      logical :: ok
+      integer :: i
       csv%name = name
       csv%columns = size(header)
       if (.not. res%active) return
@@ -100,53 +114,77 @@ contains
          error = "too many result files"
          return
       end if
-      open(newunit=csv%unit, file=res%path // "/" // name // ".partial", status="replace", &
-         & action="write", form="formatted", iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         error = res%path // "/" // name // ".partial: cannot write (" // trim(msg) // ")"
+      csv%path = res%path // "/" // name // ".partial"
+      ! a stale file of a killed run, or anything planted there, goes first (remove()
+      ! unlinks a symbolic link itself); the creation below is exclusive
+      call remove_path(csv%path)
+      call create_file(csv%path, csv%file, ok, reason)
+      if (.not. ok) then
+         error = csv%path // ": cannot create the file: " // reason
+         if (file_exists(csv%path) .or. directory_exists(csv%path)) error = error &
+            & // " (a directory of this name, or a file another run is writing)"
          return
       end if
       csv%opened = .true.
       res%n_files = res%n_files + 1
       res%files(res%n_files) = name
       if (size(header) == 0) return
-      do i = 1, size(header)
-         if (i > 1) write(csv%unit, '(a)', advance="no") ","
-         write(csv%unit, '(a)', advance="no") trim(header(i))
+      line = trim(header(1))
+      do i = 2, size(header)
+         line = line // "," // trim(header(i))
       end do
-      write(csv%unit, '(a)') ""
+      call csv_line(csv, line)
    end subroutine csv_open
 
    !> One row: an optional leading text field, then numbers.
    subroutine csv_row(csv, values, label)
-      type(csv_type), intent(in) :: csv
+      type(csv_type), intent(inout) :: csv
       real(wp), intent(in) :: values(:)
       character(len=*), intent(in), optional :: label
+      character(len=:), allocatable :: line
       integer :: i
-      logical :: first
       if (.not. csv%opened) return
-      first = .true.
-      if (present(label)) then
-         write(csv%unit, '(a)', advance="no") trim(label)
-         first = .false.
-      end if
+      line = ""
+      if (present(label)) line = trim(label) // ","
       do i = 1, size(values)
-         if (.not. first) write(csv%unit, '(a)', advance="no") ","
-         write(csv%unit, '(a)', advance="no") csv_real(values(i))
-         first = .false.
+         if (i > 1) line = line // ","
+         line = line // csv_real(values(i))
       end do
-      write(csv%unit, '(a)') ""
+      call csv_line(csv, line)
    end subroutine csv_row
 
-   !> Close a file (it stays .partial until `commit_results`).
-   subroutine csv_close(csv)
+   !> One line of text (a newline is added).
+   subroutine csv_line(csv, text)
       type(csv_type), intent(inout) :: csv
-      if (csv%opened) close(csv%unit)
+      character(len=*), intent(in) :: text
+      logical :: ok
+      if (.not. csv%opened .or. csv%failed) return
+      call write_file(csv%file, text // new_line("a"), ok, csv%reason)
+      csv%failed = .not. ok
+   end subroutine csv_line
+
+   !> Close a file (it stays .partial until `commit_results`). `error` tells if a
+   !> write, the flush or the close failed (unless it holds an earlier error already).
+   subroutine csv_close(csv, error)
+      type(csv_type), intent(inout) :: csv
+      character(len=:), allocatable, intent(inout) :: error
+      logical :: ok
+      character(len=:), allocatable :: reason
+      if (.not. csv%opened) return
+      call close_file(csv%file, ok, reason)
       csv%opened = .false.
+      if (allocated(error)) return
+      if (csv%failed) then
+         error = csv%path // ": writing failed: " // csv%reason
+      else if (.not. ok) then
+         error = csv%path // ": writing failed: " // reason
+      end if
    end subroutine csv_close
 
    !> Rename every .partial file to its name and remove results of earlier runs that
-   !> this run did not write.
+   !> this run did not write. If a rename fails, every result file of the directory
+   !> goes (the new ones and the old ones they were replacing), so that no mixture of
+   !> two runs is left looking complete.
    subroutine commit_results(res, error)
       type(results_type), intent(inout) :: res
       character(len=:), allocatable, intent(out) :: error
@@ -157,7 +195,10 @@ contains
          call rename_path(res%path // "/" // trim(res%files(i)) // ".partial", &
             & res%path // "/" // trim(res%files(i)), ok)
          if (.not. ok) then
-            error = res%path // "/" // trim(res%files(i)) // ": cannot rename the finished file"
+            error = res%path // "/" // trim(res%files(i)) // ": cannot rename the finished" &
+               & // " file (a directory of that name?); the results in " // res%path &
+               & // " were removed"
+            call remove_all_results(res)
             call abandon_results(res)
             return
          end if
@@ -169,22 +210,38 @@ contains
       res%n_files = 0
    end subroutine commit_results
 
-   !> Remove every .partial file of this run.
+   !> Remove every file of this run (still .partial) and the directories it created.
    subroutine abandon_results(res)
       type(results_type), intent(inout) :: res
       integer :: i
-      logical :: opened
-      integer :: unit
       if (.not. res%active) return
       do i = 1, res%n_files
-         inquire(file=res%path // "/" // trim(res%files(i)) // ".partial", opened=opened, &
-            & number=unit)
-         if (opened) close(unit)
          call remove_path(res%path // "/" // trim(res%files(i)) // ".partial")
       end do
       res%n_files = 0
-      ! an empty directory made by this run goes too (remove fails on a non-empty one)
-      if (res%created) call remove_path(res%path)
+      call remove_created(res)
    end subroutine abandon_results
+
+   !> Every result file of the directory, whichever run wrote it.
+   subroutine remove_all_results(res)
+      type(results_type), intent(in) :: res
+      integer :: i
+      do i = 1, size(all_result_files)
+         call remove_path(res%path // "/" // trim(all_result_files(i)))
+      end do
+   end subroutine remove_all_results
+
+   !> The directories this run created, deepest first (remove() leaves a directory
+   !> that is not empty).
+   subroutine remove_created(res)
+      type(results_type), intent(inout) :: res
+      integer :: i
+      if (.not. allocated(res%created)) return
+      do i = size(res%created), 1, -1
+         call remove_path(res%path(1:res%created(i)))
+      end do
+      deallocate(res%created)
+      allocate(res%created(0))
+   end subroutine remove_created
 
 end module hcimpact_scene_output

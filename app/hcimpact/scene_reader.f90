@@ -16,17 +16,23 @@
 !> (iomsg) is quoted together with ours. Values are checked after reading. Every message
 !> starts with `file:line:` and names the group.
 module hcimpact_scene_reader
+   use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan, ieee_value, &
       & ieee_positive_inf
+   use, intrinsic :: ieee_exceptions, only : ieee_get_halting_mode, ieee_set_halting_mode, &
+      & ieee_set_flag, ieee_usual
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, status_message
    use hcimpact_hertz, only : hertz_constant, effective_mass
    use hcimpact_impact_model, only : damping_for_restitution
    use hcimpact_scene_model, only : scene_type, body_type, nan, n_outputs, output_names, &
-      & output_index, figure_outputs, out_summary, out_sweep, out_histories, out_phase, &
+      & add_outputs, output_choices, out_summary, out_sweep, out_histories, out_phase, &
       & out_loops, out_legacy, out_cvode, max_speeds, default_scene_lines, &
-      & scene_line_length
-   use hcimpact_scene_text, only : lower, str, real_str, join
+      & scene_line_length, max_scene_lines
+   use hcimpact_scene_text, only : lower, str, real_str, join, printable
+   use hcimpact_scene_system, only : directory_exists
+   use hcimpact_scene_numbers, only : power_product, quotient_of, decimal_exponent
+   use hcimpact_restitution_law, only : restitution_inverse
    implicit none
    private
 
@@ -57,9 +63,24 @@ module hcimpact_scene_reader
    character(len=*), parameter :: text_variables(3) = [character(len=13) :: "title", &
       & "outputs", "sweep_spacing"]
 
-   !> Marks a real or integer the file did not set
-   real(wp), parameter :: unset = -huge(1.0_wp)
+   !> Marks a real the file did not set: a quiet NaN with a payload of its own, told
+   !> apart from any value a file can hold (also "nan", whose payload differs) by its
+   !> bits, never by a floating-point comparison
+   integer(int64), parameter :: unset_bits = int(z'7FF80000DEADBEEF', int64)
+   real(wp), parameter :: unset = transfer(unset_bits, 1.0_wp)
+   !> Marks an integer the file did not set (a file that writes this value is caught by
+   !> looking for the name in the text, `given`)
    integer, parameter :: unset_int = -huge(1)
+   !> Length of the text variables; a text that fills one may have been cut, and is
+   !> refused
+   integer, parameter :: text_length = 256
+   !> Longest title
+   integer, parameter :: max_title = 200
+   !> Said of a value that is not finite (1e999 reads as inf)
+   character(len=*), parameter :: finite_hint = " (inf, nan, or beyond the largest double," &
+      & // " 1.8e308)"
+   !> Names whose values are logicals
+   character(len=*), parameter :: logical_variables(1) = [character(len=4) :: "flat"]
 
    !> Where a group stands in the source
    type :: group_place
@@ -76,16 +97,16 @@ module hcimpact_scene_reader
 
    ! The namelist variables; shared by the groups that take the same names, and reset
    ! before each read.
-   character(len=200) :: title
+   character(len=text_length) :: title
    real(wp) :: speeds(max_speeds)
-   character(len=32) :: outputs(max_list)
+   character(len=text_length) :: outputs(max_list)
    real(wp) :: mass, radius, density, young, poisson
    logical :: flat
    real(wp) :: stiffness, exponent
    real(wp) :: b, restitution, at_speed
    integer :: samples, sweep_count
    real(wp) :: sweep_from, sweep_to, beta_max
-   character(len=16) :: sweep_spacing
+   character(len=text_length) :: sweep_spacing
    real(wp) :: tolerances(max_list)
 
    namelist /scene/ title, speeds, outputs
@@ -100,6 +121,14 @@ module hcimpact_scene_reader
 contains
 
    !> Read and validate the scene file `path`. On failure `error` holds the message.
+   !>
+   !> The file is read whole, line by line in pieces, so that a line is never cut
+   !> silently: a line longer than `scene_line_length` characters (trailing blanks
+   !> aside), a file of more than `max_scene_lines` lines, or a character that is not
+   !> text (a control character other than the tab, or bytes that are not UTF-8) is
+   !> refused, with its line. Reading stops there: a device without end (/dev/zero) or
+   !> a file of 100 MB is refused after at most max_scene_lines lines of at most
+   !> scene_line_length characters.
    subroutine read_scene_file(path, sc, error, replace, add)
       !> Path of the scene file
       character(len=*), intent(in) :: path
@@ -111,49 +140,165 @@ contains
       logical, intent(in), optional :: replace(n_outputs)
       !> Outputs wanted besides the scene's (command line)
       logical, intent(in), optional :: add(n_outputs)
-      character(len=scene_line_length), allocatable :: lines(:)
-      character(len=scene_line_length + 1) :: buffer
+      character(len=scene_line_length), allocatable :: lines(:), more(:)
+      character(len=:), allocatable :: line, shown
       character(len=512) :: msg
-      integer :: unit, ios, n, i
-      logical :: exists
+      integer :: unit, ios, n, column
+      logical :: exists, at_end
 
+      shown = printable(path)
+      if (directory_exists(path)) then
+         error = shown // ": is a directory, not a scene file"
+         return
+      end if
       inquire(file=path, exist=exists)
       if (.not. exists) then
-         error = path // ": no such scene file"
+         error = shown // ": no such scene file"
          return
       end if
       open(newunit=unit, file=path, status="old", action="read", form="formatted", &
          & access="sequential", iostat=ios, iomsg=msg)
       if (ios /= 0) then
-         error = path // ": cannot open the scene file (" // trim(msg) // ")"
+         error = shown // ": cannot open the scene file (" // trim(msg) // ")"
          return
       end if
-      ! two passes: count the lines, then read them
+      allocate(lines(64))
       n = 0
       do
-         read(unit, '(a)', iostat=ios, iomsg=msg) buffer
-         if (is_iostat_end(ios)) exit
-         if (ios /= 0) then
-            error = path // ":" // str(n + 1) // ": cannot read the line (" // trim(msg) // ")"
-            close(unit)
-            return
+         call read_line(unit, line, at_end, error)
+         if (allocated(error)) then
+            error = shown // ":" // str(n + 1) // ": " // error
+            exit
          end if
+         if (at_end) exit
          n = n + 1
-         if (len_trim(buffer) > scene_line_length) then
-            error = path // ":" // str(n) // ": line longer than " // str(scene_line_length) &
-               & // " characters"
-            close(unit)
-            return
+         ! the byte order mark some editors put first (U+FEFF in UTF-8) is no text
+         if (n == 1 .and. len(line) >= 3) then
+            if (iachar(line(1:1)) == 239 .and. iachar(line(2:2)) == 187 &
+               & .and. iachar(line(3:3)) == 191) line = line(4:)
          end if
-      end do
-      allocate(lines(n))
-      rewind(unit)
-      do i = 1, n
-         read(unit, '(a)') lines(i)
+         if (n > max_scene_lines) then
+            error = shown // ": more than " // str(max_scene_lines) // " lines: a scene file" &
+               & // " is a short text (is this the right file?)"
+            exit
+         end if
+         column = not_text(line)
+         if (column > 0) then
+            error = shown // ":" // str(n) // ": character " // str(column) // " is not text (" &
+               & // byte_name(line, column) // "): a scene file is plain text (UTF-8)"
+            exit
+         end if
+         if (len_trim(line) > scene_line_length) then
+            error = shown // ":" // str(n) // ": the line is longer than " &
+               & // str(scene_line_length) // " characters: split it (a list of values may" &
+               & // " go on over several lines)"
+            exit
+         end if
+         if (n > size(lines)) then
+            allocate(more(2 * size(lines)))
+            more(1:size(lines)) = lines
+            call move_alloc(more, lines)
+         end if
+         lines(n) = line
       end do
       close(unit)
-      call read_scene_lines(lines, path, stem(path), sc, error, replace, add)
+      if (allocated(error)) return
+      if (all(len_trim(lines(1:n)) == 0)) then
+         error = shown // ": the scene file is empty (hcimpact --show-default prints a" &
+            & // " scene to start from)"
+         return
+      end if
+      call read_scene_lines(lines(1:n), shown, printable(stem(path)), sc, error, replace, add)
    end subroutine read_scene_file
+
+   !> The next line of the file, whole, or `at_end`. Read in pieces; reading stops
+   !> once the line has more than scene_line_length characters before its trailing
+   !> blanks (too long), or a million characters in all, so that a line without end
+   !> costs no more.
+   subroutine read_line(unit, line, at_end, error)
+      integer, intent(in) :: unit
+      character(len=:), allocatable, intent(out) :: line
+      logical, intent(out) :: at_end
+      character(len=:), allocatable, intent(out) :: error
+      integer, parameter :: max_read = 2**20
+      character(len=256) :: piece
+      character(len=512) :: msg
+      integer :: ios, got, total
+      line = ""
+      at_end = .false.
+      total = 0
+      do
+         got = 0
+         read(unit, '(a)', advance="no", iostat=ios, size=got, iomsg=msg) piece
+         line = line // piece(1:got)
+         total = total + got
+         if (is_iostat_eor(ios)) return
+         if (is_iostat_end(ios)) then
+            ! a last line without a newline ends with an end of record first
+            at_end = .true.
+            return
+         end if
+         if (ios /= 0) then
+            error = "cannot read the line (" // trim(msg) // ")"
+            return
+         end if
+         ! trailing blanks may follow a full line: only text beyond them is too long
+         if (len_trim(line) > scene_line_length) return
+         if (total > max_read) then
+            error = "the line has more than " // str(max_read) // " characters"
+            return
+         end if
+         if (len(line) > scene_line_length + len(piece)) line = line(1:scene_line_length + 1)
+      end do
+   end subroutine read_line
+
+   !> Position of the first character of `line` that is not text: an ASCII control
+   !> character other than the tab, a C1 control (U+0080 to U+009F), or a byte that
+   !> is not part of a UTF-8 sequence; 0 if there is none.
+   pure function not_text(line) result(column)
+      character(len=*), intent(in) :: line
+      integer :: column
+      integer :: i, c, follow, k
+      i = 1
+      do while (i <= len(line))
+         column = i
+         c = iachar(line(i:i))
+         if (c < 32 .and. c /= 9) return
+         if (c == 127) return
+         if (c < 128) then
+            i = i + 1
+            cycle
+         end if
+         ! the length of a UTF-8 sequence from its first byte
+         if (c >= 194 .and. c <= 223) then
+            follow = 1
+         else if (c >= 224 .and. c <= 239) then
+            follow = 2
+         else if (c >= 240 .and. c <= 244) then
+            follow = 3
+         else
+            return
+         end if
+         if (i + follow > len(line)) return
+         do k = 1, follow
+            if (iachar(line(i + k:i + k)) < 128 .or. iachar(line(i + k:i + k)) > 191) return
+         end do
+         ! C1 controls: U+0080 to U+009F, C2 80 to C2 9F
+         if (c == 194 .and. iachar(line(i + 1:i + 1)) <= 159) return
+         i = i + follow + 1
+      end do
+      column = 0
+   end function not_text
+
+   !> "byte 0x1B", for the character at `column`.
+   pure function byte_name(line, column) result(text)
+      character(len=*), intent(in) :: line
+      integer, intent(in) :: column
+      character(len=:), allocatable :: text
+      character(len=2) :: hex
+      write(hex, '(z2.2)') iachar(line(column:column))
+      text = "byte 0x" // hex
+   end function byte_name
 
    !> The built-in default scene (`default_scene_lines`).
    subroutine read_default_scene(sc, error, replace, add)
@@ -234,11 +379,12 @@ contains
       character(len=1) :: ch, quote
       character(len=scene_line_length) :: line
       character(len=:), allocatable :: gname
-      integer :: l, i, j, n, open_group, gid
+      integer :: l, i, j, n, open_group, gid, quote_line
       logical :: line_has_text
 
       open_group = 0
       quote = " "
+      quote_line = 0
       do l = 1, size(src%lines)
          line = src%lines(l)
          n = len_trim(line)
@@ -299,6 +445,7 @@ contains
             line_has_text = .true.
             if (ch == '"' .or. ch == "'") then
                quote = ch
+               quote_line = l
             else if (ch == "/") then
                src%groups(open_group)%last = l
                open_group = 0
@@ -326,6 +473,12 @@ contains
             return
          end if
       end do
+      if (quote /= " ") then
+         ! a text never closed takes the rest of the file, the group's / included
+         error = place(src, quote_line) // "the text in quotes that starts here is never" &
+            & // " closed with " // quote
+         return
+      end if
       if (open_group /= 0) then
          error = place(src, src%groups(open_group)%first) // "the group &" &
             & // trim(group_names(open_group)) // " is never closed with /"
@@ -502,12 +655,20 @@ contains
    end subroutine reset_variables
 
    !> Read one group from the records `rec` with the compiler's namelist reader.
+   !>
+   !> The compiler's reader converts numbers with the C library's strtod, which raises
+   !> the overflow exception for a number beyond the largest double (1e999, read as
+   !> inf and refused by `take`): the traps of the Debug build are held off while it
+   !> reads, and the flags it raised are cleared.
    subroutine read_records(gid, rec, ios, msg)
       integer, intent(in) :: gid
       character(len=*), intent(in) :: rec(:)
       integer, intent(out) :: ios
       character(len=*), intent(inout) :: msg
+      logical :: halting(size(ieee_usual))
       call reset_variables()
+      call ieee_get_halting_mode(ieee_usual, halting)
+      call ieee_set_halting_mode(ieee_usual, .false.)
       select case (gid)
       case (g_scene)
          read(rec, nml=scene, iostat=ios, iomsg=msg)
@@ -524,6 +685,8 @@ contains
       case default
          read(rec, nml=sampling, iostat=ios, iomsg=msg)
       end select
+      call ieee_set_flag(ieee_usual, .false.)
+      call ieee_set_halting_mode(ieee_usual, halting)
    end subroutine read_records
 
    !> Read the group `gid` into the namelist variables (all unset if the group is
@@ -542,7 +705,11 @@ contains
       last = src%groups(gid)%last
       msg = ""
       call read_records(gid, src%lines(first:last), ios, msg)
-      if (ios == 0) return
+      if (ios == 0) then
+         call check_repeated_names(src, gid, error)
+         if (allocated(error)) call reset_variables()
+         return
+      end if
       first_msg = msg
       ! the first prefix of the group (closed by an extra "/") that fails holds the fault
       bad = first
@@ -562,6 +729,81 @@ contains
          & // " (Fortran: " // trim(first_msg) // ")"
       call reset_variables()
    end subroutine read_group
+
+   !> A name given twice in the group: the compiler's reader would keep the last value
+   !> silently (b = 0.1d0, b = 0.2 gives b = 0.2). An indexed name, speeds(2) = 1,
+   !> counts as its name.
+   subroutine check_repeated_names(src, gid, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=:), allocatable, intent(out) :: error
+      character(len=scene_line_length) :: bare
+      character(len=scene_line_length), allocatable :: names(:), more(:)
+      integer, allocatable :: at_line(:), more_lines(:)
+      character(len=1) :: quote
+      integer :: l, i, n, k, name_start, name_end
+      allocate(names(16), at_line(16))
+      n = 0
+      quote = " "
+      do l = src%groups(gid)%first, src%groups(gid)%last
+         ! quoted text (which may go on over lines) and comments become blanks
+         bare = src%lines(l)
+         do i = 1, len_trim(bare)
+            if (quote /= " ") then
+               if (bare(i:i) == quote) quote = " "
+               bare(i:i) = " "
+            else if (bare(i:i) == '"' .or. bare(i:i) == "'") then
+               quote = bare(i:i)
+               bare(i:i) = " "
+            else if (bare(i:i) == "!") then
+               bare(i:) = " "
+               exit
+            end if
+         end do
+         ! each "=" assigns the name before it (and its index, if any)
+         do i = 1, len_trim(bare)
+            if (bare(i:i) /= "=") cycle
+            call name_before(bare(1:i - 1), name_start, name_end)
+            if (name_end < name_start) cycle
+            do k = 1, n
+               if (lower(trim(names(k))) == lower(bare(name_start:name_end))) then
+                  error = place(src, l) // "&" // trim(group_names(gid)) // ": " &
+                     & // bare(name_start:name_end) // " is given twice (lines " &
+                     & // str(at_line(k)) // " and " // str(l) // "): give each name once" &
+                     & // " (a list of values, e.g. speeds = 1, 2, 3, in one place)"
+                  return
+               end if
+            end do
+            if (n == size(names)) then
+               allocate(more(2 * n), more_lines(2 * n))
+               more(1:n) = names
+               more_lines(1:n) = at_line
+               call move_alloc(more, names)
+               call move_alloc(more_lines, at_line)
+            end if
+            n = n + 1
+            names(n) = bare(name_start:name_end)
+            at_line(n) = l
+         end do
+      end do
+   end subroutine check_repeated_names
+
+   !> The name that ends `text` (blanks and an index in parentheses after it skipped):
+   !> text(first:last), or last < first if there is none.
+   pure subroutine name_before(text, first, last)
+      character(len=*), intent(in) :: text
+      integer, intent(out) :: first, last
+      last = len_trim(text)
+      if (last >= 1) then
+         if (text(last:last) == ")") last = index(text(1:last), "(", back=.true.) - 1
+      end if
+      last = len_trim(text(1:max(last, 0)))
+      first = last + 1
+      do while (first > 1)
+         if (.not. is_name_char(text(first - 1:first - 1))) exit
+         first = first - 1
+      end do
+   end subroutine name_before
 
    !> Our reading of a namelist error message on a line of group gid.
    function explain(line, context, gid, msg) result(text)
@@ -595,6 +837,8 @@ contains
          else if (any(lower(owner) == text_variables)) then
             text = "the text '" // token // "' of " // owner // " must be in quotes, e.g. " &
                & // owner // " = """ // token // """"
+         else if (any(lower(owner) == logical_variables)) then
+            text = owner // " takes .true. or .false., not '" // token // "'"
          else if (is_number(token)) then
             text = owner // " takes a single value here, '" // token // "' is one too many"
          else
@@ -606,6 +850,10 @@ contains
       if (p > 0) then
          token = trim(msg(p + len("Bad data for namelist object "):))
          text = "a value of " // token // " is not of the right kind: " // clip(adjustl(line))
+         return
+      end if
+      if (index(msg, "Integer overflow") > 0) then
+         text = "a whole number on this line is too large: " // clip(adjustl(line))
          return
       end if
       p = index(msg, "Bad real number")
@@ -674,13 +922,19 @@ contains
       if (j >= i + 1) name = low(i + 1:j)
    end function assigned_name
 
-   !> Whether the text reads as a number.
+   !> Whether the text reads as a number (the traps held off as in read_records: 1e999
+   !> reads as inf).
    function is_number(text) result(yes)
       character(len=*), intent(in) :: text
       logical :: yes
       real(wp) :: x
       integer :: ios
+      logical :: halting(size(ieee_usual))
+      call ieee_get_halting_mode(ieee_usual, halting)
+      call ieee_set_halting_mode(ieee_usual, .false.)
       read(text, *, iostat=ios) x
+      call ieee_set_flag(ieee_usual, .false.)
+      call ieee_set_halting_mode(ieee_usual, halting)
       yes = ios == 0
    end function is_number
 
@@ -698,41 +952,83 @@ contains
       character(len=:), allocatable, intent(inout) :: error
       out = nan
       if (allocated(error)) return
-      if (value == unset) return
+      if (is_unset(value)) return
       if (.not. ieee_is_finite(value)) then
-         error = at(src, gid, name) // name // " is not a finite number"
+         error = at(src, gid, name) // name // " is not a finite number" // finite_hint
          return
       end if
       out = value
    end subroutine take
+
+   !> Whether a real is the mark of a value the file did not set (by its bits).
+   elemental function is_unset(x) result(yes)
+      real(wp), intent(in) :: x
+      logical :: yes
+      yes = transfer(x, 0_int64) == unset_bits
+   end function is_unset
+
+   !> Whether the group assigns `name` in the text (for integers, whose mark of "not
+   !> given" a file could write).
+   function given(src, gid, name) result(yes)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: name
+      logical :: yes
+      integer :: l
+      yes = .false.
+      if (.not. src%groups(gid)%present) return
+      do l = src%groups(gid)%first, src%groups(gid)%last
+         yes = name_position(src%lines(l), name) > 0
+         if (yes) return
+      end do
+   end function given
+
+   !> The number of values given in a list (speeds, tolerances): the leading ones; a
+   !> value left out before a given one (speeds = 1, , 3) is an error.
+   subroutine count_list(src, gid, name, values, n, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: values(:)
+      integer, intent(out) :: n
+      character(len=:), allocatable, intent(out) :: error
+      n = 0
+      do while (n < size(values))
+         if (is_unset(values(n + 1))) exit
+         n = n + 1
+      end do
+      if (n < size(values)) then
+         if (.not. all(is_unset(values(n + 1:)))) then
+            error = at(src, gid, name) // name // " has a gap: value " // str(n + 1) &
+               & // " is not given"
+            return
+         end if
+      end if
+   end subroutine count_list
 
    !> The &scene group: title, speeds, outputs.
    subroutine load_scene_group(src, sc, error)
       type(scene_source), intent(in) :: src
       type(scene_type), intent(inout) :: sc
       character(len=:), allocatable, intent(out) :: error
-      integer :: i, n, k
+      integer :: i, n
+      character(len=:), allocatable :: unknown
 
       call read_group(src, g_scene, error)
       if (allocated(error)) return
+      if (len_trim(title) > max_title) then
+         error = at(src, g_scene, "title") // "the title has more than " // str(max_title) &
+            & // " characters"
+         return
+      end if
       sc%title = trim(title)
       if (len(sc%title) == 0) sc%title = sc%name
-      ! speeds: the leading given values, without holes
-      n = 0
-      do i = 1, max_speeds
-         if (speeds(i) == unset) exit
-         n = i
-      end do
-      if (n < max_speeds) then
-         if (any(speeds(n + 1:) /= unset)) then
-            error = at(src, g_scene, "speeds") // "speeds has a gap: value " // str(n + 1) &
-               & // " is not given"
-            return
-         end if
-      end if
+      call count_list(src, g_scene, "speeds", speeds, n, error)
+      if (allocated(error)) return
       do i = 1, n
          if (.not. ieee_is_finite(speeds(i))) then
-            error = at(src, g_scene, "speeds") // "speed " // str(i) // " is not a finite number"
+            error = at(src, g_scene, "speeds") // "speed " // str(i) // " is not a finite number" &
+               & // finite_hint
             return
          end if
          if (.not. speeds(i) > 0.0_wp) then
@@ -742,24 +1038,21 @@ contains
          end if
       end do
       sc%speeds = speeds(1:n)
-      ! outputs
+      ! outputs: a list of texts, each a name or names separated by commas
       sc%wanted = .false.
       do i = 1, max_list
-         if (len_trim(outputs(i)) == 0) cycle
-         select case (lower(trim(adjustl(outputs(i)))))
-         case ("figures")
-            sc%wanted = sc%wanted .or. figure_outputs
-         case ("all")
-            sc%wanted = .true.
-         case default
-            k = output_index(outputs(i))
-            if (k == 0) then
-               error = at(src, g_scene, "outputs") // "unknown output '" // trim(adjustl(outputs(i))) &
-                  & // "' (outputs: " // join(output_names, ", ") // ", or figures, all)"
-               return
-            end if
-            sc%wanted(k) = .true.
-         end select
+         if (len_trim(outputs(i)) == len(outputs(i))) then
+            error = at(src, g_scene, "outputs") // "output text " // str(i) // " is longer than " &
+               & // str(len(outputs(i)) - 1) // " characters"
+            return
+         end if
+         call add_outputs(outputs(i), sc%wanted, unknown)
+         if (len(unknown) > 0) then
+            error = at(src, g_scene, "outputs") // "unknown output '" // unknown &
+               & // "' (outputs: " // output_choices() // "; outputs = ""summary"", ""phase""" &
+               & // " or outputs = ""summary,phase"")"
+            return
+         end if
       end do
       if (.not. any(sc%wanted)) sc%wanted(out_summary) = .true.
    end subroutine load_scene_group
@@ -845,7 +1138,16 @@ contains
                & // " (a sphere, m = 4/3 pi R^3 rho): give radius too, or mass"
             return
          end if
-         body%mass = 4.0_wp / 3.0_wp * pi * body%radius**3 * body%density
+         ! without overflow or underflow on the way (a radius of 1e-110 or 1e110)
+         body%mass = power_product([4.0_wp / 3.0_wp * pi, body%radius, body%density], &
+            & [1.0_wp, 3.0_wp, 1.0_wp])
+         if (.not. (body%mass >= tiny(1.0_wp) .and. body%mass <= huge(1.0_wp))) then
+            error = at(src, gid, "density") // "the mass of this sphere, 4/3 pi R^3 rho, about" &
+               & // " 1e" // str(decimal_exponent([4.0_wp / 3.0_wp * pi, body%radius, &
+               & body%density], [1.0_wp, 3.0_wp, 1.0_wp])) // " kg, lies outside the range of" &
+               & // " doubles (1e-308 to 1e308): check radius and density"
+            return
+         end if
          body%mass_from_density = .true.
       else
          error = at(src, gid, "") // "missing mass: give mass (kg), or radius (m) and density" &
@@ -998,6 +1300,14 @@ contains
             & // " m/s: must be positive"
          return
       end if
+      ! b = beta(e)/V must be a double (the library's damping_for_restitution raises
+      ! the overflow exception, which the Debug build traps, before it says so)
+      if (.not. quotient_of(restitution_inverse(e), v) <= huge(1.0_wp)) then
+         error = at(src, g_damping, "at_speed") // "the damping for restitution = " &
+            & // real_str(e, 10) // " at " // real_str(v, 6) // " m/s, b = beta(e)/V, exceeds" &
+            & // " the largest double (1.8e308): a larger at_speed or restitution"
+         return
+      end if
       call damping_for_restitution(e, v, sc%damping, stat, min_velocity=tiny(1.0_wp))
       if (stat /= hcimpact_ok) then
          error = at(src, g_damping, "restitution") // "no damping for this restitution: " &
@@ -1020,7 +1330,7 @@ contains
 
       call read_group(src, g_sampling, error)
       if (allocated(error)) return
-      if (samples /= unset_int) then
+      if (samples /= unset_int .or. given(src, g_sampling, "samples")) then
          if (samples < 11 .or. samples > 100001) then
             error = at(src, g_sampling, "samples") // "samples = " // str(samples) &
                & // ": between 11 and 100001 points per curve"
@@ -1045,7 +1355,7 @@ contains
       if (ieee_is_nan(to) .and. size(sc%speeds) > 0) to = maxval(sc%speeds)
       if (ieee_is_nan(from) .and. .not. ieee_is_nan(to)) from = to / 100.0_wp
       n = 100
-      if (sweep_count /= unset_int) n = sweep_count
+      if (sweep_count /= unset_int .or. given(src, g_sampling, "sweep_count")) n = sweep_count
       if (sc%wanted(out_sweep)) then
          if (ieee_is_nan(to)) then
             error = at(src, g_sampling, "sweep_to") // "the sweep needs its range: give" &
@@ -1067,6 +1377,11 @@ contains
                & // ": between 2 and 100000 speeds"
             return
          end if
+         if (len_trim(sweep_spacing) == len(sweep_spacing)) then
+            error = at(src, g_sampling, "sweep_spacing") // "sweep_spacing: use ""linear""" &
+               & // " or ""log"""
+            return
+         end if
          allocate(sc%sweep(n))
          select case (lower(trim(adjustl(sweep_spacing))))
          case ("", "linear")
@@ -1075,9 +1390,11 @@ contains
                sc%sweep(i) = from + (to - from) * x
             end do
          case ("log")
+            ! log(to) - log(from), not log(to/from): the quotient overflows for a sweep
+            ! from 1e-300 to 1e300
             do i = 1, n
                x = real(i - 1, wp) / real(n - 1, wp)
-               sc%sweep(i) = from * exp(log(to / from) * x)
+               sc%sweep(i) = exp(log(from) + (log(to) - log(from)) * x)
             end do
          case default
             error = at(src, g_sampling, "sweep_spacing") // "sweep_spacing = '" &
@@ -1091,11 +1408,8 @@ contains
       end if
 
       ! CVODE tolerances
-      n = 0
-      do i = 1, max_list
-         if (tolerances(i) == unset) exit
-         n = i
-      end do
+      call count_list(src, g_sampling, "tolerances", tolerances, n, error)
+      if (allocated(error)) return
       if (n == 0) then
          sc%tolerances = [1.0e-4_wp, 1.0e-6_wp, 1.0e-8_wp, 1.0e-10_wp]
       else
@@ -1103,7 +1417,7 @@ contains
          do i = 1, n
             if (.not. ieee_is_finite(sc%tolerances(i))) then
                error = at(src, g_sampling, "tolerances") // "tolerance " // str(i) &
-                  & // " is not a finite number"
+                  & // " is not a finite number" // finite_hint
                return
             end if
             if (.not. (sc%tolerances(i) >= 1.0e-14_wp .and. sc%tolerances(i) <= 0.1_wp)) then
@@ -1111,6 +1425,21 @@ contains
                   & // real_str(sc%tolerances(i), 6) // ": relative tolerances lie in [1e-14, 0.1]"
                return
             end if
+         end do
+      end if
+
+      ! b V, formed for every speed, must be a double
+      if (sc%damping > 0.0_wp) then
+         do i = 1, size(sc%speeds) + size(sc%sweep)
+            if (i <= size(sc%speeds)) then
+               x = sc%speeds(i)
+            else
+               x = sc%sweep(i - size(sc%speeds))
+            end if
+            if (power_product([sc%damping, x], [1.0_wp, 1.0_wp]) <= huge(1.0_wp)) cycle
+            error = at(src, g_damping, "") // "b V = " // real_str(sc%damping, 6) // " s/m x " &
+               & // real_str(x, 6) // " m/s exceeds the largest double (1.8e308)"
+            return
          end do
       end if
 

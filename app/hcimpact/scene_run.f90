@@ -19,7 +19,7 @@
 !> - cvode: SUNDIALS CVODE at each tolerance against the closed forms [hcimpact::cvode,
 !>   through hcimpact_scene_ode].
 module hcimpact_scene_run
-   use, intrinsic :: iso_fortran_env, only : output_unit, error_unit, int64
+   use, intrinsic :: iso_fortran_env, only : error_unit, int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, status_message
@@ -34,12 +34,13 @@ module hcimpact_scene_run
       & out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
       & out_lambertw, out_legacy, out_cvode, nan
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
-      & abandon_results, csv_open, csv_row, csv_close
+      & abandon_results, csv_open, csv_row, csv_line, csv_close
    use hcimpact_scene_ode, only : ode_available, ode_description, ode_missing, ode_run_type, &
       & ode_impact
    use hcimpact_legacy_damping, only : n_rules => n_damping_rules, &
       & rule_names => damping_rule_names, legacy_chi => legacy_damping
-   use hcimpact_scene_system, only : wall_clock
+   use hcimpact_scene_system, only : wall_clock, write_standard_output, last_system_error
+   use hcimpact_scene_numbers, only : power_product, quotient_of
    use hcimpact_scene_text, only : str, real_str, duration_str, join, count_str, csv_real
    implicit none
    private
@@ -76,6 +77,9 @@ module hcimpact_scene_run
    character(len=:), allocatable :: log_text
    !> Console settings of the run
    logical :: quiet_mode = .false., progress_mode = .false.
+   !> Whether a write to the standard output failed (the run then fails), and why
+   logical :: console_failed = .false.
+   character(len=:), allocatable :: console_reason
    !> Progress state
    character(len=:), allocatable :: progress_label
    integer :: progress_total = 0, progress_shown = -1
@@ -169,6 +173,7 @@ contains
 
       quiet_mode = opts%quiet
       progress_mode = opts%progress .and. .not. opts%quiet
+      console_failed = .false.
       log_text = ""
       code = exit_ok
       t0 = wall_clock()
@@ -191,7 +196,13 @@ contains
          end if
          call say_text("  ODE solver: ", ode_description)
       end if
-      if (opts%plan_only) return
+      if (opts%plan_only) then
+         if (console_failed) then
+            call shout("error: the standard output: writing failed: " // console_reason)
+            code = exit_failure
+         end if
+         return
+      end if
 
       if (opts%write_files) then
          call open_results(opts%output_dir, res, error)
@@ -238,28 +249,30 @@ contains
       call say("Total: " // duration_str(wall_clock() - t0))
       if (res%active) then
          call csv_open(res, "scene.nml", [character(len=1) ::], csv, error)
-         if (.not. allocated(error)) then
-            do i = 1, size(scene_text)
-               write(csv%unit, '(a)') trim(scene_text(i))
-            end do
-            call csv_close(csv)
-         end if
+         do i = 1, size(scene_text)
+            call csv_line(csv, trim(scene_text(i)))
+         end do
+         call csv_close(csv, error)
          if (.not. allocated(error)) then
             call say_text("Results: ", res%path // "/ (" // join(res%files(1:res%n_files), ", ") &
                & // ", log.txt)")
             call csv_open(res, "log.txt", [character(len=1) ::], csv, error)
          end if
          if (.not. allocated(error)) then
-            write(csv%unit, '(a)', advance="no") log_text
-            call csv_close(csv)
-            call commit_results(res, error)
+            if (len(log_text) > 0) call csv_line(csv, log_text(1:len(log_text) - 1))
+            call csv_close(csv, error)
          end if
-         if (allocated(error)) then
-            call shout("error: " // error)
-            call abandon_results(res)
-            code = exit_failure
-            return
-         end if
+      end if
+      ! the console is part of the results: a table that did not reach it fails the run
+      if (console_failed .and. .not. allocated(error)) error = "the standard output:" &
+         & // " writing failed: " // console_reason
+      if (.not. allocated(error)) call commit_results(res, error)
+      if (allocated(error)) then
+         call shout("error: " // error)
+         call abandon_results(res)
+         if (res%active) call shout("nothing written: the partial results were removed")
+         code = exit_failure
+         return
       end if
    end subroutine run_scene
 
@@ -272,8 +285,8 @@ contains
       call csv_open(res, "parameters.csv", [character(len=8) :: "name", "value", "unit"], &
          & csv, error)
       if (allocated(error) .or. .not. csv%opened) return
-      write(csv%unit, '(a)') "title," // csv_text(sc%title) // ",-"
-      write(csv%unit, '(a)') "hcimpact_version," // hcimpact_version_string // ",-"
+      call csv_line(csv, "title," // csv_text(sc%title) // ",-")
+      call csv_line(csv, "hcimpact_version," // hcimpact_version_string // ",-")
       call item("mass", sc%mass, "kg")
       call item("stiffness", sc%stiffness, "N/m^n")
       call item("exponent", sc%exponent, "-")
@@ -282,16 +295,16 @@ contains
       if (sc%two_bodies) then
          call item("mass2", sc%body2%mass, "kg")
       else
-         write(csv%unit, '(a)') "mass2,inf,kg"
+         call csv_line(csv, "mass2,inf,kg")
       end if
       call item("target_restitution", sc%target_restitution, "-")
       call item("reference_speed", sc%reference_speed, "m/s")
-      call csv_close(csv)
+      call csv_close(csv, error)
    contains
       subroutine item(name, value, unit)
          character(len=*), intent(in) :: name, unit
          real(wp), intent(in) :: value
-         write(csv%unit, '(a)') name // "," // csv_real(value) // "," // unit
+         call csv_line(csv, name // "," // csv_real(value) // "," // unit)
       end subroutine item
    end subroutine write_parameters
 
@@ -428,16 +441,16 @@ contains
       call csv_open(res, name // ".csv", header, csv, error)
       if (allocated(error)) return
       do i = 1, size(speeds)
-         row = [speeds(i), sc%damping * speeds(i), out(i)%restitution, &
-            & out(i)%energy_loss_ratio, &
-            & out(i)%energy_loss_ratio * 0.5_wp * sc%mass * speeds(i)**2, &
+         row = [speeds(i), damping_number(sc, speeds(i)), out(i)%restitution, &
+            & out(i)%energy_loss_ratio, energy_lost(sc, speeds(i), out(i)%energy_loss_ratio), &
             & out(i)%rebound_velocity, out(i)%max_compression, out(i)%peak_force, &
             & out(i)%compression_at_peak_force, out(i)%time_at_peak_force, &
             & out(i)%compression_time, out(i)%contact_time, &
             & real(sum(out(i)%evaluations), wp), after(1, i), after(2, i)]
          call csv_row(csv, row(1:ncol))
       end do
-      call csv_close(csv)
+      call csv_close(csv, error)
+      if (allocated(error)) return
       if (table) call print_summary(sc, speeds, out, after)
       call say_text(pad(name, 12), count_str(size(speeds), "impact") // ": " &
          & // duration_str(elapsed) // ", " // str_int64(evaluations) &
@@ -450,41 +463,57 @@ contains
       real(wp), intent(in) :: speeds(:)
       type(outcome_type), intent(in) :: out(:)
       real(wp), intent(in) :: after(:, :)
+      character(len=160) :: line
       integer :: i
-      character(len=*), parameter :: fv = '(f9.3)', fk = '(f16.12)', fe = '(es19.11e2)'
 
-      write(output_unit, '(/, a)') sc%title
-      write(output_unit, '(a9, 2a16, 3a19)', advance="no") "V (m/s)", "k", "dT/T-", &
-         & "dT (J)", "V+ (m/s)", "beta = bV"
-      if (sc%two_bodies) then
-         write(output_unit, '(2a19)') "v1 after (m/s)", "v2 after (m/s)"
-      else
-         write(output_unit, '(a)') ""
-      end if
+      call emit("")
+      call emit(sc%title)
+      write(line, '(a9, 2a16, 3a19)') "V (m/s)", "k", "dT/T-", "dT (J)", "V+ (m/s)", &
+         & "beta = bV"
+      if (sc%two_bodies) write(line(len_trim(line) + 1:), '(2a19)') "v1 after (m/s)", &
+         & "v2 after (m/s)"
+      call emit(trim(line))
       do i = 1, size(speeds)
-         write(output_unit, fv, advance="no") speeds(i)
-         write(output_unit, fk, advance="no") out(i)%restitution
-         write(output_unit, fk, advance="no") out(i)%energy_loss_ratio
-         write(output_unit, fe, advance="no") out(i)%energy_loss_ratio * 0.5_wp * sc%mass &
-            & * speeds(i)**2
-         write(output_unit, fe, advance="no") out(i)%rebound_velocity
-         write(output_unit, fe, advance="no") sc%damping * speeds(i)
-         if (sc%two_bodies) then
-            write(output_unit, '(2es19.11e2)') after(:, i)
-         else
-            write(output_unit, '(a)') ""
-         end if
+         write(line, '(f9.3, 2f16.12, 3es19.11e2)') speeds(i), out(i)%restitution, &
+            & out(i)%energy_loss_ratio, energy_lost(sc, speeds(i), out(i)%energy_loss_ratio), &
+            & out(i)%rebound_velocity, damping_number(sc, speeds(i))
+         if (sc%two_bodies) write(line(len_trim(line) + 1:), '(2es19.11e2)') after(:, i)
+         call emit(trim(line))
       end do
-      write(output_unit, '(/, a9, 5a19)') "V (m/s)", "x_max (m)", "F_max (N)", &
-         & "t(F_max) (s)", "t_compr. (s)", "t_contact (s)"
+      call emit("")
+      write(line, '(a9, 5a19)') "V (m/s)", "x_max (m)", "F_max (N)", "t(F_max) (s)", &
+         & "t_compr. (s)", "t_contact (s)"
+      call emit(trim(line))
       do i = 1, size(speeds)
-         write(output_unit, fv, advance="no") speeds(i)
-         write(output_unit, '(5es19.11e2)') out(i)%max_compression, out(i)%peak_force, &
-            & out(i)%time_at_peak_force, out(i)%compression_time, out(i)%contact_time
+         write(line, '(f9.3, 5es19.11e2)') speeds(i), out(i)%max_compression, &
+            & out(i)%peak_force, out(i)%time_at_peak_force, out(i)%compression_time, &
+            & out(i)%contact_time
+         call emit(trim(line))
       end do
-      write(output_unit, '(a)') ""
-      flush(output_unit)
+      call emit("")
    end subroutine print_summary
+
+   !> The kinetic energy lost in the impact at speed v, (1 - k^2) m v^2/2 (+inf, without
+   !> an overflow exception, where it exceeds the largest double).
+   function energy_lost(sc, v, loss_ratio) result(energy)
+      type(scene_type), intent(in) :: sc
+      real(wp), intent(in) :: v
+      !> 1 - k^2
+      real(wp), intent(in) :: loss_ratio
+      real(wp) :: energy
+      energy = 0.0_wp
+      if (loss_ratio > 0.0_wp) energy = power_product([loss_ratio, 0.5_wp, sc%mass, v], &
+         & [1.0_wp, 1.0_wp, 1.0_wp, 2.0_wp])
+   end function energy_lost
+
+   !> beta = b v (finite: the scene reader refuses a b V beyond the largest double).
+   function damping_number(sc, v) result(beta)
+      type(scene_type), intent(in) :: sc
+      real(wp), intent(in) :: v
+      real(wp) :: beta
+      beta = 0.0_wp
+      if (sc%damping > 0.0_wp) beta = power_product([sc%damping, v], [1.0_wp, 1.0_wp])
+   end function damping_number
 
    !> Time histories x(t), V(t), F(t).
    subroutine run_histories(sc, res, error)
@@ -523,7 +552,7 @@ contains
          end if
          if (stat /= hcimpact_ok) then
             call progress_end()
-            call csv_close(csv)
+            call csv_close(csv, error)
             error = "the time law at V = " // real_str(sc%speeds(i), 8) // " m/s: " &
                & // status_message(stat)
             return
@@ -534,27 +563,44 @@ contains
          call progress_step(i)
       end do
       call progress_end()
-      call csv_close(csv)
+      call csv_close(csv, error)
+      if (allocated(error)) return
       elapsed = wall_clock() - t0
       call say_text(pad("histories", 12), str(size(sc%speeds)) // " x " // str(sc%samples) &
          & // " times: " // duration_str(elapsed) // files_note(res, "histories.csv"))
    end subroutine run_histories
 
-   !> Closed-form x_max = [(n+1) m V^2 H/c]^(1/(n+1)), H = h(beta)/beta^2 (MODEL.md).
-   pure function max_compression(sc, v) result(x)
+   !> Closed-form x_max = [(n+1) m V^2 H/c]^(1/(n+1)), H = h(beta)/beta^2 (MODEL.md);
+   !> +inf where it exceeds the largest double.
+   function max_compression(sc, v) result(x)
       type(scene_type), intent(in) :: sc
       real(wp), intent(in) :: v
-      real(wp) :: x, beta, h
-      beta = sc%damping * v
+      real(wp) :: x, beta, h, a
+      beta = damping_number(sc, v)
       if (beta < 1.0e-4_wp) then
          ! h(u)/u^2 = 1/2 - u/3 + u^2/4 - u^3/5 + ...
          h = 0.5_wp - beta * (1.0_wp / 3.0_wp - beta * (0.25_wp - beta / 5.0_wp))
       else
-         h = u_minus_log1p(beta) / beta**2
+         ! (h/beta)/beta: beta^2 overflows above 1e154
+         h = (u_minus_log1p(beta) / beta) / beta
       end if
-      x = exp((log(sc%exponent + 1.0_wp) + log(sc%mass) + 2.0_wp * log(v) + log(h) &
-         & - log(sc%stiffness)) / (sc%exponent + 1.0_wp))
+      a = 1.0_wp / (sc%exponent + 1.0_wp)
+      x = power_product([sc%exponent + 1.0_wp, sc%mass, v, h, sc%stiffness], &
+         & [a, a, 2.0_wp * a, a, -a])
    end function max_compression
+
+   !> The contact force F = c x^n (1 + b V) at compression x and velocity V (+inf where
+   !> it exceeds the largest double).
+   function contact_force(sc, x, v) result(force)
+      type(scene_type), intent(in) :: sc
+      real(wp), intent(in) :: x, v
+      real(wp) :: force, factor
+      ! 1 + b V > 0 on both branches (V > -1/b), but may round to 0 next to -1/b
+      factor = 1.0_wp + sc%damping * v
+      force = 0.0_wp
+      if (x > 0.0_wp .and. factor > 0.0_wp) force = power_product([sc%stiffness, x, factor], &
+         & [1.0_wp, sc%exponent, 1.0_wp])
+   end function contact_force
 
    !> Phase trajectories V(x) (phase.csv) or force-deformation loops F(x) (loops.csv),
    !> both from the closed-form V(x) on a grid clustered at x_max.
@@ -565,7 +611,7 @@ contains
       character(len=:), allocatable, intent(out) :: error
       type(csv_type) :: csv
       real(wp), allocatable :: x(:), vc(:), vr(:), fc(:), fr(:)
-      real(wp) :: t0, elapsed, xmax, s, area, lost, worst
+      real(wp) :: t0, elapsed, xmax, s, area, lost, worst, fmax
       integer :: i, j, m, stat
       character(len=:), allocatable :: name
 
@@ -585,6 +631,12 @@ contains
       worst = 0.0_wp
       do i = 1, size(sc%speeds)
          xmax = max_compression(sc, sc%speeds(i))
+         if (.not. xmax <= huge(xmax)) then
+            call csv_close(csv, error)
+            error = "the maximum compression at V = " // real_str(sc%speeds(i), 8) &
+               & // " m/s exceeds the largest double"
+            return
+         end if
          do j = 1, m
             s = real(j - 1, wp) / real(m - 1, wp)
             x(j) = xmax * (s * (2.0_wp - s))
@@ -596,7 +648,7 @@ contains
             if (stat == hcimpact_ok) call velocity_at_depth(contact_at(sc, sc%speeds(i)), &
                & x(j), restitution_branch, vr(j), stat)
             if (stat /= hcimpact_ok) then
-               call csv_close(csv)
+               call csv_close(csv, error)
                error = "V(x) at V = " // real_str(sc%speeds(i), 8) // " m/s, x = " &
                   & // real_str(x(j), 8) // " m: " // status_message(stat)
                return
@@ -606,20 +658,29 @@ contains
          vc(m) = 0.0_wp
          vr(m) = 0.0_wp
          if (loops) then
-            fc = sc%stiffness * x**sc%exponent * (1.0_wp + sc%damping * vc)
-            fr = sc%stiffness * x**sc%exponent * (1.0_wp + sc%damping * vr)
+            do j = 1, m
+               fc(j) = contact_force(sc, x(j), vc(j))
+               fr(j) = contact_force(sc, x(j), vr(j))
+            end do
             do j = 1, m
                call csv_row(csv, [sc%speeds(i), x(j), fc(j)], "compression")
             end do
             do j = m, 1, -1
                call csv_row(csv, [sc%speeds(i), x(j), fr(j)], "restitution")
             end do
-            ! the area of the loop is the energy lost
-            area = 0.5_wp * sum((x(2:m) - x(1:m - 1)) * ((fc(2:m) - fr(2:m)) &
-               & + (fc(1:m - 1) - fr(1:m - 1))))
-            lost = energy_loss_ratio(sc%damping * sc%speeds(i)) * 0.5_wp * sc%mass &
-               & * sc%speeds(i)**2
-            if (lost > 0.0_wp) worst = max(worst, abs(area / lost - 1.0_wp))
+            ! the area of the loop is the energy lost; compared on the scale of x_max F_max
+            ! (both may lie beyond the range of doubles when multiplied, the ratio not)
+            fmax = maxval(fc)
+            lost = energy_lost(sc, sc%speeds(i), energy_loss_ratio(damping_number(sc, &
+               & sc%speeds(i))))
+            if (fmax > 0.0_wp .and. fmax <= huge(fmax) .and. lost > 0.0_wp &
+               & .and. lost <= huge(lost)) then
+               area = 0.5_wp * sum(((x(2:m) - x(1:m - 1)) / xmax) * ((fc(2:m) - fr(2:m)) / fmax &
+                  & + (fc(1:m - 1) - fr(1:m - 1)) / fmax))
+               lost = power_product([lost, xmax, fmax], [1.0_wp, -1.0_wp, -1.0_wp])
+               if (lost > 0.0_wp .and. lost <= huge(lost)) worst = max(worst, &
+                  & abs(area / lost - 1.0_wp))
+            end if
          else
             do j = 1, m
                call csv_row(csv, [sc%speeds(i), x(j), vc(j)], "compression")
@@ -629,7 +690,8 @@ contains
             end do
          end if
       end do
-      call csv_close(csv)
+      call csv_close(csv, error)
+      if (allocated(error)) return
       elapsed = wall_clock() - t0
       if (loops) then
          call say_text(pad(name, 12), str(size(sc%speeds)) // " x 2 x " // str(m) // " points: " &
@@ -661,7 +723,8 @@ contains
          call csv_row(csv, [beta, restitution(beta), one_minus_restitution(beta), &
             & energy_loss_ratio(beta)])
       end do
-      call csv_close(csv)
+      call csv_close(csv, error)
+      if (allocated(error)) return
       call say_text(pad("restitution", 12), str(m) // " values of beta: " &
          & // duration_str(wall_clock() - t0) // files_note(res, "restitution.csv"))
    end subroutine run_restitution
@@ -696,7 +759,8 @@ contains
          if (j == 1) z = -e_inv
          call csv_row(csv, [z, lambert_wm1(z)], "-1")
       end do
-      call csv_close(csv)
+      call csv_close(csv, error)
+      if (allocated(error)) return
       if (.not. sc%damping > 0.0_wp) then
          call say_text(pad("lambertw", 12), "both branches of W, " // str(m) // " points each: " &
             & // duration_str(wall_clock() - t0) // "; V(z) skipped: it needs b > 0" &
@@ -710,34 +774,38 @@ contains
       do j = 1, m
          s = real(j - 1, wp) / real(m - 1, wp)
          t = t_max * s * s
-         call csv_row(csv, [-exp(-1.0_wp - t), -lambert_wm1p1(t) / sc%damping], "compression")
+         call csv_row(csv, [-exp(-1.0_wp - t), quotient_of(-lambert_wm1p1(t), sc%damping)], &
+            & "compression")
       end do
       do j = 1, m
          s = real(j - 1, wp) / real(m - 1, wp)
          t = t_max * s * s
-         call csv_row(csv, [-exp(-1.0_wp - t), -lambert_w0p1(t) / sc%damping], "restitution")
+         call csv_row(csv, [-exp(-1.0_wp - t), quotient_of(-lambert_w0p1(t), sc%damping)], &
+            & "restitution")
       end do
-      call csv_close(csv)
+      call csv_close(csv, error)
+      if (allocated(error)) return
       ! the arcs: t runs from h(beta) (contact) to 0 (x_max) and back
       call csv_open(res, "motion_z.csv", [character(len=16) :: "phase [-]", "speed [m/s]", &
          & "z [-]", "velocity [m/s]"], csv, error)
       if (allocated(error)) return
       do i = 1, size(sc%speeds)
-         hb = u_minus_log1p(sc%damping * sc%speeds(i))
+         hb = u_minus_log1p(damping_number(sc, sc%speeds(i)))
          do j = 1, m
             s = real(j - 1, wp) / real(m - 1, wp)
             t = hb * (1.0_wp - s * s)
-            call csv_row(csv, [sc%speeds(i), -exp(-1.0_wp - t), -lambert_wm1p1(t) &
-               & / sc%damping], "compression")
+            call csv_row(csv, [sc%speeds(i), -exp(-1.0_wp - t), &
+               & quotient_of(-lambert_wm1p1(t), sc%damping)], "compression")
          end do
          do j = m, 1, -1
             s = real(j - 1, wp) / real(m - 1, wp)
             t = hb * (1.0_wp - s * s)
-            call csv_row(csv, [sc%speeds(i), -exp(-1.0_wp - t), -lambert_w0p1(t) &
-               & / sc%damping], "restitution")
+            call csv_row(csv, [sc%speeds(i), -exp(-1.0_wp - t), &
+               & quotient_of(-lambert_w0p1(t), sc%damping)], "restitution")
          end do
       end do
-      call csv_close(csv)
+      call csv_close(csv, error)
+      if (allocated(error)) return
       call say_text(pad("lambertw", 12), "both branches of W and V(z), " // str(m) &
          & // " points each: " // duration_str(wall_clock() - t0) &
          & // files_note(res, "lambertw.csv, velocity_z.csv, motion_z.csv"))
@@ -752,12 +820,13 @@ contains
       real(wp), allocatable :: e(:), beta(:), kr(:, :), chi(:, :)
       real(wp) :: t0
       integer :: i, j, ns
+      character(len=:), allocatable :: line
 
       ns = size(sc%speeds)
       t0 = wall_clock()
       allocate(e(ns), beta(ns), kr(n_rules, ns), chi(n_rules, ns))
       do i = 1, ns
-         beta(i) = sc%damping * sc%speeds(i)
+         beta(i) = damping_number(sc, sc%speeds(i))
          e(i) = restitution(beta(i))
          do j = 1, n_rules
             chi(j, i) = legacy_chi(j, e(i))
@@ -775,31 +844,29 @@ contains
                & '"' // trim(rule_names(j)) // '"')
          end do
       end do
-      call csv_close(csv)
+      call csv_close(csv, error)
+      if (allocated(error)) return
 
-      write(output_unit, '(/, a)') "Damping rules of multibody codes, asked for each speed's" &
-         & // " exact restitution e: the restitution k(chi) they give, error (k - e)/e in %"
-      write(output_unit, '(a24)', advance="no") "V (m/s)"
-      do i = 1, ns
-         write(output_unit, '(f10.3)', advance="no") sc%speeds(i)
-      end do
-      write(output_unit, '(/, a24)', advance="no") "e (exact)"
-      do i = 1, ns
-         write(output_unit, '(f10.5)', advance="no") e(i)
-      end do
-      write(output_unit, '(a)') ""
+      call emit("")
+      call emit("Damping rules of multibody codes, asked for each speed's exact restitution" &
+         & // " e: the restitution k(chi) they give, error (k - e)/e in %")
+      allocate(character(len=24 + 10 * ns) :: line)
+      write(line, '(a24, *(f10.3))') "V (m/s)", sc%speeds
+      call emit(trim(line))
+      write(line, '(a24, *(f10.5))') "e (exact)", e
+      call emit(trim(line))
       do j = 1, n_rules
-         write(output_unit, '(a24)', advance="no") rule_names(j)
+         write(line, '(a24)') rule_names(j)
          do i = 1, ns
             if (e(i) < 1.0_wp) then
-               write(output_unit, '(f10.3)', advance="no") 100.0_wp * (kr(j, i) / e(i) - 1.0_wp)
+               write(line(25 + 10 * (i - 1):), '(f10.3)') 100.0_wp * signed_rel(kr(j, i), e(i))
             else
-               write(output_unit, '(a10)', advance="no") "-"
+               write(line(25 + 10 * (i - 1):), '(a10)') "-"
             end if
          end do
-         write(output_unit, '(a)') ""
+         call emit(trim(line))
       end do
-      write(output_unit, '(a)') ""
+      call emit("")
       call say_text(pad("legacy", 12), str(n_rules) // " rules x " // count_str(ns, "speed") &
          & // ": " // duration_str(wall_clock() - t0) // files_note(res, "legacy.csv"))
    end subroutine run_legacy
@@ -815,6 +882,7 @@ contains
       real(wp) :: t0, t_exact, t_ode, err(5), total_ode, total_exact, t1
       integer(int64) :: steps, rhs
       integer :: i, j, rep, stat, done
+      character(len=160) :: line
 
       call csv_open(res, "cvode.csv", [character(len=32) :: "speed [m/s]", "rtol [-]", &
          & "error_restitution [-]", "error_max_compression [-]", "error_peak_force [-]", &
@@ -823,10 +891,12 @@ contains
          & "root_evaluations [-]", "closed_form_seconds [s]", "closed_form_evaluations [-]"], &
          & csv, error)
       if (allocated(error)) return
-      write(output_unit, '(/, a)') "CVODE against the closed forms (relative errors; time per" &
-         & // " impact, the best of 3 runs)"
-      write(output_unit, '(a9, a9, 5a11, a12, 2a8)') "V (m/s)", "rtol", "k", "x_max", "F_max", &
+      call emit("")
+      call emit("CVODE against the closed forms (relative errors; time per impact, the best" &
+         & // " of 3 runs)")
+      write(line, '(a9, a9, 5a11, a12, 2a8)') "V (m/s)", "rtol", "k", "x_max", "F_max", &
          & "t_contact", "max", "time", "steps", "rhs"
+      call emit(trim(line))
       total_ode = 0.0_wp
       total_exact = 0.0_wp
       steps = 0
@@ -844,7 +914,7 @@ contains
          end do
          if (stat /= hcimpact_ok) then
             call progress_end()
-            call csv_close(csv)
+            call csv_close(csv, error)
             error = "the closed forms at V = " // real_str(sc%speeds(i), 8) // " m/s: " &
                & // status_message(stat)
             return
@@ -861,7 +931,7 @@ contains
             end do
             if (stat /= hcimpact_ok) then
                call progress_end()
-               call csv_close(csv)
+               call csv_close(csv, error)
                error = "CVODE at V = " // real_str(sc%speeds(i), 8) // " m/s, rtol = " &
                   & // real_str(sc%tolerances(j), 3) // ": " // status_message(stat) // ": " &
                   & // run%message
@@ -879,19 +949,22 @@ contains
                & real(run%steps, wp), real(run%rhs_evals, wp), real(run%jacobian_evals, wp), &
                & real(run%root_evals, wp), t_exact, real(sum(exact%evaluations), wp)])
             call progress_clear()
-            write(output_unit, '(f9.3, es9.1, 5es11.2, a12, 2i8)') sc%speeds(i), &
+            write(line, '(f9.3, es9.1, 5es11.2, a12, 2i8)') sc%speeds(i), &
                & sc%tolerances(j), err(1:4), maxval(err), duration_str(t_ode), run%steps, &
                & run%rhs_evals
+            call emit(trim(line))
             done = done + 1
             call progress_step(done)
          end do
-         write(output_unit, '(f9.3, a9, a55, a12, i8, a)') sc%speeds(i), "closed", &
+         write(line, '(f9.3, a9, a55, a12, i8, a)') sc%speeds(i), "closed", &
             & "(the reference)", duration_str(t_exact), sum(exact%evaluations), &
             & " quadrature evaluations"
+         call emit(trim(line))
       end do
       call progress_end()
-      call csv_close(csv)
-      write(output_unit, '(a)') ""
+      call csv_close(csv, error)
+      if (allocated(error)) return
+      call emit("")
       call say_text(pad("cvode", 12), str(size(sc%speeds) * size(sc%tolerances)) &
          & // " integrations: " // duration_str(wall_clock() - t0) // " (CVODE " &
          & // duration_str(total_ode) // ", " // str_int64(steps) // " steps, " &
@@ -908,7 +981,7 @@ contains
       else if (b == 0.0_wp) then
          r = abs(a)
       else
-         r = abs(a - b) / abs(b)
+         r = quotient_of(abs(a - b), abs(b))
       end if
    end function rel
 
@@ -918,7 +991,7 @@ contains
       real(wp) :: r
       r = nan
       if (ieee_is_nan(a) .or. ieee_is_nan(b)) return
-      if (b /= 0.0_wp) r = (a - b) / b
+      if (b /= 0.0_wp) r = quotient_of(a - b, b)
    end function signed_rel
 
    ! ------------------------------------------------------------------------------
@@ -931,9 +1004,19 @@ contains
       log_text = log_text // text // new_line("a")
       if (quiet_mode) return
       call progress_clear()
-      write(output_unit, '(a)') text
-      flush(output_unit)
+      call emit(text)
    end subroutine say
+
+   !> A line on the standard output (not in the log); a failure is remembered and fails
+   !> the run at its end.
+   subroutine emit(text)
+      character(len=*), intent(in) :: text
+      logical :: ok
+      call write_standard_output(text // new_line("a"), ok)
+      if (ok .or. console_failed) return
+      console_failed = .true.
+      console_reason = last_system_error()
+   end subroutine emit
 
    !> A list after a lead text, wrapped at 88 columns.
    subroutine say_wrapped(lead, items)

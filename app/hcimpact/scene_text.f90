@@ -7,6 +7,7 @@ module hcimpact_scene_text
    private
 
    public :: lower, str, real_str, csv_real, duration_str, join, word_index, count_str
+   public :: printable
 
    !> Text of an integer or a real
    interface str
@@ -169,5 +170,19 @@ contains
       end do
       k = 0
    end function word_index
+
+   !> The text with every ASCII control character shown as ?, for a message that
+   !> quotes what a user typed (a path given on the command line may hold escape
+   !> sequences that a terminal would obey).
+   pure function printable(text) result(out)
+      character(len=*), intent(in) :: text
+      character(len=len(text)) :: out
+      integer :: i, c
+      out = text
+      do i = 1, len(text)
+         c = iachar(text(i:i))
+         if (c < 32 .or. c == 127) out(i:i) = "?"
+      end do
+   end function printable
 
 end module hcimpact_scene_text

@@ -10,6 +10,7 @@
  * Exit status 0 on success, 1 if any check failed. Run under valgrind by CTest
  * (hcimpact/valgrind/c-api) as well.
  */
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -305,7 +306,20 @@ static void test_two_bodies(void)
   check_nan("hertz_constant(R = -1)", hcimpact_hertz_constant(2e11, 0.25, -1.0, 2e11, 0.25, 0.01));
   check_nan("hertz_constant(NaN)", hcimpact_hertz_constant(NAN, 0.25, 0.01, 2e11, 0.25, 0.01));
 
+  /* issue 13, item 13: a subnormal radius made 1/R overflow and c come out as 0 */
+  check_close("hertz_constant(R2 = 5e-324)",
+              hcimpact_hertz_constant(2e11, 0.25, 0.01452, 2e11, 0.25, 5e-324),
+              3.161256888156555e-151, 1e-15);
+  /* item 27: nu near -1 (auxetic): 1 - nu^2 cancelled (6.2e3 ulp) */
+  check_close("hertz_constant(nu near -1)",
+              hcimpact_hertz_constant(2e11, -0.9999999, 0.01452, 2e11, -0.9999999999, INFINITY),
+              1.6050478684445405e+17, 1e-15);
+
   check_close("effective_mass(1, 1)", hcimpact_effective_mass(1.0, 1.0), 0.5, 1e-15);
+  /* item 8: m1/m2 overflowed and the effective mass came out as 0 */
+  check_close("effective_mass(1e300, 1e-20)", hcimpact_effective_mass(1e300, 1e-20), 1e-20, 1e-15);
+  check_close("effective_mass(DBL_MAX, 0.5)", hcimpact_effective_mass(DBL_MAX, 0.5), 0.5, 1e-15);
+  check_close("effective_mass(1, 1e-310)", hcimpact_effective_mass(1.0, 1e-310), 1e-310, 1e-15);
   check_close("effective_mass(0.1, inf)", hcimpact_effective_mass(0.1, INFINITY), 0.1, 0.0);
   check_nan("effective_mass(0, 1)", hcimpact_effective_mass(0.0, 1.0));
   check_nan("effective_mass(1, NaN)", hcimpact_effective_mass(1.0, NAN));
@@ -319,6 +333,19 @@ static void test_two_bodies(void)
                hcimpact_two_body_velocities(0.1, INFINITY, 5.0, 0.0, 0.75, &v1, &v2), HCIMPACT_OK);
   check_close("two_body_velocities wall v1'", v1, -3.75, 1e-15);
   check_true("two_body_velocities wall v2' = 0", v2 == 0.0);
+  /* item 7: m1/m2 or v1 - v2 overflowed, and the velocities came out NaN or inf */
+  check_status("two_body_velocities(1e300, 1e-300)",
+               hcimpact_two_body_velocities(1e300, 1e-300, 1.0, 0.0, 1.0, &v1, &v2), HCIMPACT_OK);
+  check_close("two_body_velocities(1e300, 1e-300) v1'", v1, 1.0, 1e-15);
+  check_close("two_body_velocities(1e300, 1e-300) v2'", v2, 2.0, 1e-15);
+  check_status("two_body_velocities(1, 5e-324)",
+               hcimpact_two_body_velocities(1.0, 5e-324, 1.0, 0.0, 0.5, &v1, &v2), HCIMPACT_OK);
+  check_close("two_body_velocities(1, 5e-324) v1'", v1, 1.0, 1e-15);
+  check_close("two_body_velocities(1, 5e-324) v2'", v2, 1.5, 1e-15);
+  check_status("two_body_velocities(DBL_MAX, -DBL_MAX)",
+               hcimpact_two_body_velocities(1.0, 1.0, DBL_MAX, -DBL_MAX, 0.5, &v1, &v2), HCIMPACT_OK);
+  check_close("two_body_velocities(DBL_MAX, -DBL_MAX) v1'", v1, -0.5 * DBL_MAX, 1e-15);
+  check_close("two_body_velocities(DBL_MAX, -DBL_MAX) v2'", v2, 0.5 * DBL_MAX, 1e-15);
   check_status("two_body_velocities(no approach)",
                hcimpact_two_body_velocities(1.0, 1.0, -1.0, 1.0, 0.5, &v1, &v2), HCIMPACT_ERR_VELOCITY);
   check_nan("two_body_velocities(no approach) v1'", v1);

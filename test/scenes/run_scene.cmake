@@ -4,7 +4,8 @@
 #   cmake -DPROGRAM=<hcimpact> -DSCENE=<file.nml> -DOUTPUT=<dir> -DHAVE_CVODE=<bool>
 #         -P run_scene.cmake
 # Passes when the program exits 0 and OUTPUT holds log.txt, scene.nml, parameters.csv,
-# no *.partial file, and CSV files that each have a header and at least one row.
+# no *.partial file, and CSV files that each have a header and at least one row; and
+# every file a line "! files: a.csv b.csv" of the scene names.
 # Without CVODE, a scene that needs it must exit 3 and name the missing component.
 file(REMOVE_RECURSE "${OUTPUT}")
 execute_process(COMMAND "${PROGRAM}" "${SCENE}" -o "${OUTPUT}"
@@ -27,7 +28,10 @@ file(GLOB partial "${OUTPUT}/*.partial")
 if(partial)
   message(FATAL_ERROR "partial files left: ${partial}")
 endif()
-foreach(name log.txt scene.nml parameters.csv)
+file(STRINGS "${SCENE}" wanted REGEX "^! files: ")
+string(REGEX REPLACE "! files: " "" wanted "${wanted}")
+string(REGEX REPLACE "[ ;]+" ";" wanted "${wanted}")
+foreach(name log.txt scene.nml parameters.csv ${wanted})
   if(NOT EXISTS "${OUTPUT}/${name}")
     message(FATAL_ERROR "${OUTPUT}/${name} is missing")
   endif()

@@ -14,6 +14,7 @@ program tester
    use test_quadrature, only : collect_quadrature
    use test_restitution, only : collect_restitution
    use test_impact, only : collect_impact
+   use test_hertz, only : collect_hertz
    use test_double_double, only : collect_double_double
    use test_modified_cc, only : collect_modified_cc
    use test_contact_force, only : collect_contact_force
@@ -26,6 +27,7 @@ program tester
       new_testsuite("quadrature", collect_quadrature), &
       new_testsuite("restitution", collect_restitution), &
       new_testsuite("impact", collect_impact), &
+      new_testsuite("hertz", collect_hertz), &
       new_testsuite("double_double", collect_double_double), &
       new_testsuite("modified_cc", collect_modified_cc), &
       new_testsuite("contact_force", collect_contact_force) &
