@@ -871,8 +871,8 @@ contains
       simulation%force = simulation%force(:nsamples)
    end subroutine shrink_samples
 
-   !> CVRhsFn: (s, sigma)' at the scaled time t. 0, or 1 (recoverable: CVODE retries
-   !> with a smaller step) when the state is too far out or the user's law failed.
+   !> CVRhsFn: (s, sigma)' at the scaled time t. 0; 1 (recoverable: CVODE retries
+   !> with a smaller step) when the state is too far out; -1 when the user's law failed.
    function rhs_callback(t, y, ydot, user_data) result(ierr) bind(C)
       real(c_double), value :: t
       type(N_Vector) :: y, ydot
@@ -891,9 +891,7 @@ contains
       call system_rhs(sys, t, yv(1:2), dy, stat)
       dv(1:2) = dy
       if (any(sys%halting)) call traps_off(flags)
-      ierr = 0
-      if (stat == rhs_law_failure) sys%law_failed = .true.
-      if (stat /= rhs_ok) ierr = 1
+      ierr = callback_flag(sys, stat)
    end function rhs_callback
 
    !> CVLsJacFn: the dense Jacobian of the right-hand side.
@@ -919,10 +917,31 @@ contains
       call system_jacobian(sys, t, yv(1:2), jac, stat)
       jv = jac
       if (any(sys%halting)) call traps_off(flags)
-      ierr = 0
-      if (stat == rhs_law_failure) sys%law_failed = .true.
-      if (stat /= rhs_ok) ierr = 1
+      ierr = callback_flag(sys, stat)
    end function jacobian_callback
+
+   !> The return value of the right-hand side and Jacobian callbacks for the status
+   !> of an evaluation: 0 (success), 1 (recoverable: a state so far out that a value
+   !> would overflow, which only a rejected Newton iterate reaches; CVODE retries with
+   !> a smaller step) or -1 (unrecoverable: the user's law or force returned a value
+   !> that is not finite at an x >= 0, where a law must be defined). A law failure
+   !> was recoverable once: CVODE then crept towards the compression where the law
+   !> breaks down in ever smaller steps, and gave up after max_steps (CV_TOO_MUCH_WORK,
+   !> 1.8 s) instead of naming the law (CV_RHSFUNC_FAIL, hcimpact_err_elastic_law).
+   function callback_flag(sys, stat) result(ierr)
+      type(impact_system), intent(inout) :: sys
+      integer, intent(in) :: stat
+      integer(c_int) :: ierr
+      select case (stat)
+      case (rhs_ok)
+         ierr = 0
+      case (rhs_law_failure)
+         sys%law_failed = .true.
+         ierr = -1
+      case default
+         ierr = 1
+      end select
+   end function callback_flag
 
    !> CVRootFn: the three event functions.
    function events_callback(t, y, gout, user_data) result(ierr) bind(C)
