@@ -671,9 +671,10 @@ contains
             if (steps >= opts%max_steps) then
                stat = hcimpact_err_solver
                simulation%message = "CVODE failed at t = " &
-                  & // format_real(guarded_product(tret(1), sys%time)) // " s: " &
+                  & // trim(real_text(guarded_product(tret(1), sys%time))) // " s: " &
                   & // cvode_flag_name(CV_TOO_MUCH_WORK) // " (options%max_steps = " &
-                  & // format_int(opts%max_steps) // " steps taken before the end of contact)"
+                  & // trim(integer_text(opts%max_steps)) &
+                  & // " steps taken before the end of contact)"
                exit march
             end if
             ierr = FCVode(cvode_mem, real(tau_max, c_double), y_vec, tret, CV_ONE_STEP)
@@ -686,8 +687,8 @@ contains
                   stat = hcimpact_err_elastic_law
                end if
                simulation%message = "CVODE failed at t = " &
-                  & // format_real(guarded_product(tret(1), sys%time)) // " s: " // cvode_flag_name(ierr) &
-                  & // solver_detail(sys)
+                  & // trim(real_text(guarded_product(tret(1), sys%time))) // " s: " &
+                  & // cvode_flag_name(ierr) // solver_detail(sys)
                exit march
             end if
             ! every step is returned once with CV_SUCCESS (a root in it is returned
@@ -696,7 +697,7 @@ contains
             if (.not. (ieee_is_finite(y(1)) .and. ieee_is_finite(y(2)))) then
                stat = hcimpact_err_solver
                simulation%message = "CVODE returned a non-finite state at t = " &
-                  & // format_real(guarded_product(tret(1), sys%time)) // " s"
+                  & // trim(real_text(guarded_product(tret(1), sys%time))) // " s"
                exit march
             end if
             call system_jacobian(sys, tret(1), y, jac, jstat)
@@ -738,7 +739,8 @@ contains
             if (tret(1) >= tau_max) then
                stat = hcimpact_err_no_convergence
                simulation%message = "the contact has not ended at t = " &
-                  & // format_real(guarded_product(tret(1), sys%time)) // " s (options%max_time)"
+                  & // trim(real_text(guarded_product(tret(1), sys%time))) &
+                  & // " s (options%max_time)"
                exit march
             end if
          end do march
@@ -880,7 +882,7 @@ contains
       integer(c_int) :: ierr
       type(impact_system), pointer :: sys
       real(c_double), pointer :: yv(:), dv(:)
-      real(wp) :: dy(2)
+      real(wp) :: state(2), dy(2)
       integer :: stat
       logical :: flags(3)
 
@@ -888,7 +890,10 @@ contains
       if (any(sys%halting)) call traps_on(sys, flags)
       yv => FN_VGetArrayPointer(y)
       dv => FN_VGetArrayPointer(ydot)
-      call system_rhs(sys, t, yv(1:2), dy, stat)
+      ! (a copy: a section of the pointer as the argument would make gfortran's
+      ! -fcheck=array-temps keep a static once-only warning flag)
+      state = yv(1:2)
+      call system_rhs(sys, t, state, dy, stat)
       dv(1:2) = dy
       if (any(sys%halting)) call traps_off(flags)
       ierr = callback_flag(sys, stat)
@@ -904,7 +909,7 @@ contains
       integer(c_int) :: ierr
       type(impact_system), pointer :: sys
       real(c_double), pointer :: yv(:), data(:), jv(:, :)
-      real(wp) :: jac(2, 2)
+      real(wp) :: state(2), jac(2, 2)
       integer :: stat
       logical :: flags(3)
 
@@ -914,7 +919,8 @@ contains
       ! the wrapper returns a pointer of size 1 to the column-major 2x2 data
       data => FSUNDenseMatrix_Data(jac_mat)
       call c_f_pointer(c_loc(data(1)), jv, [2, 2])
-      call system_jacobian(sys, t, yv(1:2), jac, stat)
+      state = yv(1:2)
+      call system_jacobian(sys, t, state, jac, stat)
       jv = jac
       if (any(sys%halting)) call traps_off(flags)
       ierr = callback_flag(sys, stat)
@@ -952,14 +958,15 @@ contains
       integer(c_int) :: ierr
       type(impact_system), pointer :: sys
       real(c_double), pointer :: yv(:)
-      real(wp) :: g(n_events)
+      real(wp) :: state(2), g(n_events)
       integer :: stat
       logical :: flags(3)
 
       call c_f_pointer(user_data, sys)
       if (any(sys%halting)) call traps_on(sys, flags)
       yv => FN_VGetArrayPointer(y)
-      call system_events(sys, t, yv(1:2), g, stat)
+      state = yv(1:2)
+      call system_events(sys, t, state, g, stat)
       gout = g
       if (any(sys%halting)) call traps_off(flags)
       ierr = 0
@@ -984,23 +991,45 @@ contains
       call ieee_set_flag(trapped, flags)
    end subroutine traps_off
 
-   !> The last message of CVODE's error handler, if any, as ": <message>".
-   function solver_detail(sys) result(text)
+   !> The last message of CVODE's error handler, if any, as " (<message>)"; empty
+   !> without one.
+   pure function solver_detail(sys) result(text)
       type(impact_system), intent(in) :: sys
-      character(len=:), allocatable :: text
-      text = ""
-      if (allocated(sys%solver_message)) then
-         if (len(sys%solver_message) > 0) text = " (" // sys%solver_message // ")"
-      end if
+      character(len=solver_detail_length(sys)) :: text
+      if (len(text) > 0) text = " (" // sys%solver_message // ")"
    end function solver_detail
+
+   !> Length of solver_detail(sys).
+   pure function solver_detail_length(sys) result(length)
+      type(impact_system), intent(in) :: sys
+      integer :: length
+      length = 0
+      if (allocated(sys%solver_message)) then
+         if (len(sys%solver_message) > 0) length = len(sys%solver_message) + 3
+      end if
+   end function solver_detail_length
 
    !> Name of a CVODE return flag, e.g. "CV_TOO_MUCH_WORK (-1)".
    pure function cvode_flag_name(flag) result(name)
       !> The flag
       integer(c_int), intent(in) :: flag
       !> Its name and value
-      character(len=:), allocatable :: name
-      character(len=12) :: number
+      character(len=flag_name_length(flag)) :: name
+
+      name = trim(flag_label(flag)) // " (" // trim(integer_text(int(flag))) // ")"
+   end function cvode_flag_name
+
+   !> Length of cvode_flag_name(flag).
+   pure function flag_name_length(flag) result(length)
+      integer(c_int), intent(in) :: flag
+      integer :: length
+      length = len_trim(flag_label(flag)) + len_trim(integer_text(int(flag))) + 3
+   end function flag_name_length
+
+   !> The name of a CVODE return flag, blank-padded.
+   pure function flag_label(flag) result(name)
+      integer(c_int), intent(in) :: flag
+      character(len=24) :: name
 
       select case (flag)
       case (CV_SUCCESS)
@@ -1064,26 +1093,21 @@ contains
       case default
          name = "CV_UNKNOWN_FLAG"
       end select
-      write(number, '(i0)') flag
-      name = name // " (" // trim(number) // ")"
-   end function cvode_flag_name
+   end function flag_label
 
-   !> An integer as text.
-   pure function format_int(i) result(text)
+   !> An integer as text, left-adjusted and blank-padded (trim it).
+   pure function integer_text(i) result(text)
       integer, intent(in) :: i
-      character(len=:), allocatable :: text
-      character(len=12) :: buffer
-      write(buffer, '(i0)') i
-      text = trim(buffer)
-   end function format_int
+      character(len=12) :: text
+      write(text, '(i0)') i
+   end function integer_text
 
-   !> A real with 6 significant digits.
-   pure function format_real(x) result(text)
+   !> A real with 6 significant digits, left-adjusted and blank-padded (trim it).
+   pure function real_text(x) result(text)
       real(wp), intent(in) :: x
-      character(len=:), allocatable :: text
-      character(len=24) :: buffer
-      write(buffer, '(es12.5)') x
-      text = trim(adjustl(buffer))
-   end function format_real
+      character(len=24) :: text
+      write(text, '(es12.5)') x
+      text = adjustl(text)
+   end function real_text
 
 end module hcimpact_cvode_solver
