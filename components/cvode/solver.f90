@@ -127,9 +127,11 @@ module hcimpact_cvode_solver
       !> Record the trajectory: every step CVODE takes and every root
       logical :: record_trajectory = .false.
       !> Give up when the contact has not ended at this time (s); <= 0: automatic,
-      !> 100 times a bound of the contact time from beta alone
+      !> 100 times a bound of the contact time from beta alone; huge(1.0_wp): no limit
+      !> but max_steps
       real(wp) :: max_time = -1.0_wp
-      !> First step (s); <= 0: automatic, 0.01 rtol^(1/(n+1)) x_max/V (power law;
+      !> First step (s), at most a tenth of x_max/V (larger values are taken as that);
+      !> <= 0: automatic, 0.01 rtol^(1/(n+1)) x_max/V (power law;
       !> n = 1 for a user's law). CVODE's own estimate is not used: it assumes a
       !> smooth right-hand side, and s^n (1 + beta s') is not, at s = 0, on the scale
       !> x_max/X = (2/beta)^(1/(n+1)) of large beta
@@ -286,16 +288,8 @@ contains
       end if
       sys%unguarded = bound < 700.0_wp
 
-      if (opts%max_time > 0.0_wp) then
-         tau_max = opts%max_time / sys%time
-      else
-         tau_max = 100.0_wp * (1.0_wp + s_max * (1.0_wp + 1.0_wp / k))
-      end if
-      if (opts%initial_step > 0.0_wp) then
-         h0 = opts%initial_step / sys%time
-      else
-         h0 = 0.01_wp * opts%rtol**(1.0_wp / (n + 1.0_wp)) * s_max
-      end if
+      call time_limits(opts, sys%time, 100.0_wp * (1.0_wp + s_max * (1.0_wp + 1.0_wp / k)), &
+         & 0.01_wp * opts%rtol**(1.0_wp / (n + 1.0_wp)) * s_max, 0.1_wp * s_max, tau_max, h0)
       call integrate(sys, opts, atol, tau_max, h0, simulation, stat)
    end subroutine simulate_power
 
@@ -402,18 +396,39 @@ contains
             & // "(beta = b V too large, or atol too small, for CVODE)"
          return
       end if
-      if (opts%max_time > 0.0_wp) then
-         tau_max = opts%max_time / sys%time
-      else
-         tau_max = 100.0_wp * (2.0_wp + 1.0_wp / k)
-      end if
-      if (opts%initial_step > 0.0_wp) then
-         h0 = opts%initial_step / sys%time
-      else
-         h0 = 0.01_wp * sqrt(opts%rtol)
-      end if
+      call time_limits(opts, sys%time, 100.0_wp * (2.0_wp + 1.0_wp / k), &
+         & 0.01_wp * sqrt(opts%rtol), 0.1_wp, tau_max, h0)
       call integrate(sys, opts, atol, tau_max, h0, simulation, stat)
    end subroutine simulate_law
+
+   !> The scaled time at which to give up and the scaled first step, from the options
+   !> (in s) or the automatic values. A time given in s becomes tau = t/T without
+   !> overflow (options%max_time = huge(1.0_wp) with T < 1 s overflowed, and trapped
+   !> in a build with -ffpe-trap): beyond the double range it is huge(1.0_wp), which
+   !> CVODE takes as "no limit" (max_steps still bounds the run). The first step is
+   !> at most largest_step, a tenth of the scaled maximum compression: a longer first
+   !> step steps over the compression (CVODE would fail its error test on it).
+   pure subroutine time_limits(opts, time_unit, auto_tau_max, auto_h0, largest_step, &
+         & tau_max, h0)
+      !> Checked options
+      type(cvode_options), intent(in) :: opts
+      !> T in s
+      real(wp), intent(in) :: time_unit
+      !> Automatic values of tau_max and h0, and the largest first step (scaled)
+      real(wp), intent(in) :: auto_tau_max, auto_h0, largest_step
+      !> Scaled time to give up at, scaled first step
+      real(wp), intent(out) :: tau_max, h0
+      if (opts%max_time > 0.0_wp) then
+         tau_max = guarded_quotient(opts%max_time, time_unit)
+      else
+         tau_max = auto_tau_max
+      end if
+      if (opts%initial_step > 0.0_wp) then
+         h0 = min(guarded_quotient(opts%initial_step, time_unit), largest_step)
+      else
+         h0 = min(auto_h0, largest_step)
+      end if
+   end subroutine time_limits
 
    !> Whether a*b (a >= 0, b > 0, both finite) is below the overflow threshold.
    pure logical function product_fits(a, b)
