@@ -102,6 +102,10 @@ module hcimpact_cvode_solver
    real(wp), parameter :: min_atol = 1.0e-150_wp
    !> Initial capacity of the trajectory arrays
    integer, parameter :: initial_samples = 256
+   !> The message when the trajectory arrays cannot grow (hcimpact_err_solver, as for
+   !> CVODE's own CV_MEM_FAIL)
+   character(len=*), parameter :: out_of_memory_message = "out of memory recording " &
+      & // "the trajectory (options%record_trajectory)"
 
    !> Quiet NaN
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
@@ -187,7 +191,10 @@ module hcimpact_cvode_solver
       real(wp) :: length_unit = nan, time_unit = nan
       !> With options%record_trajectory: time (s), compression (m), velocity (m/s) and
       !> contact force (N) at every step and root, from the impact to the end of
-      !> contact (also after a failure: up to it)
+      !> contact (also after a failure: up to it). Allocated with stat=: out of memory
+      !> the run stops with hcimpact_err_solver ("out of memory recording the
+      !> trajectory") and keeps what was recorded (nothing if even that cannot be cut
+      !> to size)
       real(wp), allocatable :: time(:), compression(:), velocity(:), force(:)
       !> "success", or what went wrong (with CVODE's flag name and message)
       character(len=:), allocatable :: message
@@ -566,10 +573,10 @@ contains
       real(c_double), target :: y(2), atol_c(2)
       real(c_double) :: tret(1), jac(2, 2)
       integer(c_int) :: ierr, lmm, rootsfound(n_events), rootdir(n_events)
-      integer :: nsamples, ev, jstat, steps
+      integer :: nsamples, ev, jstat, steps, alloc_stat
       real(wp) :: lambda_max, tau_comp, tau_peak, tau_end, y_comp(2), y_peak(2), &
          & y_end(2), f_peak, f_here
-      logical :: have_comp, have_peak, have_end, ok
+      logical :: have_comp, have_peak, have_end, ok, recorded
       character(len=:), allocatable :: where
 
       stat = hcimpact_ok
@@ -598,8 +605,16 @@ contains
       nsamples = 0
       if (opts%record_trajectory) then
          allocate(simulation%time(initial_samples), simulation%compression(initial_samples), &
-            & simulation%velocity(initial_samples), simulation%force(initial_samples))
-         call append_sample(simulation, nsamples, sys, 0.0_wp, y)
+            & simulation%velocity(initial_samples), simulation%force(initial_samples), &
+            & stat=alloc_stat)
+         recorded = alloc_stat == 0
+         if (recorded) call append_sample(simulation, nsamples, sys, 0.0_wp, y, recorded)
+         if (.not. recorded) then
+            stat = hcimpact_err_solver
+            simulation%message = out_of_memory_message
+            call restore_halting(sys)
+            return
+         end if
       end if
 
       setup: block
@@ -732,8 +747,14 @@ contains
             end if
             call system_jacobian(sys, tret(1), y, jac, jstat)
             if (jstat == rhs_ok) lambda_max = max(lambda_max, largest_eigenvalue(jac))
-            if (opts%record_trajectory) call append_sample(simulation, nsamples, sys, &
-               & tret(1), y)
+            if (opts%record_trajectory) then
+               call append_sample(simulation, nsamples, sys, tret(1), y, recorded)
+               if (.not. recorded) then
+                  stat = hcimpact_err_solver
+                  simulation%message = out_of_memory_message
+                  exit march
+               end if
+            end if
 
             if (ierr == CV_ROOT_RETURN) then
                ierr = FCVodeGetRootInfo(cvode_mem, rootsfound)
@@ -784,13 +805,19 @@ contains
       if (associated(atol_vec)) call FN_VDestroy(atol_vec)
       if (associated(y_vec)) call FN_VDestroy(y_vec)
       call context_free(ctx)
-      ! what CVODE raised stays with CVODE; the caller's modes come back
-      if (any(sys%halting)) then
-         call ieee_set_flag(trapped, .false.)
-         call ieee_set_halting_mode(trapped, sys%halting)
-      end if
+      call restore_halting(sys)
 
-      if (opts%record_trajectory) call shrink_samples(simulation, nsamples)
+      if (opts%record_trajectory) then
+         call shrink_samples(simulation, nsamples, recorded)
+         if (.not. recorded) then
+            if (stat == hcimpact_ok) then
+               stat = hcimpact_err_solver
+               simulation%message = out_of_memory_message
+            else
+               simulation%message = simulation%message // "; then " // out_of_memory_message
+            end if
+         end if
+      end if
       if (stat /= hcimpact_ok) return
       if (.not. (have_comp .and. have_peak)) then
          stat = hcimpact_err_solver
@@ -870,20 +897,34 @@ contains
       counters%linear_setups = value(1)
    end subroutine get_counters
 
-   !> Append the state at the scaled time tau to the trajectory, in SI units.
-   subroutine append_sample(simulation, nsamples, sys, tau, y)
+   !> What goes wrong while CVODE runs is restored: the flags it raised are cleared
+   !> and the caller's halting modes come back.
+   subroutine restore_halting(sys)
+      type(impact_system), intent(in) :: sys
+      if (any(sys%halting)) then
+         call ieee_set_flag(trapped, .false.)
+         call ieee_set_halting_mode(trapped, sys%halting)
+      end if
+   end subroutine restore_halting
+
+   !> Append the state at the scaled time tau to the trajectory, in SI units; `added`
+   !> is false when the arrays could not grow (out of memory; nothing appended).
+   subroutine append_sample(simulation, nsamples, sys, tau, y, added)
       type(simulation_type), intent(inout) :: simulation
       integer, intent(inout) :: nsamples
       type(impact_system), intent(in) :: sys
       real(wp), intent(in) :: tau, y(2)
+      logical, intent(out) :: added
       real(wp) :: force
       logical :: ok
 
+      added = .true.
       if (nsamples == size(simulation%time)) then
-         call grow(simulation%time)
-         call grow(simulation%compression)
-         call grow(simulation%velocity)
-         call grow(simulation%force)
+         call resize(simulation%time, 2 * nsamples, added)
+         if (added) call resize(simulation%compression, 2 * nsamples, added)
+         if (added) call resize(simulation%velocity, 2 * nsamples, added)
+         if (added) call resize(simulation%force, 2 * nsamples, added)
+         if (.not. added) return
       end if
       nsamples = nsamples + 1
       call system_force(sys, y, force, ok)
@@ -893,23 +934,34 @@ contains
       simulation%force(nsamples) = force
    end subroutine append_sample
 
-   !> Double the size of an array, keeping its values.
-   subroutine grow(array)
+   !> Give an array a new size, keeping its first values; ok false (array unchanged)
+   !> when the memory cannot be allocated.
+   subroutine resize(array, new_size, ok)
       real(wp), allocatable, intent(inout) :: array(:)
+      integer, intent(in) :: new_size
+      logical, intent(out) :: ok
       real(wp), allocatable :: tmp(:)
-      allocate(tmp(2 * size(array)))
-      tmp(:size(array)) = array
+      integer :: alloc_stat, kept
+      allocate(tmp(new_size), stat=alloc_stat)
+      ok = alloc_stat == 0
+      if (.not. ok) return
+      kept = min(new_size, size(array))
+      tmp(:kept) = array(:kept)
       call move_alloc(tmp, array)
-   end subroutine grow
+   end subroutine resize
 
-   !> Cut the trajectory arrays to the samples recorded.
-   subroutine shrink_samples(simulation, nsamples)
+   !> Cut the trajectory arrays to the samples recorded; out of memory (ok false) the
+   !> trajectory is dropped.
+   subroutine shrink_samples(simulation, nsamples, ok)
       type(simulation_type), intent(inout) :: simulation
       integer, intent(in) :: nsamples
-      simulation%time = simulation%time(:nsamples)
-      simulation%compression = simulation%compression(:nsamples)
-      simulation%velocity = simulation%velocity(:nsamples)
-      simulation%force = simulation%force(:nsamples)
+      logical, intent(out) :: ok
+      call resize(simulation%time, nsamples, ok)
+      if (ok) call resize(simulation%compression, nsamples, ok)
+      if (ok) call resize(simulation%velocity, nsamples, ok)
+      if (ok) call resize(simulation%force, nsamples, ok)
+      if (.not. ok) deallocate(simulation%time, simulation%compression, &
+         & simulation%velocity, simulation%force)
    end subroutine shrink_samples
 
    !> CVRhsFn: (s, sigma)' at the scaled time t. 0; 1 (recoverable: CVODE retries
