@@ -373,8 +373,9 @@ int hcimpact_simulate(const hcimpact_contact *contact, double rtol,
  * - Residuals are ln(observed/model) for times and forces, observed - model
  *   for restitution, unweighted; several series are stored one after the
  *   other in the order time, force, restitution (only those given).
- * - Returns 0 (HCIMPACT_OK) or a status; on error every output that is not
- *   NULL is set to NaN:
+ * - Returns 0 (HCIMPACT_OK) or a status. HCIMPACT_ERR_NULL and
+ *   HCIMPACT_ERR_SIZE write nothing (the rule of the whole interface); on any
+ *   other error every output that is not NULL is set to NaN:
  *   HCIMPACT_ERR_NOT_FINITE (1)     a NaN or infinite value,
  *   HCIMPACT_ERR_MASS (2)           mass <= 0,
  *   HCIMPACT_ERR_VELOCITY (5)       a speed <= 0,
@@ -386,7 +387,10 @@ int hcimpact_simulate(const hcimpact_contact *contact, double rtol,
  *                                   1e100 times its value (1 for restitution),
  *   HCIMPACT_ERR_NO_CONVERGENCE (9) the iteration did not converge,
  *   HCIMPACT_ERR_NULL (10)          a required pointer is NULL,
- *   HCIMPACT_ERR_SIZE (14)          npoints < 0,
+ *   HCIMPACT_ERR_SIZE (14)          npoints < 0, npoints above INT_MAX/2
+ *                                   (fit_elastic) or INT_MAX/3 (fit_impact),
+ *                                   or too many points for the memory the
+ *                                   fit needs (out of memory),
  *   HCIMPACT_ERR_UNDERDETERMINED (15) the data cannot determine the
  *                                   parameters: fewer observations than
  *                                   parameters + 1, or too little variation
