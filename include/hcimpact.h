@@ -334,7 +334,7 @@ int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
  *  benchmark contacts (doc/cvode.md): the contact time within 50 rtol, the other
  *  fields within about 250 rtol, for rtol from 1e-4 to 1e-11; far below 1e-13
  *  CVODE gives up (HCIMPACT_ERR_SOLVER, CV_TOO_MUCH_ACC). On success, as for the
- *  exact model, 0 < restitution <= 1 and 0 <= energy_loss_ratio < 1: where the
+ *  exact model, 0 < restitution <= 1 and 0 <= energy_loss_ratio <= 1: where the
  *  solver's k comes out above 1 (b V small against rtol; b = 0 gives k - 1 of
  *  some rtol either side), k = 1, no energy lost and rebound -V are reported,
  *  never further from the exact values than the solver's (the Fortran interface

@@ -26,7 +26,7 @@
 !>
 !> What the outcome guarantees: every field is CVODE's, with CVODE's error (measured
 !> in doc/cvode.md: the contact time within 50 rtol, the rest within a few hundred),
-!> and, without an external force, 0 < k <= 1 and 0 <= 1 - k^2 < 1 as for the exact
+!> and, without an external force, 0 < k <= 1 and 0 <= 1 - k^2 <= 1 as for the exact
 !> model. The solver's k exceeds 1 by some rtol when b V is small against the
 !> tolerance (b = 0: k - 1 = 17 rtol at rtol = 1e-6); k = 1 is reported then, never
 !> further from the exact value than the solver's, which simulation_type keeps

@@ -189,7 +189,7 @@ contains
                call check(error, sim%outcome%restitution > 0.0_wp .and. &
                   & sim%outcome%restitution <= 1.0_wp .and. &
                   & sim%outcome%energy_loss_ratio >= 0.0_wp .and. &
-                  & sim%outcome%energy_loss_ratio < 1.0_wp, trim(what) // ": k in (0, 1]")
+                  & sim%outcome%energy_loss_ratio <= 1.0_wp, trim(what) // ": k in (0, 1]")
                if (allocated(error)) return
                call check(error, sim%outcome%rebound_velocity == &
                   & -sim%outcome%restitution * 2.0_wp, trim(what) // ": rebound = -k V")
