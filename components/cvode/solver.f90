@@ -1082,14 +1082,6 @@ contains
       call ieee_set_flag(trapped, flags)
    end subroutine traps_off
 
-   !> The last message of CVODE's error handler, if any, as " (<message>)"; empty
-   !> without one.
-   pure function solver_detail(sys) result(text)
-      type(impact_system), intent(in) :: sys
-      character(len=solver_detail_length(sys)) :: text
-      if (len(text) > 0) text = " (" // sys%solver_message // ")"
-   end function solver_detail
-
    !> Length of solver_detail(sys).
    pure function solver_detail_length(sys) result(length)
       type(impact_system), intent(in) :: sys
@@ -1100,22 +1092,13 @@ contains
       end if
    end function solver_detail_length
 
-   !> Name of a CVODE return flag, e.g. "CV_TOO_MUCH_WORK (-1)".
-   pure function cvode_flag_name(flag) result(name)
-      !> The flag
-      integer(c_int), intent(in) :: flag
-      !> Its name and value
-      character(len=flag_name_length(flag)) :: name
-
-      name = trim(flag_label(flag)) // " (" // trim(integer_text(int(flag))) // ")"
-   end function cvode_flag_name
-
-   !> Length of cvode_flag_name(flag).
-   pure function flag_name_length(flag) result(length)
-      integer(c_int), intent(in) :: flag
-      integer :: length
-      length = len_trim(flag_label(flag)) + len_trim(integer_text(int(flag))) + 3
-   end function flag_name_length
+   !> The last message of CVODE's error handler, if any, as " (<message>)"; empty
+   !> without one.
+   pure function solver_detail(sys) result(text)
+      type(impact_system), intent(in) :: sys
+      character(len=solver_detail_length(sys)) :: text
+      if (len(text) > 0) text = " (" // sys%solver_message // ")"
+   end function solver_detail
 
    !> The name of a CVODE return flag, blank-padded.
    pure function flag_label(flag) result(name)
@@ -1192,6 +1175,23 @@ contains
       character(len=12) :: text
       write(text, '(i0)') i
    end function integer_text
+
+   !> Length of cvode_flag_name(flag).
+   pure function flag_name_length(flag) result(length)
+      integer(c_int), intent(in) :: flag
+      integer :: length
+      length = len_trim(flag_label(flag)) + len_trim(integer_text(int(flag))) + 3
+   end function flag_name_length
+
+   !> Name of a CVODE return flag, e.g. "CV_TOO_MUCH_WORK (-1)".
+   pure function cvode_flag_name(flag) result(name)
+      !> The flag
+      integer(c_int), intent(in) :: flag
+      !> Its name and value
+      character(len=flag_name_length(flag)) :: name
+
+      name = trim(flag_label(flag)) // " (" // trim(integer_text(int(flag))) // ")"
+   end function cvode_flag_name
 
    !> A real with 6 significant digits, left-adjusted and blank-padded (trim it).
    pure function real_text(x) result(text)

@@ -87,16 +87,16 @@ module hcimpact_status
 
 contains
 
-   !> Text for a status code (never empty; unknown codes say so), without trailing
-   !> blanks. Thread-safe: nothing static, in the callee or in the caller.
-   pure function status_message(stat) result(message)
+   !> Row of status_texts for a status code: the code itself, or the last row.
+   pure function status_index(stat) result(row)
       !> Status code
       integer, intent(in) :: stat
-      !> Human-readable description
-      character(len=status_message_length(stat)) :: message
+      !> Index into status_texts
+      integer :: row
 
-      message = status_texts(status_index(stat))
-   end function status_message
+      row = max_status_code + 1
+      if (stat >= 0 .and. stat <= max_status_code) row = stat
+   end function status_index
 
    !> Length of status_message(stat) (a specification function of its result).
    pure function status_message_length(stat) result(length)
@@ -108,15 +108,15 @@ contains
       length = len_trim(status_texts(status_index(stat)))
    end function status_message_length
 
-   !> Row of status_texts for a status code: the code itself, or the last row.
-   pure function status_index(stat) result(row)
+   !> Text for a status code (never empty; unknown codes say so), without trailing
+   !> blanks. Thread-safe: nothing static, in the callee or in the caller.
+   pure function status_message(stat) result(message)
       !> Status code
       integer, intent(in) :: stat
-      !> Index into status_texts
-      integer :: row
+      !> Human-readable description
+      character(len=status_message_length(stat)) :: message
 
-      row = max_status_code + 1
-      if (stat >= 0 .and. stat <= max_status_code) row = stat
-   end function status_index
+      message = status_texts(status_index(stat))
+   end function status_message
 
 end module hcimpact_status

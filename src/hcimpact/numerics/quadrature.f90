@@ -221,17 +221,16 @@ contains
       fx = self%fun(x, dxa, dxb)
    end function function_integrand_eval
 
-   !> Short English description of a status code. Its length is a specification
-   !> expression, not a deferred length (gfortran would keep that in a hidden static
-   !> variable of every caller, shared by threads).
-   pure function quadrature_status_message(status) result(message)
+   !> Row of quadrature_texts for a status code (the last row for unknown codes).
+   pure function quadrature_message_row(status) result(row)
       !> One of the quadrature_* codes
       integer(ik), intent(in) :: status
-      !> Description
-      character(len=quadrature_message_length(status)) :: message
+      !> Index into quadrature_texts
+      integer :: row
 
-      message = quadrature_texts(quadrature_message_row(status))
-   end function quadrature_status_message
+      row = ubound(quadrature_texts, 1)
+      if (status >= 0_ik .and. status < ubound(quadrature_texts, 1)) row = int(status)
+   end function quadrature_message_row
 
    !> Length of quadrature_status_message(status).
    pure function quadrature_message_length(status) result(length)
@@ -243,16 +242,17 @@ contains
       length = len_trim(quadrature_texts(quadrature_message_row(status)))
    end function quadrature_message_length
 
-   !> Row of quadrature_texts for a status code (the last row for unknown codes).
-   pure function quadrature_message_row(status) result(row)
+   !> Short English description of a status code. Its length is a specification
+   !> expression, not a deferred length (gfortran would keep that in a hidden static
+   !> variable of every caller, shared by threads).
+   pure function quadrature_status_message(status) result(message)
       !> One of the quadrature_* codes
       integer(ik), intent(in) :: status
-      !> Index into quadrature_texts
-      integer :: row
+      !> Description
+      character(len=quadrature_message_length(status)) :: message
 
-      row = ubound(quadrature_texts, 1)
-      if (status >= 0_ik .and. status < ubound(quadrature_texts, 1)) row = int(status)
-   end function quadrature_message_row
+      message = quadrature_texts(quadrature_message_row(status))
+   end function quadrature_status_message
 
    !> The integrator behind both entry points.
    !>
