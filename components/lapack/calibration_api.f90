@@ -14,6 +14,7 @@
 !> (text also in doc/calibration-c-api.h.txt).
 module hcimpact_calibration_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int
+   use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size
@@ -216,8 +217,8 @@ contains
       real(wp), allocatable :: t(:), f(:), st(:), sf(:), g(:)
       integer :: istat, m
 
-      ! (npoints up to huge/2: the number of residuals fits an int)
-      if (npoints < 0 .or. npoints > huge(npoints) / 2) then
+      ! (the number of residuals, 2 npoints at most, must fit an int)
+      if (npoints < 0 .or. 2 * int(npoints, int64) > huge(npoints)) then
          stat = hcimpact_err_size
          return
       end if
@@ -287,8 +288,8 @@ contains
       real(wp), allocatable :: t(:), f(:), e(:), st(:), sf(:), se(:), g(:)
       integer :: istat, m
 
-      ! (npoints up to huge/3: the number of residuals fits an int)
-      if (npoints < 0 .or. npoints > huge(npoints) / 3) then
+      ! (the number of residuals, 3 npoints at most, must fit an int)
+      if (npoints < 0 .or. 3 * int(npoints, int64) > huge(npoints)) then
          stat = hcimpact_err_size
          return
       end if
