@@ -44,7 +44,7 @@ function(hcimpact_target_flags target)
     # the error-free transformations of the library need each operation
     # rounded on its own.
     target_compile_options(${target} PRIVATE "$<$<COMPILE_LANGUAGE:Fortran>:-ffp-contract=off>")
-    # Thread safety (the C API promises it; test/api/threads.c checks it):
+    # Thread safety (the C API promises it; test/threads checks it):
     # -frecursive keeps every local variable on the stack (gfortran would put
     # large local arrays in static storage) and disables -fcheck=recursion,
     # whose per-procedure static flag aborts when two threads call the same

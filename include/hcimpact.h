@@ -393,7 +393,12 @@ int hcimpact_contact_force_wall(double stiffness, double exponent, double dampin
  *  tolerances rtol times the natural scale of each variable. Measured on the
  *  benchmark contacts (doc/cvode.md): the contact time within 50 rtol, the other
  *  fields within about 250 rtol, for rtol from 1e-4 to 1e-11; far below 1e-13
- *  CVODE gives up (HCIMPACT_ERR_SOLVER, CV_TOO_MUCH_ACC). Thread-safe.
+ *  CVODE gives up (HCIMPACT_ERR_SOLVER, CV_TOO_MUCH_ACC). On success, as for the
+ *  exact model, 0 < restitution <= 1 and 0 <= energy_loss_ratio <= 1: where the
+ *  solver's k comes out above 1 (b V small against rtol; b = 0 gives k - 1 of
+ *  some rtol either side), k = 1, no energy lost and rebound -V are reported,
+ *  never further from the exact values than the solver's (the Fortran interface
+ *  keeps the solver's k: solver_restitution, restitution_clamped). Thread-safe.
  *  Returns 0 (HCIMPACT_OK) on success; otherwise a status and, except for
  *  HCIMPACT_ERR_NULL, every field of *outcome is NaN:
  *  the input errors of hcimpact_impact (1 to 6),
@@ -428,8 +433,9 @@ int hcimpact_simulate(const hcimpact_contact *contact, double rtol,
  * - Residuals are ln(observed/model) for times and forces, observed - model
  *   for restitution, unweighted; several series are stored one after the
  *   other in the order time, force, restitution (only those given).
- * - Returns 0 (HCIMPACT_OK) or a status; on error every output that is not
- *   NULL is set to NaN:
+ * - Returns 0 (HCIMPACT_OK) or a status. HCIMPACT_ERR_NULL and
+ *   HCIMPACT_ERR_SIZE write nothing (the rule of the whole interface); on any
+ *   other error every output that is not NULL is set to NaN:
  *   HCIMPACT_ERR_NOT_FINITE (1)     a NaN or infinite value,
  *   HCIMPACT_ERR_MASS (2)           mass <= 0,
  *   HCIMPACT_ERR_VELOCITY (5)       a speed <= 0,
@@ -441,7 +447,10 @@ int hcimpact_simulate(const hcimpact_contact *contact, double rtol,
  *                                   1e100 times its value (1 for restitution),
  *   HCIMPACT_ERR_NO_CONVERGENCE (9) the iteration did not converge,
  *   HCIMPACT_ERR_NULL (10)          a required pointer is NULL,
- *   HCIMPACT_ERR_SIZE (14)          npoints < 0,
+ *   HCIMPACT_ERR_SIZE (14)          npoints < 0, npoints above INT_MAX/2
+ *                                   (fit_elastic) or INT_MAX/3 (fit_impact),
+ *                                   or too many points for the memory the
+ *                                   fit needs (out of memory),
  *   HCIMPACT_ERR_UNDERDETERMINED (15) the data cannot determine the
  *                                   parameters: fewer observations than
  *                                   parameters + 1, or too little variation

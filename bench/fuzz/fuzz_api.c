@@ -369,6 +369,9 @@ static void fuzz_simulate(stream *s)
     double fields[8];
     memcpy(fields, &o, sizeof fields);
     contract(all_nan(fields, 8), "simulate: not NaN on error");
+  } else {
+    contract(o.restitution > 0.0 && o.restitution <= 1.0 && o.energy_loss_ratio >= 0.0
+             && o.energy_loss_ratio <= 1.0, "simulate: k outside (0, 1] with status OK");
   }
   contract(hcimpact_simulate(NULL, rtol, &o) == HCIMPACT_ERR_NULL, "simulate: NULL");
 }

@@ -26,8 +26,9 @@ contains
    !>                       hcimpact_outcome *outcome);
    !>
    !> The impact integrated by CVODE (BDF, analytic Jacobian, relative tolerance rtol
-   !> and the absolute tolerances rtol * natural scale, hcimpact_cvode_solver).
-   !> Returns 0 on success; HCIMPACT_ERR_NULL (10) if a pointer is NULL (nothing is
+   !> and the absolute tolerances rtol * natural scale, hcimpact_cvode_solver); on
+   !> success 0 < k <= 1 (the solver's k above 1 is reported as 1, see
+   !> hcimpact_cvode_solver). Returns 0 on success; HCIMPACT_ERR_NULL (10) if a pointer is NULL (nothing is
    !> written); otherwise a status and NaN in every field of *outcome: the input
    !> errors of hcimpact_impact, HCIMPACT_ERR_NOT_FINITE (1) for a NaN or infinite
    !> rtol, HCIMPACT_ERR_DOMAIN (8) for rtol outside (0, 1), b V above about 1e140 or

@@ -24,6 +24,14 @@
 !> refused below 1e-150 (hcimpact_err_domain), where CVODE's error weights would
 !> overflow: that excludes beta above about 1e140 (k < 1e-140) from this path.
 !>
+!> What the outcome guarantees: every field is CVODE's, with CVODE's error (measured
+!> in doc/cvode.md: the contact time within 50 rtol, the rest within a few hundred),
+!> and, without an external force, 0 < k <= 1 and 0 <= 1 - k^2 <= 1 as for the exact
+!> model. The solver's k exceeds 1 by some rtol when b V is small against the
+!> tolerance (b = 0: k - 1 = 17 rtol at rtol = 1e-6); k = 1 is reported then, never
+!> further from the exact value than the solver's, which simulation_type keeps
+!> (solver_restitution, restitution_clamped).
+!>
 !> Floating-point traps: CVODE's C code may overflow in its norms on a diverging
 !> Newton iterate (and recovers); halting on overflow, invalid and division by zero is
 !> therefore off while CVODE runs, and back to the caller's setting inside the
@@ -94,6 +102,10 @@ module hcimpact_cvode_solver
    real(wp), parameter :: min_atol = 1.0e-150_wp
    !> Initial capacity of the trajectory arrays
    integer, parameter :: initial_samples = 256
+   !> The message when the trajectory arrays cannot grow (hcimpact_err_solver, as for
+   !> CVODE's own CV_MEM_FAIL)
+   character(len=*), parameter :: out_of_memory_message = "out of memory recording " &
+      & // "the trajectory (options%record_trajectory)"
 
    !> Quiet NaN
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
@@ -119,9 +131,11 @@ module hcimpact_cvode_solver
       !> Record the trajectory: every step CVODE takes and every root
       logical :: record_trajectory = .false.
       !> Give up when the contact has not ended at this time (s); <= 0: automatic,
-      !> 100 times a bound of the contact time from beta alone
+      !> 100 times a bound of the contact time from beta alone; huge(1.0_wp): no limit
+      !> but max_steps
       real(wp) :: max_time = -1.0_wp
-      !> First step (s); <= 0: automatic, 0.01 rtol^(1/(n+1)) x_max/V (power law;
+      !> First step (s), at most a tenth of x_max/V (larger values are taken as that);
+      !> <= 0: automatic, 0.01 rtol^(1/(n+1)) x_max/V (power law;
       !> n = 1 for a user's law). CVODE's own estimate is not used: it assumes a
       !> smooth right-hand side, and s^n (1 + beta s') is not, at s = 0, on the scale
       !> x_max/X = (2/beta)^(1/(n+1)) of large beta
@@ -166,11 +180,21 @@ module hcimpact_cvode_solver
       !> max_eigenvalue times the contact time: above about 1e3 the problem is
       !> stiff for an explicit method
       real(wp) :: stiffness_ratio = nan
+      !> The solver's restitution -x'/V at the end of contact, as CVODE located it. The
+      !> outcome's restitution is this, except where it exceeds 1 without an external
+      !> force (the exact k is at most 1 then): the outcome has k = 1, energy loss 0
+      !> and rebound velocity -V, and restitution_clamped is set
+      real(wp) :: solver_restitution = nan
+      !> Whether the outcome's restitution was lowered to 1 (see solver_restitution)
+      logical :: restitution_clamped = .false.
       !> The length (m) and time (s) units of the scaled integration
       real(wp) :: length_unit = nan, time_unit = nan
       !> With options%record_trajectory: time (s), compression (m), velocity (m/s) and
       !> contact force (N) at every step and root, from the impact to the end of
-      !> contact (also after a failure: up to it)
+      !> contact (also after a failure: up to it). Allocated with stat=: out of memory
+      !> the run stops with hcimpact_err_solver ("out of memory recording the
+      !> trajectory") and keeps what was recorded (nothing if even that cannot be cut
+      !> to size)
       real(wp), allocatable :: time(:), compression(:), velocity(:), force(:)
       !> "success", or what went wrong (with CVODE's flag name and message)
       character(len=:), allocatable :: message
@@ -261,16 +285,8 @@ contains
       sys%time = exp(ln_x - log(contact%velocity))
       sys%force_unit = exp(ln_f)
 
-      if (opts%max_time > 0.0_wp) then
-         tau_max = opts%max_time / sys%time
-      else
-         tau_max = 100.0_wp * (1.0_wp + s_max * (1.0_wp + 1.0_wp / k))
-      end if
-      if (opts%initial_step > 0.0_wp) then
-         h0 = opts%initial_step / sys%time
-      else
-         h0 = 0.01_wp * opts%rtol**(1.0_wp / (n + 1.0_wp)) * s_max
-      end if
+      call time_limits(opts, sys%time, 100.0_wp * (1.0_wp + s_max * (1.0_wp + 1.0_wp / k)), &
+         & 0.01_wp * opts%rtol**(1.0_wp / (n + 1.0_wp)) * s_max, 0.1_wp * s_max, tau_max, h0)
       call integrate(sys, opts, atol, tau_max, h0, simulation, stat)
    end subroutine simulate_power
 
@@ -380,18 +396,39 @@ contains
             & // "(beta = b V too large, or atol too small, for CVODE)"
          return
       end if
-      if (opts%max_time > 0.0_wp) then
-         tau_max = opts%max_time / sys%time
-      else
-         tau_max = 100.0_wp * (2.0_wp + 1.0_wp / k)
-      end if
-      if (opts%initial_step > 0.0_wp) then
-         h0 = opts%initial_step / sys%time
-      else
-         h0 = 0.01_wp * sqrt(opts%rtol)
-      end if
+      call time_limits(opts, sys%time, 100.0_wp * (2.0_wp + 1.0_wp / k), &
+         & 0.01_wp * sqrt(opts%rtol), 0.1_wp, tau_max, h0)
       call integrate(sys, opts, atol, tau_max, h0, simulation, stat)
    end subroutine simulate_law
+
+   !> The scaled time at which to give up and the scaled first step, from the options
+   !> (in s) or the automatic values. A time given in s becomes tau = t/T without
+   !> overflow (options%max_time = huge(1.0_wp) with T < 1 s overflowed, and trapped
+   !> in a build with -ffpe-trap): beyond the double range it is huge(1.0_wp), which
+   !> CVODE takes as "no limit" (max_steps still bounds the run). The first step is
+   !> at most largest_step, a tenth of the scaled maximum compression: a longer first
+   !> step steps over the compression (CVODE would fail its error test on it).
+   pure subroutine time_limits(opts, time_unit, auto_tau_max, auto_h0, largest_step, &
+         & tau_max, h0)
+      !> Checked options
+      type(cvode_options), intent(in) :: opts
+      !> T in s
+      real(wp), intent(in) :: time_unit
+      !> Automatic values of tau_max and h0, and the largest first step (scaled)
+      real(wp), intent(in) :: auto_tau_max, auto_h0, largest_step
+      !> Scaled time to give up at, scaled first step
+      real(wp), intent(out) :: tau_max, h0
+      if (opts%max_time > 0.0_wp) then
+         tau_max = guarded_quotient(opts%max_time, time_unit)
+      else
+         tau_max = auto_tau_max
+      end if
+      if (opts%initial_step > 0.0_wp) then
+         h0 = min(guarded_quotient(opts%initial_step, time_unit), largest_step)
+      else
+         h0 = min(auto_h0, largest_step)
+      end if
+   end subroutine time_limits
 
    !> Whether a*b (a >= 0, b > 0, both finite) is below the overflow threshold.
    pure logical function product_fits(a, b)
@@ -529,10 +566,10 @@ contains
       real(c_double), target :: y(2), atol_c(2)
       real(c_double) :: tret(1), jac(2, 2)
       integer(c_int) :: ierr, lmm, rootsfound(n_events), rootdir(n_events)
-      integer :: nsamples, ev, jstat, steps
+      integer :: nsamples, ev, jstat, steps, alloc_stat
       real(wp) :: lambda_max, tau_comp, tau_peak, tau_end, y_comp(2), y_peak(2), &
          & y_end(2), f_peak, f_here
-      logical :: have_comp, have_peak, have_end, ok
+      logical :: have_comp, have_peak, have_end, ok, recorded
       character(len=:), allocatable :: where
 
       stat = hcimpact_ok
@@ -561,8 +598,16 @@ contains
       nsamples = 0
       if (opts%record_trajectory) then
          allocate(simulation%time(initial_samples), simulation%compression(initial_samples), &
-            & simulation%velocity(initial_samples), simulation%force(initial_samples))
-         call append_sample(simulation, nsamples, sys, 0.0_wp, y)
+            & simulation%velocity(initial_samples), simulation%force(initial_samples), &
+            & stat=alloc_stat)
+         recorded = alloc_stat == 0
+         if (recorded) call append_sample(simulation, nsamples, sys, 0.0_wp, y, recorded)
+         if (.not. recorded) then
+            stat = hcimpact_err_solver
+            simulation%message = out_of_memory_message
+            call restore_halting(sys)
+            return
+         end if
       end if
 
       setup: block
@@ -664,9 +709,10 @@ contains
             if (steps >= opts%max_steps) then
                stat = hcimpact_err_solver
                simulation%message = "CVODE failed at t = " &
-                  & // format_real(guarded_product(tret(1), sys%time)) // " s: " &
+                  & // trim(real_text(guarded_product(tret(1), sys%time))) // " s: " &
                   & // cvode_flag_name(CV_TOO_MUCH_WORK) // " (options%max_steps = " &
-                  & // format_int(opts%max_steps) // " steps taken before the end of contact)"
+                  & // trim(integer_text(opts%max_steps)) &
+                  & // " steps taken before the end of contact)"
                exit march
             end if
             ierr = FCVode(cvode_mem, real(tau_max, c_double), y_vec, tret, CV_ONE_STEP)
@@ -679,8 +725,8 @@ contains
                   stat = hcimpact_err_elastic_law
                end if
                simulation%message = "CVODE failed at t = " &
-                  & // format_real(guarded_product(tret(1), sys%time)) // " s: " // cvode_flag_name(ierr) &
-                  & // solver_detail(sys)
+                  & // trim(real_text(guarded_product(tret(1), sys%time))) // " s: " &
+                  & // cvode_flag_name(ierr) // solver_detail(sys)
                exit march
             end if
             ! every step is returned once with CV_SUCCESS (a root in it is returned
@@ -689,13 +735,19 @@ contains
             if (.not. (ieee_is_finite(y(1)) .and. ieee_is_finite(y(2)))) then
                stat = hcimpact_err_solver
                simulation%message = "CVODE returned a non-finite state at t = " &
-                  & // format_real(guarded_product(tret(1), sys%time)) // " s"
+                  & // trim(real_text(guarded_product(tret(1), sys%time))) // " s"
                exit march
             end if
             call system_jacobian(sys, tret(1), y, jac, jstat)
             if (jstat == rhs_ok) lambda_max = max(lambda_max, largest_eigenvalue(jac))
-            if (opts%record_trajectory) call append_sample(simulation, nsamples, sys, &
-               & tret(1), y)
+            if (opts%record_trajectory) then
+               call append_sample(simulation, nsamples, sys, tret(1), y, recorded)
+               if (.not. recorded) then
+                  stat = hcimpact_err_solver
+                  simulation%message = out_of_memory_message
+                  exit march
+               end if
+            end if
 
             if (ierr == CV_ROOT_RETURN) then
                ierr = FCVodeGetRootInfo(cvode_mem, rootsfound)
@@ -731,7 +783,8 @@ contains
             if (tret(1) >= tau_max) then
                stat = hcimpact_err_no_convergence
                simulation%message = "the contact has not ended at t = " &
-                  & // format_real(guarded_product(tret(1), sys%time)) // " s (options%max_time)"
+                  & // trim(real_text(guarded_product(tret(1), sys%time))) &
+                  & // " s (options%max_time)"
                exit march
             end if
          end do march
@@ -745,13 +798,19 @@ contains
       if (associated(atol_vec)) call FN_VDestroy(atol_vec)
       if (associated(y_vec)) call FN_VDestroy(y_vec)
       call context_free(ctx)
-      ! what CVODE raised stays with CVODE; the caller's modes come back
-      if (any(sys%halting)) then
-         call ieee_set_flag(trapped, .false.)
-         call ieee_set_halting_mode(trapped, sys%halting)
-      end if
+      call restore_halting(sys)
 
-      if (opts%record_trajectory) call shrink_samples(simulation, nsamples)
+      if (opts%record_trajectory) then
+         call shrink_samples(simulation, nsamples, recorded)
+         if (.not. recorded) then
+            if (stat == hcimpact_ok) then
+               stat = hcimpact_err_solver
+               simulation%message = out_of_memory_message
+            else
+               simulation%message = simulation%message // "; then " // out_of_memory_message
+            end if
+         end if
+      end if
       if (stat /= hcimpact_ok) return
       if (.not. (have_comp .and. have_peak)) then
          stat = hcimpact_err_solver
@@ -762,9 +821,18 @@ contains
 
       associate(o => simulation%outcome)
          ! (products guarded: a result beyond the double range is reported as such)
+         simulation%solver_restitution = -y_end(2)
          o%restitution = -y_end(2)
+         ! Without an external force the exact k is at most 1 (b >= 0 and f >= 0: the
+         ! damping only dissipates, m V^2 (1 - k^2)/2 = integral of b f(x) x'^2 dt); the
+         ! solver's k carries its error, some rtol either side, and comes out above 1
+         ! when b V is small against the tolerance. 1 is then nearer the exact value.
+         if (.not. allocated(sys%external) .and. o%restitution > 1.0_wp) then
+            o%restitution = 1.0_wp
+            simulation%restitution_clamped = .true.
+         end if
          o%energy_loss_ratio = guarded_product(1.0_wp - o%restitution, 1.0_wp + o%restitution)
-         o%rebound_velocity = guarded_product(y_end(2), sys%velocity)
+         o%rebound_velocity = -guarded_product(o%restitution, sys%velocity)
          o%max_compression = guarded_product(y_comp(1), sys%length)
          o%compression_time = guarded_product(tau_comp, sys%time)
          o%peak_force = f_peak
@@ -822,20 +890,34 @@ contains
       counters%linear_setups = value(1)
    end subroutine get_counters
 
-   !> Append the state at the scaled time tau to the trajectory, in SI units.
-   subroutine append_sample(simulation, nsamples, sys, tau, y)
+   !> What goes wrong while CVODE runs is restored: the flags it raised are cleared
+   !> and the caller's halting modes come back.
+   subroutine restore_halting(sys)
+      type(impact_system), intent(in) :: sys
+      if (any(sys%halting)) then
+         call ieee_set_flag(trapped, .false.)
+         call ieee_set_halting_mode(trapped, sys%halting)
+      end if
+   end subroutine restore_halting
+
+   !> Append the state at the scaled time tau to the trajectory, in SI units; `added`
+   !> is false when the arrays could not grow (out of memory; nothing appended).
+   subroutine append_sample(simulation, nsamples, sys, tau, y, added)
       type(simulation_type), intent(inout) :: simulation
       integer, intent(inout) :: nsamples
       type(impact_system), intent(in) :: sys
       real(wp), intent(in) :: tau, y(2)
+      logical, intent(out) :: added
       real(wp) :: force
       logical :: ok
 
+      added = .true.
       if (nsamples == size(simulation%time)) then
-         call grow(simulation%time)
-         call grow(simulation%compression)
-         call grow(simulation%velocity)
-         call grow(simulation%force)
+         call resize(simulation%time, 2 * nsamples, added)
+         if (added) call resize(simulation%compression, 2 * nsamples, added)
+         if (added) call resize(simulation%velocity, 2 * nsamples, added)
+         if (added) call resize(simulation%force, 2 * nsamples, added)
+         if (.not. added) return
       end if
       nsamples = nsamples + 1
       call system_force(sys, y, force, ok)
@@ -845,27 +927,38 @@ contains
       simulation%force(nsamples) = force
    end subroutine append_sample
 
-   !> Double the size of an array, keeping its values.
-   subroutine grow(array)
+   !> Give an array a new size, keeping its first values; ok false (array unchanged)
+   !> when the memory cannot be allocated.
+   subroutine resize(array, new_size, ok)
       real(wp), allocatable, intent(inout) :: array(:)
+      integer, intent(in) :: new_size
+      logical, intent(out) :: ok
       real(wp), allocatable :: tmp(:)
-      allocate(tmp(2 * size(array)))
-      tmp(:size(array)) = array
+      integer :: alloc_stat, kept
+      allocate(tmp(new_size), stat=alloc_stat)
+      ok = alloc_stat == 0
+      if (.not. ok) return
+      kept = min(new_size, size(array))
+      tmp(:kept) = array(:kept)
       call move_alloc(tmp, array)
-   end subroutine grow
+   end subroutine resize
 
-   !> Cut the trajectory arrays to the samples recorded.
-   subroutine shrink_samples(simulation, nsamples)
+   !> Cut the trajectory arrays to the samples recorded; out of memory (ok false) the
+   !> trajectory is dropped.
+   subroutine shrink_samples(simulation, nsamples, ok)
       type(simulation_type), intent(inout) :: simulation
       integer, intent(in) :: nsamples
-      simulation%time = simulation%time(:nsamples)
-      simulation%compression = simulation%compression(:nsamples)
-      simulation%velocity = simulation%velocity(:nsamples)
-      simulation%force = simulation%force(:nsamples)
+      logical, intent(out) :: ok
+      call resize(simulation%time, nsamples, ok)
+      if (ok) call resize(simulation%compression, nsamples, ok)
+      if (ok) call resize(simulation%velocity, nsamples, ok)
+      if (ok) call resize(simulation%force, nsamples, ok)
+      if (.not. ok) deallocate(simulation%time, simulation%compression, &
+         & simulation%velocity, simulation%force)
    end subroutine shrink_samples
 
-   !> CVRhsFn: (s, sigma)' at the scaled time t. 0, or 1 (recoverable: CVODE retries
-   !> with a smaller step) when the state is too far out or the user's law failed.
+   !> CVRhsFn: (s, sigma)' at the scaled time t. 0; 1 (recoverable: CVODE retries
+   !> with a smaller step) when the state is too far out; -1 when the user's law failed.
    function rhs_callback(t, y, ydot, user_data) result(ierr) bind(C)
       real(c_double), value :: t
       type(N_Vector) :: y, ydot
@@ -873,7 +966,7 @@ contains
       integer(c_int) :: ierr
       type(impact_system), pointer :: sys
       real(c_double), pointer :: yv(:), dv(:)
-      real(wp) :: dy(2)
+      real(wp) :: state(2), dy(2)
       integer :: stat
       logical :: flags(3)
 
@@ -881,12 +974,13 @@ contains
       if (any(sys%halting)) call traps_on(sys, flags)
       yv => FN_VGetArrayPointer(y)
       dv => FN_VGetArrayPointer(ydot)
-      call system_rhs(sys, t, yv(1:2), dy, stat)
+      ! (a copy: a section of the pointer as the argument would make gfortran's
+      ! -fcheck=array-temps keep a static once-only warning flag)
+      state = yv(1:2)
+      call system_rhs(sys, t, state, dy, stat)
       dv(1:2) = dy
       if (any(sys%halting)) call traps_off(flags)
-      ierr = 0
-      if (stat == rhs_law_failure) sys%law_failed = .true.
-      if (stat /= rhs_ok) ierr = 1
+      ierr = callback_flag(sys, stat)
    end function rhs_callback
 
    !> CVLsJacFn: the dense Jacobian of the right-hand side.
@@ -899,7 +993,7 @@ contains
       integer(c_int) :: ierr
       type(impact_system), pointer :: sys
       real(c_double), pointer :: yv(:), data(:), jv(:, :)
-      real(wp) :: jac(2, 2)
+      real(wp) :: state(2), jac(2, 2)
       integer :: stat
       logical :: flags(3)
 
@@ -909,13 +1003,35 @@ contains
       ! the wrapper returns a pointer of size 1 to the column-major 2x2 data
       data => FSUNDenseMatrix_Data(jac_mat)
       call c_f_pointer(c_loc(data(1)), jv, [2, 2])
-      call system_jacobian(sys, t, yv(1:2), jac, stat)
+      state = yv(1:2)
+      call system_jacobian(sys, t, state, jac, stat)
       jv = jac
       if (any(sys%halting)) call traps_off(flags)
-      ierr = 0
-      if (stat == rhs_law_failure) sys%law_failed = .true.
-      if (stat /= rhs_ok) ierr = 1
+      ierr = callback_flag(sys, stat)
    end function jacobian_callback
+
+   !> The return value of the right-hand side and Jacobian callbacks for the status
+   !> of an evaluation: 0 (success), 1 (recoverable: a state so far out that a value
+   !> would overflow, which only a rejected Newton iterate reaches; CVODE retries with
+   !> a smaller step) or -1 (unrecoverable: the user's law or force returned a value
+   !> that is not finite at an x >= 0, where a law must be defined). A law failure
+   !> was recoverable once: CVODE then crept towards the compression where the law
+   !> breaks down in ever smaller steps, and gave up after max_steps (CV_TOO_MUCH_WORK,
+   !> 1.8 s) instead of naming the law (CV_RHSFUNC_FAIL, hcimpact_err_elastic_law).
+   function callback_flag(sys, stat) result(ierr)
+      type(impact_system), intent(inout) :: sys
+      integer, intent(in) :: stat
+      integer(c_int) :: ierr
+      select case (stat)
+      case (rhs_ok)
+         ierr = 0
+      case (rhs_law_failure)
+         sys%law_failed = .true.
+         ierr = -1
+      case default
+         ierr = 1
+      end select
+   end function callback_flag
 
    !> CVRootFn: the three event functions.
    function events_callback(t, y, gout, user_data) result(ierr) bind(C)
@@ -926,14 +1042,15 @@ contains
       integer(c_int) :: ierr
       type(impact_system), pointer :: sys
       real(c_double), pointer :: yv(:)
-      real(wp) :: g(n_events)
+      real(wp) :: state(2), g(n_events)
       integer :: stat
       logical :: flags(3)
 
       call c_f_pointer(user_data, sys)
       if (any(sys%halting)) call traps_on(sys, flags)
       yv => FN_VGetArrayPointer(y)
-      call system_events(sys, t, yv(1:2), g, stat)
+      state = yv(1:2)
+      call system_events(sys, t, state, g, stat)
       gout = g
       if (any(sys%halting)) call traps_off(flags)
       ierr = 0
@@ -958,23 +1075,28 @@ contains
       call ieee_set_flag(trapped, flags)
    end subroutine traps_off
 
-   !> The last message of CVODE's error handler, if any, as ": <message>".
-   function solver_detail(sys) result(text)
+   !> Length of solver_detail(sys).
+   pure function solver_detail_length(sys) result(length)
       type(impact_system), intent(in) :: sys
-      character(len=:), allocatable :: text
-      text = ""
+      integer :: length
+      length = 0
       if (allocated(sys%solver_message)) then
-         if (len(sys%solver_message) > 0) text = " (" // sys%solver_message // ")"
+         if (len(sys%solver_message) > 0) length = len(sys%solver_message) + 3
       end if
+   end function solver_detail_length
+
+   !> The last message of CVODE's error handler, if any, as " (<message>)"; empty
+   !> without one.
+   pure function solver_detail(sys) result(text)
+      type(impact_system), intent(in) :: sys
+      character(len=solver_detail_length(sys)) :: text
+      if (len(text) > 0) text = " (" // sys%solver_message // ")"
    end function solver_detail
 
-   !> Name of a CVODE return flag, e.g. "CV_TOO_MUCH_WORK (-1)".
-   pure function cvode_flag_name(flag) result(name)
-      !> The flag
+   !> The name of a CVODE return flag, blank-padded.
+   pure function flag_label(flag) result(name)
       integer(c_int), intent(in) :: flag
-      !> Its name and value
-      character(len=:), allocatable :: name
-      character(len=12) :: number
+      character(len=24) :: name
 
       select case (flag)
       case (CV_SUCCESS)
@@ -1038,26 +1160,38 @@ contains
       case default
          name = "CV_UNKNOWN_FLAG"
       end select
-      write(number, '(i0)') flag
-      name = name // " (" // trim(number) // ")"
+   end function flag_label
+
+   !> An integer as text, left-adjusted and blank-padded (trim it).
+   pure function integer_text(i) result(text)
+      integer, intent(in) :: i
+      character(len=12) :: text
+      write(text, '(i0)') i
+   end function integer_text
+
+   !> Length of cvode_flag_name(flag).
+   pure function flag_name_length(flag) result(length)
+      integer(c_int), intent(in) :: flag
+      integer :: length
+      length = len_trim(flag_label(flag)) + len_trim(integer_text(int(flag))) + 3
+   end function flag_name_length
+
+   !> Name of a CVODE return flag, e.g. "CV_TOO_MUCH_WORK (-1)".
+   pure function cvode_flag_name(flag) result(name)
+      !> The flag
+      integer(c_int), intent(in) :: flag
+      !> Its name and value
+      character(len=flag_name_length(flag)) :: name
+
+      name = trim(flag_label(flag)) // " (" // trim(integer_text(int(flag))) // ")"
    end function cvode_flag_name
 
-   !> An integer as text.
-   pure function format_int(i) result(text)
-      integer, intent(in) :: i
-      character(len=:), allocatable :: text
-      character(len=12) :: buffer
-      write(buffer, '(i0)') i
-      text = trim(buffer)
-   end function format_int
-
-   !> A real with 6 significant digits.
-   pure function format_real(x) result(text)
+   !> A real with 6 significant digits, left-adjusted and blank-padded (trim it).
+   pure function real_text(x) result(text)
       real(wp), intent(in) :: x
-      character(len=:), allocatable :: text
-      character(len=24) :: buffer
-      write(buffer, '(es12.5)') x
-      text = trim(adjustl(buffer))
-   end function format_real
+      character(len=24) :: text
+      write(text, '(es12.5)') x
+      text = adjustl(text)
+   end function real_text
 
 end module hcimpact_cvode_solver

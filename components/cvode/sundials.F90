@@ -129,16 +129,21 @@ contains
       type(c_ptr), intent(in) :: user_data, func, msg
       integer(c_int), intent(in) :: code
       type(impact_system), pointer :: sys
+      character(len=:), allocatable :: func_text, msg_text
       if (.not. c_associated(user_data)) return
       call c_f_pointer(user_data, sys)
       sys%solver_code = int(code)
-      sys%solver_message = c_string(func) // ": " // c_string(msg)
+      call copy_c_string(func, func_text)
+      call copy_c_string(msg, msg_text)
+      sys%solver_message = func_text // ": " // msg_text
    end subroutine record_message
 
-   !> Copy of a NUL-terminated C string (at most max_message characters).
-   function c_string(ptr) result(text)
+   !> Copy of a NUL-terminated C string (at most max_message characters). A
+   !> subroutine: a function with a deferred-length result would keep its length in
+   !> a hidden static variable of the caller (gfortran), shared by threads.
+   subroutine copy_c_string(ptr, text)
       type(c_ptr), intent(in) :: ptr
-      character(len=:), allocatable :: text
+      character(len=:), allocatable, intent(out) :: text
       character(kind=c_char), pointer :: chars(:)
       integer :: n, i
       if (.not. c_associated(ptr)) then
@@ -151,6 +156,6 @@ contains
       do i = 1, n
          text(i:i) = chars(i)
       end do
-   end function c_string
+   end subroutine copy_c_string
 
 end module hcimpact_cvode_sundials

@@ -48,9 +48,16 @@
 !> speed <= 0), hcimpact_err_restitution (a restitution <= 0 or > 2), hcimpact_err_domain
 !> (another non-positive value: a deflection, force, time or sigma; or a sigma more
 !> than 1e100 times smaller or larger than its value, for restitution than 1),
-!> hcimpact_err_damping (a given b < 0), hcimpact_err_no_convergence.
+!> hcimpact_err_damping (a given b < 0), hcimpact_err_no_convergence, and
+!> hcimpact_err_size also when the work arrays for the data cannot be allocated (out
+!> of memory, hcimpact_work_arrays: every array that grows with the data is allocated
+!> with stat=).
+!>
+!> Time: linear in the number of points, but for the sorts behind the median start of
+!> b and the count of distinct speeds or deflections (O(n log n), heapsort).
 module hcimpact_calibration
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_velocity, hcimpact_err_damping, hcimpact_err_restitution, &
@@ -60,6 +67,8 @@ module hcimpact_calibration
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
    use hcimpact_least_squares, only : least_squares_model, levenberg_marquardt, &
       & linear_least_squares, jacobian_analysis
+   use hcimpact_order_statistics, only : median_in_place, count_distinct_in_place
+   use hcimpact_work_arrays, only : out_of_memory, allocate_copy
    implicit none
    private
 
@@ -70,6 +79,9 @@ module hcimpact_calibration
 
    !> Smallest exponent n a fit may return (a lower bound of the iteration)
    real(wp), parameter :: min_exponent = 0.01_wp
+
+   !> Points whose single-point b gives the starting value (damping_start)
+   integer, parameter :: start_points = 4096
 
    !> The result of a fit.
    type :: fit_type
@@ -158,23 +170,36 @@ contains
       type(impact_data_model) :: model
       real(wp), allocatable :: theta(:), sigma_obs(:), sigma_in(:)
       logical :: given(1)
-      integer :: n
+      integer :: n, alloc_stat
+      real(wp) :: b0
 
       n = size(velocity)
-      if (present(sigma)) sigma_in = sigma
-      stat = check_series(velocity, restitution, restitution_series, sigma_in)
+      if (present(sigma)) then
+         call allocate_copy(sigma, sigma_in, stat)
+         if (stat /= hcimpact_ok) return
+      end if
+      stat = check_series(velocity, restitution, restitution_series, sigma_in, &
+         & hcimpact_err_velocity)
       if (stat /= hcimpact_ok) return
       stat = check_count(n, 1, 1)
       if (stat /= hcimpact_ok) return
 
-      model%velocity = velocity
-      model%log_velocity = log(velocity)
+      call set_speeds(model, velocity, stat)
+      if (stat /= hcimpact_ok) return
       model%has = [.false., .false., .true.]
-      model%restitution = restitution
+      call allocate_copy(restitution, model%restitution, stat)
+      if (stat /= hcimpact_ok) return
       model%free = [.false., .false., .true.]
       model%fixed = [0.0_wp, 1.0_wp, 0.0_wp]
-      theta = [median(damping_estimates(velocity, restitution))]
-      sigma_obs = series_sigma(restitution, restitution_series, sigma_in, given(1))
+      allocate(sigma_obs(n), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      call damping_start(velocity, restitution, b0, stat)
+      if (stat /= hcimpact_ok) return
+      theta = [b0]
+      call series_sigma(restitution, restitution_series, sigma_in, sigma_obs, given(1))
       call run_fit(model, theta, [0.0_wp], [restitution_series], sigma_obs, given, &
          & flag(absolute_sigma), fit, stat)
       if (stat /= hcimpact_ok) return
@@ -199,22 +224,35 @@ contains
       real(wp), intent(in), optional :: sigma(:)
       !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
       logical, intent(in), optional :: absolute_sigma
-      real(wp) :: a(size(velocity), 1), w(size(velocity)), coef(1), cov(1, 1)
-      real(wp), allocatable :: sigma_in(:)
+      real(wp) :: coef(1), cov(1, 1)
+      real(wp), allocatable :: a(:, :), w(:), rhs(:), sigma_in(:)
       real(wp) :: alpha, factor
-      integer :: n, rank
+      integer :: n, rank, alloc_stat
       logical :: given
 
       n = size(velocity)
-      if (present(sigma)) sigma_in = sigma
-      stat = check_series(velocity, restitution, restitution_series, sigma_in)
+      if (present(sigma)) then
+         call allocate_copy(sigma, sigma_in, stat)
+         if (stat /= hcimpact_ok) return
+      end if
+      stat = check_series(velocity, restitution, restitution_series, sigma_in, &
+         & hcimpact_err_velocity)
       if (stat /= hcimpact_ok) return
       stat = check_count(n, 1, 1)
       if (stat /= hcimpact_ok) return
 
-      w = 1.0_wp / series_sigma(restitution, restitution_series, sigma_in, given)
+      ! (allocatables with stat=: automatic arrays of the data's size came from an
+      ! unchecked malloc, and out of memory this dereferenced NULL)
+      allocate(a(n, 1), w(n), rhs(n), fit%residuals(n), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      call series_sigma(restitution, restitution_series, sigma_in, w, given)
+      w = 1.0_wp / w
       a(:, 1) = w * velocity
-      call linear_least_squares(a, w * (1.0_wp - restitution), coef, rank, stat)
+      rhs = w * (1.0_wp - restitution)
+      call linear_least_squares(a, rhs, coef, rank, stat)
       if (stat /= hcimpact_ok) return
       alpha = coef(1)
       fit%residuals = restitution - (1.0_wp - alpha * velocity)
@@ -251,36 +289,44 @@ contains
       real(wp), intent(in), optional :: sigma(:)
       !> The sigmas are absolute: do not rescale the covariance by chi^2/dof
       logical, intent(in), optional :: absolute_sigma
-      real(wp) :: a(size(deflection), 2), w(size(deflection)), lx(size(deflection)), &
-         & lf(size(deflection)), coef(2), cov(2, 2)
-      real(wp), allocatable :: sigma_in(:)
+      real(wp) :: coef(2), cov(2, 2)
+      real(wp), allocatable :: a(:, :), w(:), lx(:), lf(:), rhs(:), sigma_in(:)
       real(wp) :: mean_lx, log_c, factor, t(2, 2)
-      integer :: n, rank
+      integer :: n, rank, alloc_stat, distinct
       logical :: given
 
       n = size(deflection)
-      if (size(force) /= n) then
-         stat = hcimpact_err_size
-         return
+      if (present(sigma)) then
+         call allocate_copy(sigma, sigma_in, stat)
+         if (stat /= hcimpact_ok) return
       end if
-      if (present(sigma)) sigma_in = sigma
-      stat = check_positive(deflection, hcimpact_err_domain)
-      if (stat == hcimpact_ok) stat = check_series(deflection, force, force_series, sigma_in)
+      ! (finiteness first: a NaN deflection is hcimpact_err_not_finite, not _domain)
+      stat = check_series(deflection, force, force_series, sigma_in, hcimpact_err_domain)
       if (stat /= hcimpact_ok) return
       stat = check_count(n, 2, 1)
       if (stat /= hcimpact_ok) return
-      if (count_distinct(deflection) < 2) then
+      allocate(a(n, 2), w(n), lx(n), lf(n), rhs(n), fit%residuals(n), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      ! (lx as scratch: the count sorts it)
+      lx = deflection
+      call count_distinct_in_place(lx, distinct)
+      if (distinct < 2) then
          stat = hcimpact_err_underdetermined
          return
       end if
 
-      w = 1.0_wp / series_sigma(force, force_series, sigma_in, given)
+      call series_sigma(force, force_series, sigma_in, w, given)
+      w = 1.0_wp / w
       lx = log(deflection)
       lf = log(force)
       mean_lx = sum(w**2 * lx) / sum(w**2)
       a(:, 1) = w
       a(:, 2) = w * (lx - mean_lx)
-      call linear_least_squares(a, w * lf, coef, rank, stat)
+      rhs = w * lf
+      call linear_least_squares(a, rhs, coef, rank, stat)
       if (stat /= hcimpact_ok) return
       log_c = coef(1) - coef(2) * mean_lx
       fit%residuals = lf - (coef(1) + coef(2) * (lx - mean_lx))
@@ -347,11 +393,14 @@ contains
       end if
       ! optional arrays travel on as allocatables (unallocated: absent): an absent
       ! optional array is never passed on (gfortran reads its descriptor's address)
-      if (present(contact_time)) t = contact_time
-      if (present(peak_force)) f = peak_force
-      if (present(sigma_time)) st = sigma_time
-      if (present(sigma_force)) sf = sigma_force
+      stat = hcimpact_ok
+      if (present(contact_time)) call allocate_copy(contact_time, t, stat)
+      if (present(peak_force) .and. stat == hcimpact_ok) call allocate_copy(peak_force, f, stat)
+      if (present(sigma_time) .and. stat == hcimpact_ok) call allocate_copy(sigma_time, st, stat)
+      if (present(sigma_force) .and. stat == hcimpact_ok) &
+         & call allocate_copy(sigma_force, sf, stat)
       if (present(guess)) g = guess
+      if (stat /= hcimpact_ok) return
       call fit_impact_data(mass, velocity, .false., damping, fit, stat, t, f, e, st, sf, se, &
          & flag(absolute_sigma), g)
    end subroutine fit_elastic
@@ -391,13 +440,18 @@ contains
 
       real(wp), allocatable :: t(:), f(:), e(:), st(:), sf(:), se(:), g(:)
 
-      if (present(contact_time)) t = contact_time
-      if (present(peak_force)) f = peak_force
-      if (present(restitution)) e = restitution
-      if (present(sigma_time)) st = sigma_time
-      if (present(sigma_force)) sf = sigma_force
-      if (present(sigma_restitution)) se = sigma_restitution
+      stat = hcimpact_ok
+      if (present(contact_time)) call allocate_copy(contact_time, t, stat)
+      if (present(peak_force) .and. stat == hcimpact_ok) call allocate_copy(peak_force, f, stat)
+      if (present(restitution) .and. stat == hcimpact_ok) &
+         & call allocate_copy(restitution, e, stat)
+      if (present(sigma_time) .and. stat == hcimpact_ok) call allocate_copy(sigma_time, st, stat)
+      if (present(sigma_force) .and. stat == hcimpact_ok) &
+         & call allocate_copy(sigma_force, sf, stat)
+      if (present(sigma_restitution) .and. stat == hcimpact_ok) &
+         & call allocate_copy(sigma_restitution, se, stat)
       if (present(guess)) g = guess
+      if (stat /= hcimpact_ok) return
       call fit_impact_data(mass, velocity, .true., 0.0_wp, fit, stat, t, f, e, st, sf, se, &
          & flag(absolute_sigma), g)
    end subroutine fit_impact
@@ -418,11 +472,11 @@ contains
       logical, intent(in) :: absolute_sigma
       real(wp), allocatable, intent(in) :: guess(:)
       type(impact_data_model) :: model
-      real(wp), allocatable :: theta(:), lower(:), sigma_obs(:), r(:), estimate(:)
+      real(wp), allocatable :: theta(:), lower(:), sigma_obs(:), r(:)
       integer, allocatable :: series(:)
       logical, allocatable :: given(:)
-      integer :: n, p, nseries, offset
-      real(wp) :: b0, n0
+      integer :: n, p, nseries, k, i, alloc_stat
+      real(wp) :: b0, n0, total
 
       n = size(velocity)
       p = merge(3, 2, fit_b)
@@ -461,24 +515,37 @@ contains
       end if
 
       model%mass = mass
-      allocate(series(0), given(0), sigma_obs(0))
+      ! the series given, in the order of the residual blocks
+      nseries = count([allocated(contact_time), allocated(peak_force), &
+         & allocated(restitution) .and. fit_b])
+      allocate(series(nseries), given(nseries))
+      allocate(sigma_obs(n * nseries), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      k = 0
       stat = hcimpact_ok
       if (allocated(contact_time)) then
          call add_series(time_series, contact_time, sigma_time)
          if (stat /= hcimpact_ok) return
-         model%log_time = log(contact_time)
+         call allocate_copy(contact_time, model%log_time, stat)
+         if (stat /= hcimpact_ok) return
+         model%log_time = log(model%log_time)
       end if
       if (allocated(peak_force)) then
          call add_series(force_series, peak_force, sigma_force)
          if (stat /= hcimpact_ok) return
-         model%log_force = log(peak_force)
+         call allocate_copy(peak_force, model%log_force, stat)
+         if (stat /= hcimpact_ok) return
+         model%log_force = log(model%log_force)
       end if
       if (allocated(restitution) .and. fit_b) then
          call add_series(restitution_series, restitution, sigma_restitution)
          if (stat /= hcimpact_ok) return
-         model%restitution = restitution
+         call allocate_copy(restitution, model%restitution, stat)
+         if (stat /= hcimpact_ok) return
       end if
-      nseries = size(series)
       stat = check_count(n * nseries, p, 1)
       if (stat /= hcimpact_ok) return
       if (n < 1) then
@@ -486,8 +553,8 @@ contains
          return
       end if
 
-      model%velocity = velocity
-      model%log_velocity = log(velocity)
+      call set_speeds(model, velocity, stat)
+      if (stat /= hcimpact_ok) return
       model%free = [.true., .true., fit_b]
       model%fixed = [0.0_wp, 0.0_wp, damping]
 
@@ -498,25 +565,39 @@ contains
          b0 = damping
          if (fit_b) then
             b0 = 0.0_wp
-            if (model%has(restitution_series)) &
-               & b0 = median(damping_estimates(velocity, restitution))
+            if (model%has(restitution_series)) then
+               call damping_start(velocity, restitution, b0, stat)
+               if (stat /= hcimpact_ok) return
+            end if
          end if
-         n0 = exponent_estimate(model)
+         call exponent_estimate(model, n0, stat)
+         if (stat /= hcimpact_ok) return
          theta = [0.0_wp, n0]
          if (fit_b) theta = [theta, b0]
-         allocate(r(n * nseries))
+         allocate(r(n * nseries), stat=alloc_stat)
+         if (alloc_stat /= 0) then
+            stat = out_of_memory
+            return
+         end if
          call model%evaluate(theta, r, stat)
          if (stat /= hcimpact_ok) return
-         ! residual of ln t falls by ln c/(n+1), that of ln F rises by it
-         allocate(estimate(0))
-         offset = 0
+         ! residual of ln t falls by ln c/(n+1), that of ln F rises by it: ln c is the
+         ! mean of -(n+1) r over the times and (n+1) r over the forces (summed in order)
+         total = 0.0_wp
+         k = 0
          if (model%has(time_series)) then
-            estimate = [estimate, -(n0 + 1.0_wp) * r(1:n)]
-            offset = n
+            do i = 1, n
+               total = total + (-(n0 + 1.0_wp) * r(i))
+            end do
+            k = n
          end if
-         if (model%has(force_series)) &
-            & estimate = [estimate, (n0 + 1.0_wp) * r(offset+1:offset+n)]
-         if (size(estimate) > 0) theta(1) = sum(estimate) / size(estimate)
+         if (model%has(force_series)) then
+            do i = k + 1, k + n
+               total = total + (n0 + 1.0_wp) * r(i)
+            end do
+            k = k + n
+         end if
+         if (k > 0) theta(1) = total / k
       end if
 
       allocate(lower(p))
@@ -537,33 +618,37 @@ contains
 
    contains
 
-      !> Check one series and append it to the model's list.
+      !> Check one series and enter it as the next of the model's list (k).
       subroutine add_series(kind, values, sigma)
          integer, intent(in) :: kind
          real(wp), intent(in) :: values(:)
          real(wp), allocatable, intent(in) :: sigma(:)
-         logical :: has_sigma
-         stat = check_series(velocity, values, kind, sigma)
+         stat = check_series(velocity, values, kind, sigma, hcimpact_err_velocity)
          if (stat /= hcimpact_ok) return
+         k = k + 1
          model%has(kind) = .true.
-         series = [series, kind]
-         sigma_obs = [sigma_obs, series_sigma(values, kind, sigma, has_sigma)]
-         given = [given, has_sigma]
+         series(k) = kind
+         call series_sigma(values, kind, sigma, sigma_obs((k - 1) * n + 1:k * n), given(k))
       end subroutine add_series
 
    end subroutine fit_impact_data
 
    !> The exponent n from the slopes of ln t and ln F against ln V in the elastic
    !> limit (t ~ V^((1-n)/(n+1)), F ~ V^(2n/(n+1))); 3/2 when the speeds do not vary
-   !> or the slopes are implausible.
-   function exponent_estimate(model) result(n0)
+   !> or the slopes are implausible. stat: hcimpact_ok or out_of_memory.
+   subroutine exponent_estimate(model, n0, stat)
       type(impact_data_model), intent(in) :: model
-      real(wp) :: n0
+      real(wp), intent(out) :: n0
+      integer, intent(out) :: stat
+      real(wp), allocatable :: speeds(:)
       real(wp) :: s, total
-      integer :: count_ok
+      integer :: count_ok, distinct
 
       n0 = 1.5_wp
-      if (count_distinct(model%velocity) < 2) return
+      call allocate_copy(model%velocity, speeds, stat)
+      if (stat /= hcimpact_ok) return
+      call count_distinct_in_place(speeds, distinct)
+      if (distinct < 2) return
       total = 0.0_wp
       count_ok = 0
       if (model%has(time_series)) then
@@ -583,15 +668,15 @@ contains
             count_ok = count_ok + 1
          end if
       end subroutine take
-   end function exponent_estimate
+   end subroutine exponent_estimate
 
    !> Least-squares slope of y against x (x not all equal).
    pure function slope(x, y) result(s)
       real(wp), intent(in) :: x(:), y(:)
       real(wp) :: s
-      real(wp) :: dx(size(x))
-      dx = x - sum(x) / size(x)
-      s = sum(dx * y) / sum(dx**2)
+      real(wp) :: mean_x
+      mean_x = sum(x) / size(x)
+      s = sum((x - mean_x) * y) / sum((x - mean_x)**2)
    end function slope
 
    !> Fit `theta` of `model`, weighting each series by its given sigmas or by its own
@@ -612,14 +697,19 @@ contains
       integer, intent(out) :: stat
       real(wp), allocatable :: weight(:), scale(:), new_scale(:), r(:), jac(:, :), &
          & leverage(:), cov(:, :)
-      integer :: m, p, nk, iterations
+      integer :: m, p, nk, iterations, alloc_stat
 
       m = size(sigma_obs)
       p = size(theta)
       nk = m / size(series)
       allocate(scale(size(series)), source=1.0_wp)
-      allocate(new_scale(size(series)), r(m), jac(m, p), leverage(m), cov(p, p))
-      weight = observation_weights()
+      allocate(new_scale(size(series)), cov(p, p))
+      allocate(r(m), jac(m, p), leverage(m), weight(m), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      call observation_weights()
       call levenberg_marquardt(model, theta, weight, lower, stat, fit%iterations)
       if (stat /= hcimpact_ok) return
       if (size(series) > 1 .and. .not. all(given)) then
@@ -629,16 +719,16 @@ contains
          call statistics()
          if (stat /= hcimpact_ok) return
          scale = new_scale
-         weight = observation_weights()
+         call observation_weights()
          call levenberg_marquardt(model, theta, weight, lower, stat, iterations)
          fit%iterations = fit%iterations + iterations
          if (stat /= hcimpact_ok) return
       end if
       call statistics()
       if (stat /= hcimpact_ok) return
-      fit%residuals = r
-      fit%scatter = new_scale
       fit%chi_square = sum((weight * r)**2)
+      call move_alloc(r, fit%residuals)
+      fit%scatter = new_scale
       fit%degrees_of_freedom = m - p
       fit%covariance = cov
       if (.not. (absolute .and. all(given))) &
@@ -646,18 +736,18 @@ contains
 
    contains
 
-      !> 1/sigma of each observation: the given one, or the series' estimated scale.
-      function observation_weights() result(w)
-         real(wp) :: w(m)
+      !> weight = 1/sigma of each observation: the given one, or the series' estimated
+      !> scale.
+      subroutine observation_weights()
          integer :: kk
          do kk = 1, size(series)
             if (given(kk)) then
-               w((kk-1)*nk+1:kk*nk) = 1.0_wp / sigma_obs((kk-1)*nk+1:kk*nk)
+               weight((kk-1)*nk+1:kk*nk) = 1.0_wp / sigma_obs((kk-1)*nk+1:kk*nk)
             else
-               w((kk-1)*nk+1:kk*nk) = 1.0_wp / scale(kk)
+               weight((kk-1)*nk+1:kk*nk) = 1.0_wp / scale(kk)
             end if
          end do
-      end function observation_weights
+      end subroutine observation_weights
 
       !> Residuals, covariance, leverages and each series' scatter at theta.
       subroutine statistics()
@@ -680,7 +770,8 @@ contains
    end subroutine run_fit
 
    !> Residuals of the impact data at theta (the free ones of ln c, n, b) and, on
-   !> request, their Jacobian.
+   !> request, their Jacobian. Element by element: no array of the data's size
+   !> besides the model's own (allocated with stat=).
    subroutine evaluate_impact_data(self, theta, residual, stat, jacobian)
       !> The data and model
       class(impact_data_model), intent(inout) :: self
@@ -692,11 +783,8 @@ contains
       integer, intent(out) :: stat
       !> d residual / d theta
       real(wp), intent(out), optional :: jacobian(:, :)
-      real(wp) :: lt(size(self%velocity)), lf(size(self%velocity)), &
-         & log_x(size(self%velocity)), dlogx_dn(size(self%velocity))
-      real(wp), allocatable :: full_jac(:, :)
-      real(wp) :: p(3), log_c, n, b, np1
-      integer :: nv, i, row, j
+      real(wp) :: p(3), log_c, n, b, np1, log_x, dlogx_dn
+      integer :: nv, i, row, alloc_stat, col(3)
       logical :: dynamic
 
       nv = size(self%velocity)
@@ -716,7 +804,11 @@ contains
          if (.not. (self%cached .and. n == self%cache_n .and. b == self%cache_b)) then
             self%cached = .false.
             if (allocated(self%log_tau)) deallocate(self%log_tau, self%log_phi)
-            allocate(self%log_tau(nv), self%log_phi(nv))
+            allocate(self%log_tau(nv), self%log_phi(nv), stat=alloc_stat)
+            if (alloc_stat /= 0) then
+               stat = out_of_memory
+               return
+            end if
             do i = 1, nv
                call scaled_impact(n, b * self%velocity(i), self%log_tau(i), &
                   & self%log_phi(i), stat)
@@ -726,51 +818,88 @@ contains
             self%cache_n = n
             self%cache_b = b
          end if
-         ! ln X = ln((n+1) m V^2/(2c))/(n+1)
-         log_x = (log(0.5_wp * np1) + log(self%mass) + 2.0_wp * self%log_velocity &
-            & - log_c) / np1
-         lt = log_x - self%log_velocity + self%log_tau
-         lf = log(self%mass) + 2.0_wp * self%log_velocity - log_x + self%log_phi
       end if
 
       row = 0
       if (self%has(time_series)) then
-         residual(row+1:row+nv) = self%log_time - lt
+         do i = 1, nv
+            ! ln t = ln X - ln V + ln tau
+            residual(row + i) = self%log_time(i) - (scaled_log_x(i) &
+               & - self%log_velocity(i) + self%log_tau(i))
+         end do
          row = row + nv
       end if
       if (self%has(force_series)) then
-         residual(row+1:row+nv) = self%log_force - lf
+         do i = 1, nv
+            ! ln F = ln m + 2 ln V - ln X + ln phi
+            residual(row + i) = self%log_force(i) - (log(self%mass) &
+               & + 2.0_wp * self%log_velocity(i) - scaled_log_x(i) + self%log_phi(i))
+         end do
          row = row + nv
       end if
       if (self%has(restitution_series)) then
-         residual(row+1:row+nv) = self%restitution - restitution(b * self%velocity)
-         row = row + nv
+         do i = 1, nv
+            residual(row + i) = self%restitution(i) - restitution(b * self%velocity(i))
+         end do
       end if
       if (.not. present(jacobian)) return
-      allocate(full_jac(row, 3), source=0.0_wp)
+
+      ! the column of each free parameter (0: fixed)
+      col = 0
+      do i = 1, 3
+         if (self%free(i)) col(i) = count(self%free(1:i))
+      end do
+      jacobian = 0.0_wp
       if (dynamic) then
          call scaled_derivatives(self, n, b, stat)
          if (stat /= hcimpact_ok) return
-         ! d ln X/d n = (1 - (n+1) ln X)/(n+1)^2, d ln X/d ln c = -1/(n+1)
-         dlogx_dn = (1.0_wp - np1 * log_x) / np1**2
       end if
       row = 0
       if (self%has(time_series)) then
-         full_jac(row+1:row+nv, 1) = 1.0_wp / np1
-         full_jac(row+1:row+nv, 2) = -(dlogx_dn + self%dlt_dn)
-         full_jac(row+1:row+nv, 3) = -self%dlt_db
+         do i = 1, nv
+            ! d ln X/d n = (1 - (n+1) ln X)/(n+1)^2, d ln X/d ln c = -1/(n+1)
+            log_x = scaled_log_x(i)
+            dlogx_dn = (1.0_wp - np1 * log_x) / np1**2
+            call put(row + i, log_stiffness_index, 1.0_wp / np1)
+            call put(row + i, exponent_index, -(dlogx_dn + self%dlt_dn(i)))
+            call put(row + i, damping_index, -self%dlt_db(i))
+         end do
          row = row + nv
       end if
       if (self%has(force_series)) then
-         full_jac(row+1:row+nv, 1) = -1.0_wp / np1
-         full_jac(row+1:row+nv, 2) = -(-dlogx_dn + self%dlf_dn)
-         full_jac(row+1:row+nv, 3) = -self%dlf_db
+         do i = 1, nv
+            log_x = scaled_log_x(i)
+            dlogx_dn = (1.0_wp - np1 * log_x) / np1**2
+            call put(row + i, log_stiffness_index, -1.0_wp / np1)
+            call put(row + i, exponent_index, -(-dlogx_dn + self%dlf_dn(i)))
+            call put(row + i, damping_index, -self%dlf_db(i))
+         end do
          row = row + nv
       end if
       if (self%has(restitution_series)) then
-         full_jac(row+1:row+nv, 3) = -self%velocity * restitution_derivative(b * self%velocity)
+         do i = 1, nv
+            call put(row + i, damping_index, &
+               & -self%velocity(i) * restitution_derivative(b * self%velocity(i)))
+         end do
       end if
-      jacobian = full_jac(:, pack([(j, j = 1, 3)], self%free))
+
+   contains
+
+      !> ln X = ln((n+1) m V^2/(2c))/(n+1) at speed i
+      pure function scaled_log_x(i) result(value)
+         integer, intent(in) :: i
+         real(wp) :: value
+         value = (log(0.5_wp * np1) + log(self%mass) + 2.0_wp * self%log_velocity(i) &
+            & - log_c) / np1
+      end function scaled_log_x
+
+      !> d residual(row)/d parameter, when the parameter is free
+      subroutine put(row_index, parameter, value)
+         integer, intent(in) :: row_index, parameter
+         real(wp), intent(in) :: value
+         if (col(parameter) > 0) jacobian(row_index, col(parameter)) = value
+      end subroutine put
+
    end subroutine evaluate_impact_data
 
    !> d ln tau/d n, d ln phi/d n, and V d ln tau/d beta, V d ln phi/d beta (the
@@ -782,7 +911,7 @@ contains
       real(wp), intent(in) :: n, b
       integer, intent(out) :: stat
       real(wp) :: hn, hb, beta, lt_h, lf_h
-      integer :: i, nv
+      integer :: i, nv, alloc_stat
 
       stat = hcimpact_ok
       if (self%deriv_cached .and. n == self%deriv_n .and. b == self%deriv_b) return
@@ -791,7 +920,15 @@ contains
       if (allocated(self%dlt_dn)) deallocate(self%dlt_dn, self%dlf_dn, self%dlt_db, &
          & self%dlf_db)
       allocate(self%dlt_dn(nv), self%dlf_dn(nv), self%dlt_db(nv), self%dlf_db(nv), &
-         & source=0.0_wp)
+         & stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      self%dlt_dn = 0.0_wp
+      self%dlf_dn = 0.0_wp
+      self%dlt_db = 0.0_wp
+      self%dlf_db = 0.0_wp
       if (self%free(exponent_index)) then
          hn = sqrt(epsilon(1.0_wp)) * max(1.0_wp, n)
          hn = (n + hn) - n
@@ -841,21 +978,56 @@ contains
       log_phi = log(outcome%peak_force)
    end subroutine scaled_impact
 
-   !> b_i = beta(e_i)/V_i from each point (e >= 1 gives 0).
-   function damping_estimates(velocity, restitution) result(b)
+   !> The starting b: the median of the single-point solutions b_i = beta(e_i)/V_i
+   !> (e >= 1 gives 0) of every point, or of start_points points spread evenly over
+   !> larger data sets (a start needs no more, and beta(e) costs about a microsecond
+   !> a point: 0.75 s of a fit of 2^20 points). stat: hcimpact_ok or out_of_memory.
+   subroutine damping_start(velocity, restitution, b0, stat)
       real(wp), intent(in) :: velocity(:), restitution(:)
-      real(wp) :: b(size(velocity))
-      b = restitution_inverse(min(restitution, 1.0_wp)) / velocity
-      where (.not. ieee_is_finite(b)) b = 0.0_wp
-   end function damping_estimates
+      real(wp), intent(out) :: b0
+      integer, intent(out) :: stat
+      real(wp), allocatable :: b(:)
+      integer :: i, j, n, m, alloc_stat
+
+      b0 = 0.0_wp
+      n = size(velocity)
+      m = min(n, start_points)
+      allocate(b(m), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      do i = 1, m
+         ! (i for m = n)
+         j = 1 + int(int(i - 1, int64) * n / m)
+         b(i) = restitution_inverse(min(restitution(j), 1.0_wp)) / velocity(j)
+         if (.not. ieee_is_finite(b(i))) b(i) = 0.0_wp
+      end do
+      call median_in_place(b, b0)
+      stat = hcimpact_ok
+   end subroutine damping_start
+
+   !> The model's speeds and their logarithms, allocated with stat=.
+   pure subroutine set_speeds(model, velocity, stat)
+      type(impact_data_model), intent(inout) :: model
+      real(wp), intent(in) :: velocity(:)
+      !> hcimpact_ok or out_of_memory
+      integer, intent(out) :: stat
+      call allocate_copy(velocity, model%velocity, stat)
+      if (stat == hcimpact_ok) call allocate_copy(velocity, model%log_velocity, stat)
+      if (stat == hcimpact_ok) model%log_velocity = log(model%log_velocity)
+   end subroutine set_speeds
 
    !> Validate a data series against the speeds (or deflections) it goes with: sizes,
    !> finiteness, positivity, and the sigmas if given.
-   function check_series(abscissa, values, kind, sigma) result(stat)
+   function check_series(abscissa, values, kind, sigma, abscissa_status) result(stat)
       real(wp), intent(in) :: abscissa(:), values(:)
       integer, intent(in) :: kind
       !> Standard deviations, or not allocated
       real(wp), allocatable, intent(in) :: sigma(:)
+      !> The status of an abscissa <= 0 (hcimpact_err_velocity for speeds,
+      !> hcimpact_err_domain for deflections)
+      integer, intent(in) :: abscissa_status
       integer :: stat
 
       stat = hcimpact_ok
@@ -875,7 +1047,7 @@ contains
             return
          end if
       end if
-      stat = check_positive(abscissa, hcimpact_err_velocity)
+      stat = check_positive(abscissa, abscissa_status)
       if (stat /= hcimpact_ok) return
       if (kind == restitution_series) then
          stat = check_positive(values, hcimpact_err_restitution)
@@ -925,13 +1097,14 @@ contains
 
    !> Sigma of each observation on the residual's scale: sigma_i/y_i for a logarithm
    !> (times and forces), sigma_i for restitution; ones when not given.
-   function series_sigma(values, kind, sigma, given) result(s)
+   pure subroutine series_sigma(values, kind, sigma, s, given)
       real(wp), intent(in) :: values(:)
       integer, intent(in) :: kind
       !> Standard deviations, or not allocated
       real(wp), allocatable, intent(in) :: sigma(:)
+      !> The sigmas, size(values)
+      real(wp), intent(out) :: s(:)
       logical, intent(out) :: given
-      real(wp) :: s(size(values))
       given = allocated(sigma)
       s = 1.0_wp
       if (.not. given) return
@@ -940,7 +1113,7 @@ contains
       else
          s = sigma / values
       end if
-   end function series_sigma
+   end subroutine series_sigma
 
    !> Covariance of parameters of which some were fitted as logarithms: first-order
    !> propagation, cov(p_i, p_j) = cov(ln p_i, ln p_j) p_i p_j for the logarithmic ones.
@@ -965,44 +1138,6 @@ contains
       fit%standard_errors = [(sqrt(max(fit%covariance(i, i), 0.0_wp)), &
          & i = 1, size(fit%parameters))]
    end subroutine finish_errors
-
-   !> Number of distinct values.
-   pure function count_distinct(x) result(count_x)
-      real(wp), intent(in) :: x(:)
-      integer :: count_x
-      integer :: i
-      count_x = 0
-      do i = 1, size(x)
-         if (.not. any(x(1:i-1) == x(i))) count_x = count_x + 1
-      end do
-   end function count_distinct
-
-   !> Median of a small array (insertion sort of a copy).
-   pure function median(x) result(med)
-      real(wp), intent(in) :: x(:)
-      real(wp) :: med
-      real(wp) :: s(size(x)), v
-      integer :: i, j, n
-      n = size(x)
-      s = x
-      do i = 2, n
-         v = s(i)
-         j = i - 1
-         do while (j >= 1)
-            if (.not. s(j) > v) exit
-            s(j+1) = s(j)
-            j = j - 1
-         end do
-         s(j+1) = v
-      end do
-      if (n == 0) then
-         med = 0.0_wp
-      else if (mod(n, 2) == 1) then
-         med = s((n + 1) / 2)
-      else
-         med = 0.5_wp * (s(n / 2) + s(n / 2 + 1))
-      end if
-   end function median
 
    !> The value of an optional logical flag (default .false.).
    pure function flag(value) result(on)

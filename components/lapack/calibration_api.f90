@@ -3,20 +3,24 @@
 !> hcimpact_calibration that check their pointers and copy the results out.
 !>
 !> Arrays are C arrays of `npoints` doubles. An optional array is a NULL pointer when
-!> absent (Fortran 2018 `optional` dummies of a bind(C) procedure); a NULL required
-!> pointer gives HCIMPACT_ERR_NULL (15 is HCIMPACT_ERR_UNDERDETERMINED). On any error
-!> every output that is not NULL is set to NaN. Optional inputs are copied into
-!> allocatables (unallocated: absent) before they are passed on: gfortran reads the
-!> address of an absent explicit-shape array when it passes it to an assumed-shape
-!> dummy, which the undefined-behaviour sanitizer reports. The declarations are in
-!> doc/calibration-c-api.h.txt (to be merged into include/hcimpact.h).
+!> absent (Fortran 2018 `optional` dummies of a bind(C) procedure). The rule of the
+!> whole C interface: a NULL required pointer (HCIMPACT_ERR_NULL) and a size error
+!> (HCIMPACT_ERR_SIZE: npoints < 0, or too large for the memory the fit needs) write
+!> nothing; on any other error every output that is not NULL is set to NaN.
+!> Optional inputs are copied into allocatables (unallocated: absent; the copies
+!> with stat=) before they are passed on: gfortran reads the address of an absent
+!> explicit-shape array when it passes it to an assumed-shape dummy, which the
+!> undefined-behaviour sanitizer reports. The declarations are in include/hcimpact.h
+!> (text also in doc/calibration-c-api.h.txt).
 module hcimpact_calibration_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int
+   use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size
    use hcimpact_calibration, only : fit_type, fit_damping, fit_damping_linear, &
       & fit_static, fit_elastic, fit_impact
+   use hcimpact_work_arrays, only : allocate_copy
    implicit none
    private
 
@@ -51,9 +55,6 @@ contains
       real(wp), allocatable :: sigma_in(:)
       integer :: istat
 
-      if (present(damping)) damping = nan()
-      if (present(standard_error)) standard_error = nan()
-      if (present(residuals)) residuals = nan()
       if (npoints < 0) then
          stat = hcimpact_err_size
          return
@@ -62,10 +63,18 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      if (present(sigma)) sigma_in = sigma
-      call fit_damping(velocity, restitution, fit, istat, sigma_in, absolute_sigma /= 0)
+      istat = hcimpact_ok
+      if (present(sigma)) call allocate_copy(sigma, sigma_in, istat)
+      if (istat == hcimpact_ok) &
+         & call fit_damping(velocity, restitution, fit, istat, sigma_in, absolute_sigma /= 0)
       stat = int(istat, c_int)
-      if (istat /= hcimpact_ok) return
+      if (istat == hcimpact_err_size) return
+      if (istat /= hcimpact_ok) then
+         damping = nan()
+         if (present(standard_error)) standard_error = nan()
+         if (present(residuals)) residuals = nan()
+         return
+      end if
       damping = fit%parameters(1)
       if (present(standard_error)) standard_error = fit%standard_errors(1)
       if (present(residuals)) residuals = fit%residuals
@@ -97,9 +106,6 @@ contains
       real(wp), allocatable :: sigma_in(:)
       integer :: istat
 
-      if (present(damping)) damping = nan()
-      if (present(standard_error)) standard_error = nan()
-      if (present(residuals)) residuals = nan()
       if (npoints < 0) then
          stat = hcimpact_err_size
          return
@@ -108,10 +114,18 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      if (present(sigma)) sigma_in = sigma
-      call fit_damping_linear(velocity, restitution, fit, istat, sigma_in, absolute_sigma /= 0)
+      istat = hcimpact_ok
+      if (present(sigma)) call allocate_copy(sigma, sigma_in, istat)
+      if (istat == hcimpact_ok) &
+         & call fit_damping_linear(velocity, restitution, fit, istat, sigma_in, absolute_sigma /= 0)
       stat = int(istat, c_int)
-      if (istat /= hcimpact_ok) return
+      if (istat == hcimpact_err_size) return
+      if (istat /= hcimpact_ok) then
+         damping = nan()
+         if (present(standard_error)) standard_error = nan()
+         if (present(residuals)) residuals = nan()
+         return
+      end if
       damping = fit%parameters(1)
       if (present(standard_error)) standard_error = fit%standard_errors(1)
       if (present(residuals)) residuals = fit%residuals
@@ -142,9 +156,6 @@ contains
       real(wp), allocatable :: sigma_in(:)
       integer :: istat
 
-      if (present(parameters)) parameters = nan()
-      if (present(covariance)) covariance = nan()
-      if (present(residuals)) residuals = nan()
       if (npoints < 0) then
          stat = hcimpact_err_size
          return
@@ -153,10 +164,18 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      if (present(sigma)) sigma_in = sigma
-      call fit_static(deflection, force, fit, istat, sigma_in, absolute_sigma /= 0)
+      istat = hcimpact_ok
+      if (present(sigma)) call allocate_copy(sigma, sigma_in, istat)
+      if (istat == hcimpact_ok) &
+         & call fit_static(deflection, force, fit, istat, sigma_in, absolute_sigma /= 0)
       stat = int(istat, c_int)
-      if (istat /= hcimpact_ok) return
+      if (istat == hcimpact_err_size) return
+      if (istat /= hcimpact_ok) then
+         parameters = nan()
+         if (present(covariance)) covariance = nan()
+         if (present(residuals)) residuals = nan()
+         return
+      end if
       parameters = fit%parameters
       if (present(covariance)) covariance = fit%covariance
       if (present(residuals)) residuals = fit%residuals
@@ -198,11 +217,8 @@ contains
       real(wp), allocatable :: t(:), f(:), st(:), sf(:), g(:)
       integer :: istat, m
 
-      m = npoints * (count([present(contact_time), present(peak_force)]))
-      if (present(parameters)) parameters = nan()
-      if (present(covariance)) covariance = nan()
-      if (present(residuals)) residuals(1:m) = nan()
-      if (npoints < 0) then
+      ! (the number of residuals, 2 npoints at most, must fit an int)
+      if (npoints < 0 .or. 2 * int(npoints, int64) > huge(npoints)) then
          stat = hcimpact_err_size
          return
       end if
@@ -210,14 +226,25 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      if (present(contact_time)) t = contact_time
-      if (present(peak_force)) f = peak_force
-      if (present(sigma_time)) st = sigma_time
-      if (present(sigma_force)) sf = sigma_force
+      m = npoints * (count([present(contact_time), present(peak_force)]))
+      istat = hcimpact_ok
+      if (present(contact_time)) call allocate_copy(contact_time, t, istat)
+      if (present(peak_force) .and. istat == hcimpact_ok) call allocate_copy(peak_force, f, istat)
+      if (present(sigma_time) .and. istat == hcimpact_ok) &
+         & call allocate_copy(sigma_time, st, istat)
+      if (present(sigma_force) .and. istat == hcimpact_ok) &
+         & call allocate_copy(sigma_force, sf, istat)
       if (present(guess)) g = guess
-      call fit_elastic(mass, damping, velocity, fit, istat, t, f, st, sf, absolute_sigma /= 0, g)
+      if (istat == hcimpact_ok) call fit_elastic(mass, damping, velocity, fit, istat, t, f, &
+         & st, sf, absolute_sigma /= 0, g)
       stat = int(istat, c_int)
-      if (istat /= hcimpact_ok) return
+      if (istat == hcimpact_err_size) return
+      if (istat /= hcimpact_ok) then
+         parameters = nan()
+         if (present(covariance)) covariance = nan()
+         if (present(residuals)) residuals(1:m) = nan()
+         return
+      end if
       parameters = fit%parameters
       if (present(covariance)) covariance = fit%covariance
       if (present(residuals)) residuals(1:m) = fit%residuals
@@ -261,11 +288,8 @@ contains
       real(wp), allocatable :: t(:), f(:), e(:), st(:), sf(:), se(:), g(:)
       integer :: istat, m
 
-      m = npoints * count([present(contact_time), present(peak_force), present(restitution)])
-      if (present(parameters)) parameters = nan()
-      if (present(covariance)) covariance = nan()
-      if (present(residuals)) residuals(1:m) = nan()
-      if (npoints < 0) then
+      ! (the number of residuals, 3 npoints at most, must fit an int)
+      if (npoints < 0 .or. 3 * int(npoints, int64) > huge(npoints)) then
          stat = hcimpact_err_size
          return
       end if
@@ -273,16 +297,29 @@ contains
          stat = hcimpact_err_null
          return
       end if
-      if (present(contact_time)) t = contact_time
-      if (present(peak_force)) f = peak_force
-      if (present(restitution)) e = restitution
-      if (present(sigma_time)) st = sigma_time
-      if (present(sigma_force)) sf = sigma_force
-      if (present(sigma_restitution)) se = sigma_restitution
+      m = npoints * count([present(contact_time), present(peak_force), present(restitution)])
+      istat = hcimpact_ok
+      if (present(contact_time)) call allocate_copy(contact_time, t, istat)
+      if (present(peak_force) .and. istat == hcimpact_ok) call allocate_copy(peak_force, f, istat)
+      if (present(restitution) .and. istat == hcimpact_ok) &
+         & call allocate_copy(restitution, e, istat)
+      if (present(sigma_time) .and. istat == hcimpact_ok) &
+         & call allocate_copy(sigma_time, st, istat)
+      if (present(sigma_force) .and. istat == hcimpact_ok) &
+         & call allocate_copy(sigma_force, sf, istat)
+      if (present(sigma_restitution) .and. istat == hcimpact_ok) &
+         & call allocate_copy(sigma_restitution, se, istat)
       if (present(guess)) g = guess
-      call fit_impact(mass, velocity, fit, istat, t, f, e, st, sf, se, absolute_sigma /= 0, g)
+      if (istat == hcimpact_ok) call fit_impact(mass, velocity, fit, istat, t, f, e, st, sf, &
+         & se, absolute_sigma /= 0, g)
       stat = int(istat, c_int)
-      if (istat /= hcimpact_ok) return
+      if (istat == hcimpact_err_size) return
+      if (istat /= hcimpact_ok) then
+         parameters = nan()
+         if (present(covariance)) covariance = nan()
+         if (present(residuals)) residuals(1:m) = nan()
+         return
+      end if
       parameters = fit%parameters
       if (present(covariance)) covariance = fit%covariance
       if (present(residuals)) residuals(1:m) = fit%residuals

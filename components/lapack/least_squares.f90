@@ -21,13 +21,16 @@
 !>   the parameters), the unscaled covariance (J^T W J)^-1 = V S^-2 V^T, and the
 !>   leverages (diagonal of the hat matrix) of the observations.
 !>
-!> Nothing here prints or stops; errors are status codes of hcimpact_status.
+!> Nothing here prints or stops; errors are status codes of hcimpact_status. Arrays
+!> that grow with the observations are allocated with stat= (hcimpact_work_arrays:
+!> out_of_memory when that fails).
 module hcimpact_least_squares
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_no_convergence, &
       & hcimpact_err_underdetermined, hcimpact_err_size, hcimpact_err_domain
    use hcimpact_lapack_interfaces, only : dgels, dgelsy, dgesvd
+   use hcimpact_work_arrays, only : out_of_memory
    implicit none
    private
 
@@ -92,7 +95,8 @@ contains
    !>
    !> Errors: hcimpact_err_size (shapes disagree or fewer rows than columns),
    !> hcimpact_err_underdetermined (rank below the number of columns; x is then the
-   !> minimum-norm solution), hcimpact_err_domain (LAPACK rejected an argument).
+   !> minimum-norm solution), hcimpact_err_domain (LAPACK rejected an argument),
+   !> out_of_memory.
    subroutine linear_least_squares(a, y, x, rank, stat)
       !> Matrix, m x p with m >= p
       real(wp), intent(in) :: a(:, :)
@@ -107,7 +111,7 @@ contains
       real(wp), allocatable :: af(:, :), b(:, :), work(:)
       integer, allocatable :: jpvt(:)
       real(wp) :: query(1)
-      integer :: m, p, info
+      integer :: m, p, info, alloc_stat
 
       m = size(a, 1)
       p = size(a, 2)
@@ -117,12 +121,20 @@ contains
          stat = hcimpact_err_size
          return
       end if
-      allocate(af, source=a)
-      allocate(b(m, 1))
+      allocate(af(m, p), b(m, 1), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      af(:, :) = a
       b(:, 1) = y
       allocate(jpvt(p), source=0)
       call dgelsy(m, p, 1, af, m, b, m, jpvt, rank_tolerance, rank, query, -1, info)
-      allocate(work(max(1, nint(query(1)))))
+      allocate(work(max(1, nint(query(1)))), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
       call dgelsy(m, p, 1, af, m, b, m, jpvt, rank_tolerance, rank, work, size(work), info)
       if (info /= 0) then
          stat = hcimpact_err_domain
@@ -146,7 +158,8 @@ contains
    !>
    !> Errors: hcimpact_err_underdetermined (a zero column, or a singular value below
    !> rank_tolerance times the largest: outputs NaN-free but meaningless),
-   !> hcimpact_err_size, hcimpact_err_no_convergence (the SVD did not converge).
+   !> hcimpact_err_size, hcimpact_err_no_convergence (the SVD did not converge),
+   !> out_of_memory.
    subroutine jacobian_analysis(jacobian, covariance, stat, condition, leverage)
       !> Weighted Jacobian, m x p with m >= p
       real(wp), intent(in) :: jacobian(:, :)
@@ -161,7 +174,7 @@ contains
       real(wp), intent(out), optional :: leverage(:)
       real(wp), allocatable :: a(:, :), s(:), u(:, :), vt(:, :), work(:), scale(:)
       real(wp) :: query(1)
-      integer :: m, p, info, j, k
+      integer :: m, p, info, j, k, alloc_stat
 
       m = size(jacobian, 1)
       p = size(jacobian, 2)
@@ -180,12 +193,20 @@ contains
          stat = hcimpact_err_underdetermined
          return
       end if
-      allocate(a(m, p), s(p), u(m, p), vt(p, p))
+      allocate(a(m, p), s(p), u(m, p), vt(p, p), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
       do j = 1, p
          a(:, j) = jacobian(:, j) / scale(j)
       end do
       call dgesvd('S', 'A', m, p, a, m, s, u, m, vt, p, query, -1, info)
-      allocate(work(max(1, nint(query(1)))))
+      allocate(work(max(1, nint(query(1)))), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
       call dgesvd('S', 'A', m, p, a, m, s, u, m, vt, p, work, size(work), info)
       if (info /= 0) then
          stat = hcimpact_err_no_convergence
@@ -207,7 +228,11 @@ contains
       end do
       if (present(leverage)) then
          if (size(leverage) == m) then
-            leverage = sum(u**2, dim=2)
+            ! (a loop: sum(u**2, dim=2) may build u**2 as an unchecked temporary)
+            leverage = 0.0_wp
+            do k = 1, p
+               leverage = leverage + u(:, k)**2
+            end do
          end if
       end if
       stat = hcimpact_ok
@@ -224,7 +249,9 @@ contains
    !>
    !> Errors: the model's status at the starting point; hcimpact_err_underdetermined
    !> (the starting Jacobian is rank deficient: the data cannot determine theta);
-   !> hcimpact_err_no_convergence (max_iterations reached); hcimpact_err_size.
+   !> hcimpact_err_no_convergence (max_iterations reached); hcimpact_err_size;
+   !> out_of_memory (also from the model at a trial point: any other status there
+   !> only rejects the step).
    subroutine levenberg_marquardt(model, theta, weight, lower, stat, iterations, &
          & max_iterations)
       !> The model
@@ -245,7 +272,7 @@ contains
          & trial(:), dx(:)
       logical, allocatable :: frozen(:)
       real(wp) :: cost, cost_trial, mu, reduction
-      integer :: m, p, iter, max_iter, j
+      integer :: m, p, iter, max_iter, j, alloc_stat
       logical :: accepted, converged, moved, solved
 
       m = size(weight)
@@ -258,14 +285,16 @@ contains
          return
       end if
       allocate(r(m), rt(m), jac(m, p), jac_trial(m, p), d(p), step(p), trial(p), dx(p), &
-         & frozen(p))
+         & frozen(p), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
 
       call weighted_evaluation(model, theta, weight, r, stat, jac)
       if (stat /= hcimpact_ok) return
-      if (.not. full_rank(jac)) then
-         stat = hcimpact_err_underdetermined
-         return
-      end if
+      call check_rank(jac, stat)
+      if (stat /= hcimpact_ok) return
       cost = dot_product(r, r)
       do j = 1, p
          d(j) = norm2(jac(:, j))
@@ -278,13 +307,15 @@ contains
          accepted = .false.
          moved = .false.
          do
-            call damped_step(jac, r, d, mu, theta, lower, step, frozen, solved)
+            call damped_step(jac, r, d, mu, theta, lower, step, frozen, solved, stat)
+            if (stat /= hcimpact_ok) return
             if (solved) then
                trial = max(theta + step, lower)
                dx = trial - theta
                moved = any(dx /= 0.0_wp)
                if (.not. moved) exit
                call weighted_evaluation(model, trial, weight, rt, stat)
+               if (stat == out_of_memory) return
                if (stat == hcimpact_ok) then
                   cost_trial = dot_product(rt, rt)
                   accepted = cost_trial < cost
@@ -292,6 +323,7 @@ contains
                if (accepted) then
                   ! the Jacobian there too; a point where it fails is not taken
                   call weighted_evaluation(model, trial, weight, rt, stat, jac_trial)
+                  if (stat == out_of_memory) return
                   if (stat == hcimpact_ok) exit
                   accepted = .false.
                end if
@@ -380,32 +412,34 @@ contains
       end do
    end function small_gradient
 
-   !> Whether the column-scaled matrix has full column rank (singular values).
-   function full_rank(jac) result(ok)
+   !> hcimpact_ok when the column-scaled matrix has full column rank (singular values),
+   !> hcimpact_err_underdetermined when not, out_of_memory.
+   subroutine check_rank(jac, stat)
       real(wp), intent(in) :: jac(:, :)
-      logical :: ok
+      integer, intent(out) :: stat
       real(wp), allocatable :: cov(:, :)
-      integer :: stat
       allocate(cov(size(jac, 2), size(jac, 2)))
       call jacobian_analysis(jac, cov, stat)
-      ok = stat == hcimpact_ok
-   end function full_rank
+      if (stat /= hcimpact_ok .and. stat /= out_of_memory) stat = hcimpact_err_underdetermined
+   end subroutine check_rank
 
    !> The Levenberg-Marquardt step: min ||J delta + r||^2 + mu ||D delta||^2 over the
    !> parameters that are free (a parameter on its lower bound whose unconstrained step
    !> points outwards is frozen at zero step), by QR of the stacked matrix (dgels).
-   subroutine damped_step(jac, r, d, mu, theta, lower, step, frozen, solved)
+   subroutine damped_step(jac, r, d, mu, theta, lower, step, frozen, solved, stat)
       real(wp), intent(in) :: jac(:, :), r(:), d(:), mu, theta(:), lower(:)
       real(wp), intent(out) :: step(:)
       logical, intent(out) :: frozen(:)
       !> False when the linear problem could not be solved (singular without damping)
       logical, intent(out) :: solved
+      !> hcimpact_ok or out_of_memory
+      integer, intent(out) :: stat
       integer :: pass
 
       frozen = .false.
       do pass = 1, size(theta)
-         call solve_free(jac, r, d, mu, frozen, step, solved)
-         if (.not. solved) return
+         call solve_free(jac, r, d, mu, frozen, step, solved, stat)
+         if (stat /= hcimpact_ok .or. .not. solved) return
          ! freeze the parameters on their bounds that the step pushes outwards
          if (.not. any(.not. frozen .and. theta <= lower .and. step < 0.0_wp)) exit
          where (theta <= lower .and. step < 0.0_wp) frozen = .true.
@@ -417,21 +451,23 @@ contains
    end subroutine damped_step
 
    !> The damped least-squares step over the columns not frozen.
-   subroutine solve_free(jac, r, d, mu, frozen, step, solved)
+   subroutine solve_free(jac, r, d, mu, frozen, step, solved, stat)
       real(wp), intent(in) :: jac(:, :), r(:), d(:), mu
       logical, intent(in) :: frozen(:)
       real(wp), intent(out) :: step(:)
       logical, intent(out) :: solved
+      integer, intent(out) :: stat
       real(wp), allocatable :: a(:, :), b(:, :), work(:)
       integer, allocatable :: cols(:)
       real(wp) :: query(1)
-      integer :: m, q, rows, info, k
+      integer :: m, q, rows, info, k, alloc_stat
 
       m = size(jac, 1)
       cols = pack([(k, k = 1, size(jac, 2))], .not. frozen)
       q = size(cols)
       step = 0.0_wp
       solved = .true.
+      stat = hcimpact_ok
       if (q == 0) return
       solved = .false.
       if (mu > 0.0_wp) then
@@ -439,8 +475,14 @@ contains
       else
          rows = m
       end if
-      allocate(a(rows, q), b(rows, 1))
-      a(1:m, :) = jac(:, cols)
+      allocate(a(rows, q), b(rows, 1), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
+      do k = 1, q
+         a(1:m, k) = jac(:, cols(k))
+      end do
       b(1:m, 1) = -r
       if (mu > 0.0_wp) then
          a(m+1:, :) = 0.0_wp
@@ -450,7 +492,11 @@ contains
          b(m+1:, 1) = 0.0_wp
       end if
       call dgels('N', rows, q, 1, a, rows, b, rows, query, -1, info)
-      allocate(work(max(1, nint(query(1)))))
+      allocate(work(max(1, nint(query(1)))), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         stat = out_of_memory
+         return
+      end if
       call dgels('N', rows, q, 1, a, rows, b, rows, work, size(work), info)
       if (info /= 0) return
       if (.not. all(ieee_is_finite(b(1:q, 1)))) return

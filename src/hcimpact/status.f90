@@ -3,11 +3,18 @@
 !>
 !> Every procedure that can reject its input returns one of these codes; 0 means
 !> success. The same numbers are the `HCIMPACT_*` macros of include/hcimpact.h.
+!>
+!> The texts live in one table, `status_texts` (a named constant, so that a constant
+!> table of another interface can be initialised from it). `status_message` returns
+!> a text without trailing blanks; its length is a specification expression, not a
+!> deferred length: gfortran keeps the length of a deferred-length function result
+!> in a hidden static variable of every caller (even with -frecursive), which two
+!> threads calling at once would share.
 module hcimpact_status
    implicit none
    private
 
-   public :: status_message
+   public :: status_message, status_texts, max_status_code
    public :: hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
       & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
@@ -49,51 +56,67 @@ module hcimpact_status
    !> that do not vary enough, e.g. all at one speed)
    integer, parameter :: hcimpact_err_underdetermined = 15
 
+   !> Largest status code with a text of its own
+   integer, parameter :: max_status_code = hcimpact_err_underdetermined
+   !> Length of every entry of `status_texts` (blank-padded)
+   integer, parameter :: status_text_length = 79
+
+   !> The text of each status code 0 .. max_status_code, then (at max_status_code + 1)
+   !> the one for codes without a text, blank-padded to status_text_length. The only
+   !> copy of the messages: status_message reads it, and the C layer's constant table
+   !> must say the same (test/api/status_table.f90).
+   character(len=status_text_length), parameter :: status_texts(0:max_status_code + 1) = [ &
+      & character(len=status_text_length) :: &
+      & "success", &
+      & "an argument is NaN or infinite", &
+      & "mass must be positive", &
+      & "stiffness must be positive", &
+      & "exponent of the power law must be at least 1e-6", &
+      & "approach velocity must be positive", &
+      & "damping must not be negative", &
+      & "target restitution must lie in (0, 1]", &
+      & "argument outside the domain of the function", &
+      & "iteration or quadrature did not converge within its bound", &
+      & "a required pointer argument is NULL", &
+      & "the ODE solver failed", &
+      & "the requested component is not part of this build", &
+      & "the elastic law returned an invalid value", &
+      & "an array argument has the wrong size", &
+      & "the data cannot determine the parameters (too few or too similar points)", &
+      & "unknown status code"]
+
 contains
 
-   !> Text for a status code (never empty; unknown codes say so).
+   !> Row of status_texts for a status code: the code itself, or the last row.
+   pure function status_index(stat) result(row)
+      !> Status code
+      integer, intent(in) :: stat
+      !> Index into status_texts
+      integer :: row
+
+      row = max_status_code + 1
+      if (stat >= 0 .and. stat <= max_status_code) row = stat
+   end function status_index
+
+   !> Length of status_message(stat) (a specification function of its result).
+   pure function status_message_length(stat) result(length)
+      !> Status code
+      integer, intent(in) :: stat
+      !> Number of characters
+      integer :: length
+
+      length = len_trim(status_texts(status_index(stat)))
+   end function status_message_length
+
+   !> Text for a status code (never empty; unknown codes say so), without trailing
+   !> blanks. Thread-safe: nothing static, in the callee or in the caller.
    pure function status_message(stat) result(message)
       !> Status code
       integer, intent(in) :: stat
       !> Human-readable description
-      character(len=:), allocatable :: message
+      character(len=status_message_length(stat)) :: message
 
-      select case (stat)
-      case (hcimpact_ok)
-         message = "success"
-      case (hcimpact_err_not_finite)
-         message = "an argument is NaN or infinite"
-      case (hcimpact_err_mass)
-         message = "mass must be positive"
-      case (hcimpact_err_stiffness)
-         message = "stiffness must be positive"
-      case (hcimpact_err_exponent)
-         message = "exponent of the power law must be at least 1e-6"
-      case (hcimpact_err_velocity)
-         message = "approach velocity must be positive"
-      case (hcimpact_err_damping)
-         message = "damping must not be negative"
-      case (hcimpact_err_restitution)
-         message = "target restitution must lie in (0, 1]"
-      case (hcimpact_err_domain)
-         message = "argument outside the domain of the function"
-      case (hcimpact_err_no_convergence)
-         message = "iteration or quadrature did not converge within its bound"
-      case (hcimpact_err_null)
-         message = "a required pointer argument is NULL"
-      case (hcimpact_err_solver)
-         message = "the ODE solver failed"
-      case (hcimpact_err_unavailable)
-         message = "the requested component is not part of this build"
-      case (hcimpact_err_elastic_law)
-         message = "the elastic law returned an invalid value"
-      case (hcimpact_err_size)
-         message = "an array argument has the wrong size"
-      case (hcimpact_err_underdetermined)
-         message = "the data cannot determine the parameters (too few or too similar points)"
-      case default
-         message = "unknown status code"
-      end select
+      message = status_texts(status_index(stat))
    end function status_message
 
 end module hcimpact_status

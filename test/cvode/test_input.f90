@@ -36,6 +36,7 @@ contains
          & new_unittest("too-much-work", test_too_much_work), &
          & new_unittest("too-much-accuracy", test_too_much_accuracy), &
          & new_unittest("max-time", test_max_time), &
+         & new_unittest("extreme-time-options", test_extreme_time_options), &
          & new_unittest("beta-too-large", test_beta_too_large), &
          & new_unittest("flag-names", test_flag_names) &
          & ]
@@ -229,6 +230,61 @@ contains
       call expect_status(error, ball, hcimpact_err_no_convergence, "max_time 10 us", &
          & cvode_options(method=cvode_bdf, max_time=1.0e-5_wp))
    end subroutine test_max_time
+
+   !> max_time and initial_step at the ends of the double range, for the power law and
+   !> a user's law, the time unit far below and above 1 s: a run that agrees with the
+   !> default one, or a status; never an overflow (max_time = huge(1.0_wp) divided by
+   !> the time unit 1e-4 s trapped in the Debug build, issue 13).
+   subroutine test_extreme_time_options(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: extremes(4) = [huge(1.0_wp), 1.0e300_wp, tiny(1.0_wp), &
+         & 1.0e-310_wp]
+      type(simulation_type) :: reference, sim
+      type(contact_type) :: c
+      integer :: stat, i, j, k
+      character(len=80) :: what
+
+      do k = 1, 3
+         c = ball
+         ! time units about 1e-4 s (the ball), 1e-16 s and 1e8 s
+         if (k == 2) c%mass = 1.0e-30_wp
+         if (k == 3) c%velocity = 1.0e-12_wp
+         call simulate(c, reference, stat)
+         call check(error, stat, hcimpact_ok, "default options: " // reference%message)
+         if (allocated(error)) return
+         do i = 1, size(extremes)
+            do j = 1, 3
+               write(what, '(a, i0, a, es10.3)') "contact ", k, ", value ", extremes(i)
+               select case (j)
+               case (1)
+                  call simulate(c, sim, stat, cvode_options(max_time=extremes(i)))
+                  what = trim(what) // ", max_time"
+               case (2)
+                  call simulate(c, sim, stat, cvode_options(initial_step=extremes(i)))
+                  what = trim(what) // ", initial_step"
+               case default
+                  call simulate(power_law(stiffness=c%stiffness, exponent=c%exponent), &
+                     & c%mass, c%damping, c%velocity, sim, stat, &
+                     & cvode_options(max_time=extremes(i), initial_step=extremes(i)))
+                  what = trim(what) // ", both, user law"
+               end select
+               if (stat == hcimpact_ok) then
+                  call check(error, abs(sim%outcome%contact_time / reference%outcome%contact_time &
+                     & - 1.0_wp) < 1.0e-5_wp, trim(what) // ": contact time")
+               else
+                  call check(error, all_nan(sim%outcome) .and. len(sim%message) > 0, &
+                     & trim(what) // ": a status with NaN outputs")
+               end if
+               if (allocated(error)) return
+               ! the largest values give a correct run (no limit; the first step capped)
+               if (i == 1) then
+                  call check(error, stat, hcimpact_ok, trim(what) // ": " // sim%message)
+                  if (allocated(error)) return
+               end if
+            end do
+         end do
+      end do
+   end subroutine test_extreme_time_options
 
    !> beta = 1e300: the absolute tolerance of x' would be 1e-308.
    subroutine test_beta_too_large(error)

@@ -57,6 +57,7 @@ contains
          & new_unittest("external-force-derivatives", test_extra_spring), &
          & new_unittest("length-scale-option", test_length_scale), &
          & new_unittest("broken-law", test_broken_law), &
+         & new_unittest("law-broken-early", test_law_broken_early), &
          & new_unittest("contact-never-ends", test_never_ends) &
          & ]
    end subroutine collect_law
@@ -283,6 +284,23 @@ contains
       if (allocated(error)) return
       call check(error, index(sim%message, "CV_") > 0, "CVODE's flag: " // sim%message)
    end subroutine test_broken_law
+
+   !> A law that breaks down (NaN) early in the compression, with damping: the
+   !> status names the law at once (CVODE's CV_RHSFUNC_FAIL or CV_LSETUP_FAIL). When
+   !> a law's failure was recoverable, CVODE crept towards x_bad in ever smaller steps
+   !> and gave up after max_steps (500 000 steps, 1.8 s, hcimpact_err_solver).
+   subroutine test_law_broken_early(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(simulation_type) :: sim
+      integer :: stat
+      ! x_max is about 1e-2 m; the law breaks at 5e-3 of it
+      call simulate(broken_law(c=1.0e4_wp, x_bad=5.0e-5_wp), 1.0_wp, 0.1_wp, 1.0_wp, &
+         & sim, stat)
+      call check(error, stat, hcimpact_err_elastic_law, "broken early: " // sim%message)
+      if (allocated(error)) return
+      call check(error, sim%counters%steps < 1000, "broken early: steps taken before " &
+         & // "the status (at most 1000): " // sim%message)
+   end subroutine test_law_broken_early
 
    !> Hunt-Crossley damping and a force pressing harder than the spring can push back
    !> before the motion dies out: the body settles at x = g0/c and never leaves.

@@ -93,12 +93,52 @@ int main(void)
   check_close("fit_impact n", parameters[1], n, 1e-12);
   check_close("fit_impact b", parameters[2] + 1.0, 1.0, 1e-12);
 
-  /* errors: a required NULL, data at one speed; outputs become NaN */
+  /* errors, the header's rule: a NULL or a size error writes nothing; any other
+     error sets every output given to NaN */
+  damping = standard_error = 42.0;
+  parameters[0] = parameters[1] = covariance[0] = residuals[0] = 42.0;
   check_status("fit_damping, velocity NULL",
-               hcimpact_fit_damping(NPOINTS, NULL, e, NULL, 0, &damping, &standard_error, NULL),
+               hcimpact_fit_damping(NPOINTS, NULL, e, NULL, 0, &damping, &standard_error,
+                                    residuals), HCIMPACT_ERR_NULL);
+  check_status("fit_damping_linear, npoints -1",
+               hcimpact_fit_damping_linear(-1, v, e, NULL, 0, &damping, &standard_error,
+                                           residuals), HCIMPACT_ERR_SIZE);
+  check_status("fit_static, force NULL",
+               hcimpact_fit_static(NPOINTS, x, NULL, NULL, 0, parameters, covariance, residuals),
                HCIMPACT_ERR_NULL);
-  check_nan("fit_damping b after NULL", damping);
-  check_nan("fit_damping standard error after NULL", standard_error);
+  check_status("fit_elastic, npoints -1",
+               hcimpact_fit_elastic(-1, mass, 0.0, v, t, fm, NULL, NULL, 0, NULL, parameters,
+                                    covariance, residuals), HCIMPACT_ERR_SIZE);
+  check_status("fit_impact, velocity NULL",
+               hcimpact_fit_impact(NPOINTS, mass, NULL, t, fm, one, NULL, NULL, NULL, 0, NULL,
+                                   parameters, covariance, residuals), HCIMPACT_ERR_NULL);
+  check_status("fit_impact, npoints too large for the residual count",
+               hcimpact_fit_impact(2147483647, mass, v, t, fm, one, NULL, NULL, NULL, 0, NULL,
+                                   parameters, covariance, residuals), HCIMPACT_ERR_SIZE);
+  if (!(damping == 42.0 && standard_error == 42.0 && parameters[0] == 42.0
+        && parameters[1] == 42.0 && covariance[0] == 42.0 && residuals[0] == 42.0)) {
+    printf("FAIL NULL and size errors wrote an output\n");
+    ++failures;
+  }
+  /* a NaN deflection: HCIMPACT_ERR_NOT_FINITE (not HCIMPACT_ERR_DOMAIN), outputs NaN */
+  {
+    double bad = x[3];
+    x[3] = NAN;
+    check_status("fit_static, NaN deflection",
+                 hcimpact_fit_static(NPOINTS, x, f, NULL, 0, parameters, covariance, residuals),
+                 HCIMPACT_ERR_NOT_FINITE);
+    x[3] = bad;
+    check_nan("fit_static c after NaN", parameters[0]);
+    check_nan("fit_static covariance after NaN", covariance[3]);
+    check_nan("fit_static residual after NaN", residuals[NPOINTS - 1]);
+  }
+  e[2] = NAN;
+  check_status("fit_damping, NaN restitution",
+               hcimpact_fit_damping(NPOINTS, v, e, NULL, 0, &damping, &standard_error, NULL),
+               HCIMPACT_ERR_NOT_FINITE);
+  e[2] = hcimpact_restitution(b * v[2]);
+  check_nan("fit_damping b after NaN", damping);
+  check_nan("fit_damping standard error after NaN", standard_error);
   for (i = 0; i < NPOINTS; ++i) v[i] = 2.0;
   check_status("fit_elastic, times at one speed",
                hcimpact_fit_elastic(NPOINTS, mass, 0.0, v, t, NULL, NULL, NULL, 0, NULL,

@@ -12,6 +12,7 @@ program lapack_tester
    use test_fit_static, only : collect_fit_static
    use test_fit_impact, only : collect_fit_impact
    use test_fit_errors, only : collect_fit_errors
+   use test_order_statistics, only : collect_order_statistics
    implicit none
    type(testsuite_type), allocatable :: testsuites(:)
 
@@ -20,7 +21,8 @@ program lapack_tester
       new_testsuite("fit_damping", collect_fit_damping), &
       new_testsuite("fit_static", collect_fit_static), &
       new_testsuite("fit_impact", collect_fit_impact), &
-      new_testsuite("fit_errors", collect_fit_errors) &
+      new_testsuite("fit_errors", collect_fit_errors), &
+      new_testsuite("order_statistics", collect_order_statistics) &
       ]
 
    call run_tester(testsuites)

@@ -118,6 +118,13 @@ contains
       if (allocated(error)) return
       call fit_static(x, f(1:5), fit, stat)
       call expect(error, stat, hcimpact_err_size, fit, "sizes")
+      if (allocated(error)) return
+      ! finiteness before sign (issue 13: a NaN deflection gave hcimpact_err_domain)
+      call fit_static([x(1:5), ieee_value(1.0_wp, ieee_quiet_nan)], f, fit, stat)
+      call expect(error, stat, hcimpact_err_not_finite, fit, "NaN deflection")
+      if (allocated(error)) return
+      call fit_static([ieee_value(1.0_wp, ieee_quiet_nan), x(2:)], f, fit, stat)
+      call expect(error, stat, hcimpact_err_not_finite, fit, "NaN first deflection")
    end subroutine test_static
 
    subroutine test_elastic(error)

@@ -18,6 +18,7 @@ program tester
    use test_double_double, only : collect_double_double
    use test_modified_cc, only : collect_modified_cc
    use test_contact_force, only : collect_contact_force
+   use test_legacy_damping, only : collect_legacy_damping
    implicit none
    type(testsuite_type), allocatable :: testsuites(:)
 
@@ -30,7 +31,8 @@ program tester
       new_testsuite("hertz", collect_hertz), &
       new_testsuite("double_double", collect_double_double), &
       new_testsuite("modified_cc", collect_modified_cc), &
-      new_testsuite("contact_force", collect_contact_force) &
+      new_testsuite("contact_force", collect_contact_force), &
+      new_testsuite("legacy_damping", collect_legacy_damping) &
       ]
 
    call run_tester(testsuites)

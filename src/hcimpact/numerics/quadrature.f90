@@ -54,6 +54,16 @@ module hcimpact_quadrature
    !> max_levels is outside 2 .. tanh_sinh_max_levels
    integer(ik), parameter :: quadrature_invalid_levels = 5_ik
 
+   !> Texts of the status codes 0 .. 5 (blank-padded), then the one for unknown codes
+   character(len=60), parameter :: quadrature_texts(0:6) = [character(len=60) :: &
+      & "converged to the requested tolerance", &
+      & "tolerance not met at the last level allowed", &
+      & "the integrand returned NaN or an infinity", &
+      & "interval ends must be finite with a <= b and b - a finite", &
+      & "rtol must be positive and atol non-negative", &
+      & "max_levels outside the range of the node tables", &
+      & "unknown status"]
+
    !> Deepest level of the node tables: the finest step is 2**(-tanh_sinh_max_levels)
    integer(ik), parameter :: tanh_sinh_max_levels = 10_ik
    !> Number of levels tried when the caller does not say (finest step 1/256)
@@ -211,29 +221,37 @@ contains
       fx = self%fun(x, dxa, dxb)
    end function function_integrand_eval
 
-   !> Short English description of a status code.
+   !> Row of quadrature_texts for a status code (the last row for unknown codes).
+   pure function quadrature_message_row(status) result(row)
+      !> One of the quadrature_* codes
+      integer(ik), intent(in) :: status
+      !> Index into quadrature_texts
+      integer :: row
+
+      row = ubound(quadrature_texts, 1)
+      if (status >= 0_ik .and. status < ubound(quadrature_texts, 1)) row = int(status)
+   end function quadrature_message_row
+
+   !> Length of quadrature_status_message(status).
+   pure function quadrature_message_length(status) result(length)
+      !> One of the quadrature_* codes
+      integer(ik), intent(in) :: status
+      !> Number of characters
+      integer :: length
+
+      length = len_trim(quadrature_texts(quadrature_message_row(status)))
+   end function quadrature_message_length
+
+   !> Short English description of a status code. Its length is a specification
+   !> expression, not a deferred length (gfortran would keep that in a hidden static
+   !> variable of every caller, shared by threads).
    pure function quadrature_status_message(status) result(message)
       !> One of the quadrature_* codes
       integer(ik), intent(in) :: status
       !> Description
-      character(len=:), allocatable :: message
+      character(len=quadrature_message_length(status)) :: message
 
-      select case (status)
-      case (quadrature_success)
-         message = "converged to the requested tolerance"
-      case (quadrature_not_converged)
-         message = "tolerance not met at the last level allowed"
-      case (quadrature_nonfinite)
-         message = "the integrand returned NaN or an infinity"
-      case (quadrature_invalid_interval)
-         message = "interval ends must be finite with a <= b and b - a finite"
-      case (quadrature_invalid_tolerance)
-         message = "rtol must be positive and atol non-negative"
-      case (quadrature_invalid_levels)
-         message = "max_levels outside the range of the node tables"
-      case default
-         message = "unknown status"
-      end select
+      message = quadrature_texts(quadrature_message_row(status))
    end function quadrature_status_message
 
    !> The integrator behind both entry points.
