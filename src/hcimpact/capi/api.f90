@@ -25,7 +25,7 @@ module hcimpact_api
       & c_associated, c_f_pointer, c_loc
    use hcimpact_kinds, only : wp
    use hcimpact_version_info, only : hcimpact_version_string, hcimpact_version_compact
-   use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size
+   use hcimpact_status, only : status_texts, max_status_code, hcimpact_ok, hcimpact_err_null, hcimpact_err_size
    use hcimpact_lambertw, only : lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1
    use hcimpact_restitution_law, only : u_minus_log1p, restitution, one_minus_restitution, &
       & energy_loss_ratio, restitution_derivative, restitution_inverse
@@ -48,34 +48,18 @@ module hcimpact_api
    public :: message_length, last_status
 
    !> Length of every entry of the message table, the terminating NUL included
-   integer, parameter :: message_length = 80
+   integer, parameter :: message_length = len(status_texts) + 1
    !> Largest status code with a message of its own (hcimpact_status)
-   integer, parameter :: last_status = 15
+   integer, parameter :: last_status = max_status_code
+   integer, private :: row_
 
-   !> Messages of the status codes 0 .. last_status, then the one for unknown codes,
-   !> NUL-terminated. The same texts as hcimpact_status's status_message (checked by
-   !> test/api/status_table.f90). Never written: reading them from several threads at
-   !> once is safe, and hcimpact_status_message returns pointers into this table.
-   character(kind=c_char, len=message_length), target, save :: message_table(0:last_status + 1) &
-      & = [character(kind=c_char, len=message_length) :: &
-      & "success" // c_null_char, &
-      & "an argument is NaN or infinite" // c_null_char, &
-      & "mass must be positive" // c_null_char, &
-      & "stiffness must be positive" // c_null_char, &
-      & "exponent of the power law must be at least 1e-6" // c_null_char, &
-      & "approach velocity must be positive" // c_null_char, &
-      & "damping must not be negative" // c_null_char, &
-      & "target restitution must lie in (0, 1]" // c_null_char, &
-      & "argument outside the domain of the function" // c_null_char, &
-      & "iteration or quadrature did not converge within its bound" // c_null_char, &
-      & "a required pointer argument is NULL" // c_null_char, &
-      & "the ODE solver failed" // c_null_char, &
-      & "the requested component is not part of this build" // c_null_char, &
-      & "the elastic law returned an invalid value" // c_null_char, &
-      & "an array argument has the wrong size" // c_null_char, &
-      & "the data cannot determine the parameters (too few or too similar points)" &
-      & // c_null_char, &
-      & "unknown status code" // c_null_char]
+   !> The texts of hcimpact_status (status_texts: codes 0 .. last_status, then the one
+   !> for unknown codes), NUL-terminated for C. Never written: reading them from several
+   !> threads at once is safe, and hcimpact_status_message returns pointers into this
+   !> table.
+   character(kind=c_char, len=message_length), target, save :: &
+      & message_table(0:last_status + 1) = [character(kind=c_char, len=message_length) :: &
+      & (trim(status_texts(row_)) // c_null_char, row_ = 0, last_status + 1)]
 
    !> The version string, NUL-terminated ("0.2.0"); never written
    character(kind=c_char, len=len(hcimpact_version_string) + 1), target, save :: &
