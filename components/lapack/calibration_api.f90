@@ -9,7 +9,7 @@
 !> allocatables (unallocated: absent) before they are passed on: gfortran reads the
 !> address of an absent explicit-shape array when it passes it to an assumed-shape
 !> dummy, which the undefined-behaviour sanitizer reports. The declarations are in
-!> doc/calibration-c-api.h.txt (to be merged into include/hcimpact.h).
+!> include/hcimpact_lapack.h.
 module hcimpact_calibration_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int
    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan
