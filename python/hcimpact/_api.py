@@ -23,9 +23,8 @@ from typing import Any, Callable
 import numpy as np
 
 from . import _library
-from ._types import (OUTCOME_FIELDS, Contact, ElasticLaw, ImpactResult, LawFunction,
-                     Outcome, UnavailableError,
-                     error_class)
+from ._types import (CONTACT_FIELDS, OUTCOME_FIELDS, Contact, ElasticLaw, ImpactResult,
+                     LawFunction, Outcome, UnavailableError, error_class)
 
 __all__ = [
     "lambert_w0", "lambert_wm1", "lambert_w0p1", "lambert_wm1p1",
@@ -48,6 +47,8 @@ DEFAULT_MIN_VELOCITY = 1.0e-3
 
 # the C interface counts elements with an int
 _CHUNK = 2**30
+# bytes for the solver's message (hcimpact_simulate_message); longer ones are cut
+_MESSAGE_SIZE = 512
 _PD = POINTER(c_double)
 
 
@@ -59,8 +60,12 @@ def _lib() -> ctypes.CDLL:
     return _library.load()
 
 
-def _raise(status: int, function: str, index: Any = None) -> None:
+def _raise(status: int, function: str, index: Any = None, detail: str = "") -> None:
+    """Raise the exception of a status; ``detail`` is the library's account of the
+    failure when it gives one (the ODE solver's message), else the status text."""
     message = _lib().hcimpact_status_message(status).decode()
+    if detail and detail != message:
+        message = f"{message}: {detail}"
     raise error_class(status)(status, message, function, index)
 
 
@@ -272,10 +277,10 @@ def impact(*, mass: Any, stiffness: Any, exponent: Any = 1.5, damping: Any = 0.0
     arrays = np.broadcast_arrays(*[np.asarray(a, dtype=np.float64) for a in args])
     shape = arrays[0].shape
     n = int(np.prod(shape, dtype=np.int64))
-    contacts = np.empty((n, 5), dtype=np.float64)
+    contacts = np.empty((n, len(CONTACT_FIELDS)), dtype=np.float64)
     for j, a in enumerate(arrays):
         contacts[:, j] = a.reshape(-1)
-    outcomes = np.empty((n, 8), dtype=np.float64)
+    outcomes = np.empty((n, len(OUTCOME_FIELDS)), dtype=np.float64)
     statuses = np.zeros(n, dtype=np.intc)
     for start in range(0, n, _CHUNK):
         m = min(_CHUNK, n - start)
@@ -406,12 +411,28 @@ def time_law_samples(n: int, *, mass: float, stiffness: float, exponent: float =
 # Components
 # ---------------------------------------------------------------------------
 
-def _component_function(function: str, stem: str, what: str) -> Any:
+#: What each component needs, for the message when it is missing
+_COMPONENT_NEEDS = {
+    "cvode": "SUNDIALS CVODE with its Fortran modules (Debian: libsundials-dev "
+             "libsundials-fortran-dev)",
+    "lapack": "LAPACK (Debian: liblapack-dev)",
+}
+
+
+def _component_function(function: str, component: str, what: str) -> Any:
+    stem = f"hcimpact_{component}"
     lib = _library.component(function, stem)
     if lib is None:
-        message = (f"this hcimpact has no {what} (lib{stem} was not found next to "
-                   f"{_library.library_path()}); build it with the component on")
-        raise UnavailableError(12, message, function)
+        built = _library.build_info().get("components", {}).get(component)
+        if built is not None and not built.get("built", False):
+            why = (f"this hcimpact was built without it: component {component} "
+                   f"{built.get('status', 'OFF')}. Install {_COMPONENT_NEEDS[component]} "
+                   "and reinstall hcimpact (pip install ./python)")
+        else:
+            why = (f"lib{stem} was not found next to {_library.library_path()}; build "
+                   f"hcimpact with {_COMPONENT_NEEDS[component]} present "
+                   f"(HCIMPACT_WITH_{component.upper()}=ON)")
+        raise UnavailableError(12, f"the {what} is not available: {why}", function)
     return getattr(lib, function)
 
 
@@ -427,13 +448,14 @@ def simulate(*, mass: float, stiffness: float, exponent: float = 1.5, damping: f
     Same arguments and result as :func:`impact` (to about rtol). Needs the CVODE
     component (``libhcimpact_cvode``); without it raises :class:`UnavailableError`.
     """
-    function = _component_function("hcimpact_simulate", "hcimpact_cvode",
+    function = _component_function("hcimpact_simulate_message", "cvode",
                                     "CVODE component (hcimpact_simulate)")
     outcome = Outcome()
+    message = ctypes.create_string_buffer(_MESSAGE_SIZE)
     status = function(byref(_contact(mass, stiffness, exponent, damping, velocity)),
-                      float(rtol), byref(outcome))
+                      float(rtol), byref(outcome), message, _MESSAGE_SIZE)
     if status != 0:
-        _raise(status, "hcimpact_simulate")
+        _raise(status, "hcimpact_simulate", detail=message.value.decode(errors="replace"))
     return _result(outcome)
 
 
@@ -443,7 +465,7 @@ class FitResult:
 
     ``parameters``: the fitted values (a dict, SI units); ``covariance``: their
     covariance matrix (in the order of ``parameters``); ``residuals``: as documented
-    for each fit (doc/calibration-c-api.h.txt).
+    for each fit (include/hcimpact_lapack.h).
     """
 
     parameters: dict
@@ -473,7 +495,7 @@ def _optional(x: Any, n: int, name: str) -> tuple[Any, Any]:
 
 def _fit_damping(function_name: str, velocity: Any, restitution: Any, sigma: Any,
                  absolute_sigma: bool) -> FitResult:
-    function = _component_function(function_name, "hcimpact_lapack",
+    function = _component_function(function_name, "lapack",
                                    "LAPACK component (calibration)")
     v = _data(velocity)
     e = _data(restitution, v.size, "restitution")
@@ -512,7 +534,7 @@ def fit_static(deflection: Any, force: Any, sigma: Any = None,
 
     Residuals ln F_i - ln(c x_i**n). Needs the LAPACK component.
     """
-    function = _component_function("hcimpact_fit_static", "hcimpact_lapack",
+    function = _component_function("hcimpact_fit_static", "lapack",
                                    "LAPACK component (calibration)")
     x = _data(deflection)
     f = _data(force, x.size, "force")
@@ -533,7 +555,7 @@ def fit_elastic(velocity: Any, *, mass: float, damping: float, contact_time: Any
     the damping b known. Residuals ln(observed/model), time series first.
     Needs the LAPACK component.
     """
-    function = _component_function("hcimpact_fit_elastic", "hcimpact_lapack",
+    function = _component_function("hcimpact_fit_elastic", "lapack",
                                    "LAPACK component (calibration)")
     v = _data(velocity)
     series = [contact_time, peak_force]
@@ -562,7 +584,7 @@ def fit_impact(velocity: Any, *, mass: float, contact_time: Any = None,
     the speeds ``velocity``. Residuals per series given (time, force, restitution).
     Needs the LAPACK component.
     """
-    function = _component_function("hcimpact_fit_impact", "hcimpact_lapack",
+    function = _component_function("hcimpact_fit_impact", "lapack",
                                    "LAPACK component (calibration)")
     v = _data(velocity)
     series = [contact_time, peak_force, restitution]

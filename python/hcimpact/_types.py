@@ -13,12 +13,17 @@ __all__ = [
 ]
 
 
+# The structures mirror include/hcimpact.h field by field, in its order and with its
+# types; python/tests/test_layout.py parses the header and fails on any difference.
+
+CONTACT_FIELDS = ("mass", "stiffness", "exponent", "damping", "velocity")
+
+
 class Contact(ctypes.Structure):
     """``hcimpact_contact``: mass (kg), stiffness (N/m^n), exponent, damping (s/m),
     velocity (m/s)."""
 
-    _fields_ = [(name, ctypes.c_double)
-                for name in ("mass", "stiffness", "exponent", "damping", "velocity")]
+    _fields_ = [(name, ctypes.c_double) for name in CONTACT_FIELDS]
 
 
 OUTCOME_FIELDS = ("restitution", "energy_loss_ratio", "rebound_velocity", "max_compression",
