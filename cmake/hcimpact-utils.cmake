@@ -88,6 +88,29 @@ function(hcimpact_target_flags target)
   endif()
 endfunction()
 
+# Link-time optimisation of a library of ours in the optimised configurations
+# (Release, RelWithDebInfo, MinSizeRel), when HCIMPACT_LTO is on and the compiler
+# supports it. It lets the compiler inline small procedures across modules: the
+# double-double operators of hcimpact_double_double, applied about a hundred times in
+# the set-up of one impact, are otherwise a call each (measured: one impact about 7 %
+# faster than the former copies of the operators in every module, 10 % faster than
+# calls; doc/building.md). A static archive keeps fat objects (machine code next to
+# the intermediate code), so that programs linked without LTO, or by another
+# compiler's linker, link it as before.
+function(hcimpact_library_lto target)
+  if(NOT HCIMPACT_LTO OR NOT HCIMPACT_LTO_SUPPORTED)
+    return()
+  endif()
+  foreach(config RELEASE RELWITHDEBINFO MINSIZEREL)
+    set_property(TARGET ${target} PROPERTY INTERPROCEDURAL_OPTIMIZATION_${config} TRUE)
+  endforeach()
+  get_target_property(type ${target} TYPE)
+  if(type STREQUAL "STATIC_LIBRARY" AND CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${target} PRIVATE
+      "$<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-ffat-lto-objects>")
+  endif()
+endfunction()
+
 # hcimpact_add_component(<name> [LIBRARIES ...] [DEFINITIONS ...])
 #
 # Build the library hcimpact_<name> (alias hcimpact::<name>, exported as

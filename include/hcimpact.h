@@ -29,11 +29,11 @@
 #define HCIMPACT_H
 
 #define HCIMPACT_VERSION_MAJOR 0
-#define HCIMPACT_VERSION_MINOR 1
+#define HCIMPACT_VERSION_MINOR 2
 #define HCIMPACT_VERSION_PATCH 0
 /** Version as one integer: 10000*major + 100*minor + patch
  *  (hcimpact_version_number() returns that of the library at run time) */
-#define HCIMPACT_VERSION 100
+#define HCIMPACT_VERSION 200
 
 /** HCIMPACT_API marks every function of the library (and of its components): the
  *  default symbol visibility with GCC and Clang, __declspec(dllimport) on Windows
@@ -220,7 +220,8 @@ HCIMPACT_API int hcimpact_two_body_velocities(double mass1, double mass2, double
 
 /* ------------------------------------------------------------------------
  * One impact (issue #3): m x'' = -c x^n (1 + b x'), x(0) = 0, x'(0) = V.
- * Fortran: src/hcimpact/capi/api_impact.f90 (module hcimpact_api_impact), physics in
+ * Fortran: src/hcimpact/capi/api_impact.f90 (module hcimpact_api_impact; the structs
+ * are mirrored in src/hcimpact/capi/capi_types.f90), physics in
  * hcimpact_impact_model; doc/impact.md.
  * ------------------------------------------------------------------------ */
 
@@ -242,6 +243,7 @@ typedef struct {
     double max_compression;           /**< maximum compression x_max in m */
     double peak_force;                /**< largest contact force c x^n (1 + b x') in N */
     double compression_at_peak_force; /**< compression at which it acts, in m */
+    double time_at_peak_force;        /**< time from impact to the peak force in s */
     double compression_time;          /**< time from impact to x_max in s */
     double contact_time;              /**< duration of the contact in s */
 } hcimpact_outcome;

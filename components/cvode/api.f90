@@ -6,15 +6,15 @@
 !> program that calls it must link the component, and one that links only the core
 !> gets an undefined reference at link time rather than a status at run time. The
 !> declarations are in include/hcimpact_cvode.h; the structures are those of
-!> hcimpact_impact (hcimpact_api_impact).
+!> hcimpact_impact (hcimpact_capi_types).
 module hcimpact_cvode_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int, c_ptr, c_size_t, c_char, &
       & c_null_char, c_associated, c_f_pointer
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_not_finite, &
       & hcimpact_err_domain, status_message
-   use hcimpact_impact_model, only : contact_type, outcome_type
-   use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome
+   use hcimpact_impact_model, only : outcome_type
+   use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome, to_contact, from_outcome
    use hcimpact_cvode_system, only : finite_value
    use hcimpact_cvode_solver, only : cvode_options, simulation_type, simulate_power, &
       & cvode_bdf
@@ -123,9 +123,7 @@ contains
          result = outcome_type()
          message = "rtol must lie in (0, 1)"
       else
-         call simulate_power(contact_type(mass=real(c_in%mass, wp), &
-            & stiffness=real(c_in%stiffness, wp), exponent=real(c_in%exponent, wp), &
-            & damping=real(c_in%damping, wp), velocity=real(c_in%velocity, wp)), &
+         call simulate_power(to_contact(c_in), &
             & simulation, status, cvode_options(method=cvode_bdf, rtol=real(rtol, wp)))
          result = simulation%outcome
          if (allocated(simulation%message)) then
@@ -136,14 +134,7 @@ contains
             message = status_message(status)
          end if
       end if
-      c_out%restitution = result%restitution
-      c_out%energy_loss_ratio = result%energy_loss_ratio
-      c_out%rebound_velocity = result%rebound_velocity
-      c_out%max_compression = result%max_compression
-      c_out%peak_force = result%peak_force
-      c_out%compression_at_peak_force = result%compression_at_peak_force
-      c_out%compression_time = result%compression_time
-      c_out%contact_time = result%contact_time
+      c_out = from_outcome(result)
       stat = int(status, c_int)
    end function simulate_to_c
 

@@ -22,7 +22,7 @@ from __future__ import annotations
 import importlib
 from typing import Any
 
-__version__ = "0.1.0"
+__version__ = "0.2.0"
 
 _API = (
     "lambert_w0", "lambert_wm1", "lambert_w0p1", "lambert_wm1p1",

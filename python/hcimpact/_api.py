@@ -261,7 +261,8 @@ def impact(*, mass: Any, stiffness: Any, exponent: Any = 1.5, damping: Any = 0.0
       that fails, with its ``index``) or ``"nan"`` (failed impacts get NaN fields)
 
     Returns an :class:`ImpactResult` (restitution, energy_loss_ratio, rebound_velocity,
-    max_compression, peak_force, compression_at_peak_force, compression_time,
+    max_compression, peak_force, compression_at_peak_force, time_at_peak_force,
+    compression_time,
     contact_time): floats for scalar input, arrays of the broadcast shape otherwise.
     """
     if errors not in ("raise", "nan"):

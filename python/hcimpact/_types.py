@@ -27,7 +27,8 @@ class Contact(ctypes.Structure):
 
 
 OUTCOME_FIELDS = ("restitution", "energy_loss_ratio", "rebound_velocity", "max_compression",
-                  "peak_force", "compression_at_peak_force", "compression_time",
+                  "peak_force", "compression_at_peak_force", "time_at_peak_force",
+                  "compression_time",
                   "contact_time")
 
 
@@ -67,6 +68,8 @@ class ImpactResult:
     peak_force: Any
     #: compression at which the peak force acts, in m
     compression_at_peak_force: Any
+    #: time from the start of contact to the peak force, in s
+    time_at_peak_force: Any
     #: time from the start of contact to x_max, in s
     compression_time: Any
     #: duration of the contact, in s

@@ -13,11 +13,11 @@ module hcimpact_version_info
    !> Major version number
    integer, parameter :: version_major = 0
    !> Minor version number
-   integer, parameter :: version_minor = 1
+   integer, parameter :: version_minor = 2
    !> Patch version number
    integer, parameter :: version_patch = 0
    !> Version as a string, "major.minor.patch"
-   character(len=*), parameter :: hcimpact_version_string = "0.1.0"
+   character(len=*), parameter :: hcimpact_version_string = "0.2.0"
    !> Version as one integer, 10000*major + 100*minor + patch
    integer, parameter :: hcimpact_version_compact = &
       & 10000*version_major + 100*version_minor + version_patch

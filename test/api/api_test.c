@@ -91,7 +91,8 @@ static int outcome_all_nan(const hcimpact_outcome *o)
 {
   return isnan(o->restitution) && isnan(o->energy_loss_ratio) && isnan(o->rebound_velocity)
          && isnan(o->max_compression) && isnan(o->peak_force)
-         && isnan(o->compression_at_peak_force) && isnan(o->compression_time)
+         && isnan(o->compression_at_peak_force) && isnan(o->time_at_peak_force)
+         && isnan(o->compression_time)
          && isnan(o->contact_time);
 }
 
@@ -403,6 +404,9 @@ static void test_impact(void)
     check_true("impact x at F_max in (0, x_max)",
                outcome.compression_at_peak_force > 0.0
                    && outcome.compression_at_peak_force < outcome.max_compression);
+    check_true("impact t at F_max in (0, t_compression)",
+               outcome.time_at_peak_force > 0.0
+                   && outcome.time_at_peak_force < outcome.compression_time);
     check_close("impact t_compression", outcome.compression_time, seed_tcomp[i], rel);
     check_close("impact t_contact", outcome.contact_time, seed_tc[i], rel);
   }
@@ -456,7 +460,7 @@ static void test_impact(void)
     }
   }
   check_true("hcimpact_contact is five doubles", sizeof(hcimpact_contact) == 5 * sizeof(double));
-  check_true("hcimpact_outcome is eight doubles", sizeof(hcimpact_outcome) == 8 * sizeof(double));
+  check_true("hcimpact_outcome is nine doubles", sizeof(hcimpact_outcome) == 9 * sizeof(double));
 
   contact = steel_ball(1.0);
   outcome.restitution = 42.0;

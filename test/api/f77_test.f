@@ -11,6 +11,7 @@ C
       COMMON /CHKCNT/ NFAIL, NCHECK
       DOUBLE PRECISION XMASS, C, EN, B, V, X, XDOT, W, RK, BETA, D, R
       DOUBLE PRECISION OUT(8), VS(6), RKS(6), BETAS(6), ES(3)
+      DOUBLE PRECISION OUT9(9)
       DOUBLE PRECISION RKOUT(3)
       DOUBLE PRECISION T(5), XS(5), XDS(5), FS(5), ZERO, XNAN, BIG
       DOUBLE PRECISION XMS(3), CS(3), ENS(3), BS(3), VV(3), TAB(8, 3)
@@ -38,7 +39,7 @@ C     -ffpe-trap, so take it from the library (HCRES of a negative BETA)
       B = 0.1D0
 C
       CALL HCVERS(MAJOR, MINOR, IPATCH)
-      CALL CHKI('HCVERS', 10000*MAJOR + 100*MINOR + IPATCH, 100)
+      CALL CHKI('HCVERS', 10000*MAJOR + 100*MINOR + IPATCH, 200)
       CALL HCMSG(10, MSG)
       CALL CHKI('HCMSG(10)', INDEX(MSG, 'NULL'), 32)
       CALL HCMSG(99, MSG)
@@ -164,6 +165,29 @@ C     Impacts: the seed's table, then each bad argument
      &          1.0D-13)
       CALL CHKR('HCIMP t_contact', OUT(8), 7.7655384043269703D-5,
      &          1.0D-13)
+C
+C     HCIMPN: the same eight results, then the time of the peak force
+      CALL HCIMPN(XMASS, C, EN, B, VS(6), 9, OUT9, INFO)
+      CALL CHKI('HCIMPN INFO', INFO, 0)
+      DO 15 I = 1, 8
+         CALL CHKR('HCIMPN OUT(1..8) = HCIMP', OUT9(I), OUT(I), 0.0D0)
+   15 CONTINUE
+      IF (.NOT. (OUT9(9) .GT. 0.0D0 .AND. OUT9(9) .LT. OUT(7))) THEN
+         CALL CHKI('HCIMPN OUT(9) in (0, t_comp)', 1, 0)
+      END IF
+      OUT9(2) = -7.0D0
+      CALL HCIMPN(XMASS, C, EN, B, VS(6), 1, OUT9, INFO)
+      CALL CHKI('HCIMPN(NOUT = 1) INFO', INFO, 0)
+      CALL CHKR('HCIMPN(NOUT = 1) k', OUT9(1), RKS(6), 1.0D-13)
+      CALL CHKR('HCIMPN(NOUT = 1) OUT(2) untouched', OUT9(2), -7.0D0,
+     &          0.0D0)
+      CALL HCIMPN(XMASS, C, EN, B, VS(6), 0, OUT9, INFO)
+      CALL CHKI('HCIMPN(NOUT = 0) INFO', INFO, -6)
+      CALL HCIMPN(XMASS, C, EN, B, VS(6), 10, OUT9, INFO)
+      CALL CHKI('HCIMPN(NOUT = 10) INFO', INFO, -6)
+      CALL HCIMPN(XMASS, C, 1.0D-20, B, VS(6), 9, OUT9, INFO)
+      CALL CHKI('HCIMPN(EN = 1e-20) INFO', INFO, -3)
+      CALL CHKN('HCIMPN(EN = 1e-20) OUT', OUT9(9))
 C
 C     The same ball through HCIMPL: the Hertz law as EXTERNAL functions,
 C     its constant in COMMON /HCLAW/

@@ -12,7 +12,7 @@ module test_cvode_power
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_not_finite, &
       & hcimpact_err_domain, hcimpact_err_mass
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
-   use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome
+   use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome
    use hcimpact_cvode, only : cvode_options, simulation_type, simulate, simulate_power, &
       & cvode_bdf, cvode_adams
    use hcimpact_cvode_api, only : c_simulate

@@ -27,12 +27,13 @@ module test_impact
       & hcimpact_err_null, hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &
       & velocity_at_depth, time_law, time_law_samples, damping_for_restitution, &
-      & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta, &
-      & power_phase_pieces, max_pieces, cc_max_beta, cc_max_compression_le, end_piece_le, &
-      & whole_max_beta
+      & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta
+   use hcimpact_power_rules, only : power_phase_pieces, max_pieces, cc_max_beta, &
+      & cc_max_compression_le, end_piece_le, whole_max_beta
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
-   use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome, c_impact
+   use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome
+   use hcimpact_api_impact, only : c_impact
    use hcimpact_check, only : ulp_error, median, format_real, reference_path, check_close, &
       & int_text
    implicit none
@@ -1158,6 +1159,7 @@ contains
          & .and. c_outcome%max_compression == outcome%max_compression &
          & .and. c_outcome%peak_force == outcome%peak_force &
          & .and. c_outcome%compression_at_peak_force == outcome%compression_at_peak_force &
+         & .and. c_outcome%time_at_peak_force == outcome%time_at_peak_force &
          & .and. c_outcome%compression_time == outcome%compression_time &
          & .and. c_outcome%contact_time == outcome%contact_time, &
          & "C outcome differs from the Fortran one")

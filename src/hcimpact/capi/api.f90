@@ -4,7 +4,8 @@
 !>
 !> Every name here is declared in include/hcimpact.h (doc/c-api.md); the physics lives
 !> in the Fortran modules this one calls. The impact itself, the trajectory and the
-!> time law are in hcimpact_api_impact and hcimpact_api_motion.
+!> time law are in hcimpact_api_impact and hcimpact_api_motion, their structures in
+!> hcimpact_capi_types.
 !>
 !> Conventions of the whole C layer:
 !> - a function that returns a double answers NaN outside its domain and never fails
@@ -76,7 +77,7 @@ module hcimpact_api
       & // c_null_char, &
       & "unknown status code" // c_null_char]
 
-   !> The version string, NUL-terminated ("0.1.0"); never written
+   !> The version string, NUL-terminated ("0.2.0"); never written
    character(kind=c_char, len=len(hcimpact_version_string) + 1), target, save :: &
       & version_text = hcimpact_version_string // c_null_char
 

@@ -16,7 +16,7 @@ module hcimpact_api_law
    use hcimpact_status, only : hcimpact_err_null
    use hcimpact_elastic, only : elastic_law
    use hcimpact_impact_model, only : outcome_type, impact_law
-   use hcimpact_api_impact, only : hcimpact_outcome
+   use hcimpact_capi_types, only : hcimpact_outcome, from_outcome
    implicit none
    private
 
@@ -84,9 +84,7 @@ contains
       f_law%data = c_law%data
 
       call impact_law(f_law, mass, damping, velocity, result, fstat)
-      out = hcimpact_outcome(result%restitution, result%energy_loss_ratio, &
-         & result%rebound_velocity, result%max_compression, result%peak_force, &
-         & result%compression_at_peak_force, result%compression_time, result%contact_time)
+      out = from_outcome(result)
       stat = int(fstat, c_int)
    end function c_impact_law
 

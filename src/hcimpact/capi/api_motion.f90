@@ -4,53 +4,21 @@
 !>
 !> Thin bind(C) wrappers over hcimpact_impact_model, with the conventions of
 !> hcimpact_api (NULL pointers, sizes, NaN outputs on error). The structures are those
-!> of hcimpact_api_impact (`hcimpact_contact`, `hcimpact_outcome`).
+!> of hcimpact_capi_types (`hcimpact_contact`, `hcimpact_outcome`).
 module hcimpact_api_motion
    use, intrinsic :: iso_c_binding, only : c_double, c_int, c_ptr, c_associated, c_f_pointer
-   use, intrinsic :: iso_fortran_env, only : int64
-   use hcimpact_kinds, only : wp
+   use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, velocity_at_depth, &
       & time_law, time_law_samples
-   use hcimpact_api_impact, only : hcimpact_contact, hcimpact_outcome
+   use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome, to_contact, from_outcome
    implicit none
    private
 
    public :: c_impact_array, c_velocity_at_depth, c_velocity_at_depth_array
    public :: c_time_law, c_time_law_samples
-   public :: to_contact, from_outcome
-
-   !> Quiet NaN
-   real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
 
 contains
-
-   !> The Fortran contact of a C one.
-   elemental function to_contact(c) result(contact)
-      !> C structure
-      type(hcimpact_contact), intent(in) :: c
-      !> Fortran type
-      type(contact_type) :: contact
-      contact = contact_type(mass=real(c%mass, wp), stiffness=real(c%stiffness, wp), &
-         & exponent=real(c%exponent, wp), damping=real(c%damping, wp), &
-         & velocity=real(c%velocity, wp))
-   end function to_contact
-
-   !> The C outcome of a Fortran one (the fields the C structure has).
-   elemental function from_outcome(outcome) result(c)
-      !> Fortran type
-      type(outcome_type), intent(in) :: outcome
-      !> C structure
-      type(hcimpact_outcome) :: c
-      c%restitution = outcome%restitution
-      c%energy_loss_ratio = outcome%energy_loss_ratio
-      c%rebound_velocity = outcome%rebound_velocity
-      c%max_compression = outcome%max_compression
-      c%peak_force = outcome%peak_force
-      c%compression_at_peak_force = outcome%compression_at_peak_force
-      c%compression_time = outcome%compression_time
-      c%contact_time = outcome%contact_time
-   end function from_outcome
 
    !> int hcimpact_impact_array(int n, const hcimpact_contact *contacts,
    !>                           hcimpact_outcome *outcomes, int *statuses)

@@ -437,7 +437,7 @@ subroutine hcimp(m, c, en, b, v, out, info)
    real(wp), intent(in) :: m
    !> Contact constant in N/m**EN, > 0
    real(wp), intent(in) :: c
-   !> Exponent of the elastic law, > 0 (1.5: Hertz)
+   !> Exponent of the elastic law, >= 1e-6 (1.5: Hertz)
    real(wp), intent(in) :: en
    !> Damping in s/m, >= 0
    real(wp), intent(in) :: b
@@ -455,8 +455,49 @@ subroutine hcimp(m, c, en, b, v, out, info)
    call impact(contact_type(mass=m, stiffness=c, exponent=en, damping=b, velocity=v), &
       & outcome, stat)
    info = stat
-   if (info == 0) out = outcome_array(outcome)
+   if (info == 0) out = outcome_array(outcome, 8)
 end subroutine hcimp
+
+!> HCIMPN(M, C, EN, B, V, NOUT, OUT, INFO): HCIMP with the number of results chosen by
+!> the caller: OUT(1..NOUT), 1 <= NOUT <= 9, the eight of HCIMP and then OUT(9), the
+!> time from the start of contact to the peak force (s). Results added in later
+!> versions are appended, so a program keeps working with its NOUT.
+subroutine hcimpn(m, c, en, b, v, nout, out, info)
+   use hcimpact_kinds, only : wp
+   use hcimpact_impact_model, only : contact_type, outcome_type, impact
+   use hcimpact_f77_support, only : nan, n_outputs, contact_info, outcome_array
+   implicit none
+   !> Mass in kg, > 0
+   real(wp), intent(in) :: m
+   !> Contact constant in N/m**EN, > 0
+   real(wp), intent(in) :: c
+   !> Exponent of the elastic law, >= 1e-6 (1.5: Hertz)
+   real(wp), intent(in) :: en
+   !> Damping in s/m, >= 0
+   real(wp), intent(in) :: b
+   !> Approach speed in m/s, > 0
+   real(wp), intent(in) :: v
+   !> Number of results wanted, 1 .. 9
+   integer, intent(in) :: nout
+   !> OUT(NOUT), see above
+   real(wp), intent(out) :: out(*)
+   !> 0; -1 .. -5 for the first invalid argument of M .. V, -6 for NOUT out of range
+   !> (OUT not written); 8 or 9 for a computational failure
+   integer, intent(out) :: info
+   type(outcome_type) :: outcome
+   integer :: stat
+   if (nout < 1 .or. nout > n_outputs) then
+      info = -6
+      return
+   end if
+   out(1:nout) = nan
+   info = contact_info(m, c, en, b, v)
+   if (info /= 0) return
+   call impact(contact_type(mass=m, stiffness=c, exponent=en, damping=b, velocity=v), &
+      & outcome, stat)
+   info = stat
+   if (info == 0) out(1:nout) = outcome_array(outcome, nout)
+end subroutine hcimpn
 
 !> HCIMPL(FORCE, POTEN, DFORCE, M, B, V, OUT, INFO): one impact with the caller's elastic
 !> law, given as three EXTERNAL DOUBLE PRECISION FUNCTIONs of the compression X (m):
@@ -510,7 +551,7 @@ subroutine hcimpl(force, poten, dforce, m, b, v, out, info)
       law%d => dforce
       call impact_law(law, m, b, v, outcome, stat)
       info = stat
-      if (info == 0) out = outcome_array(outcome)
+      if (info == 0) out = outcome_array(outcome, 8)
    end if
 end subroutine hcimpl
 
@@ -552,7 +593,7 @@ subroutine hcimpa(ni, m, c, en, b, v, out, istat, info)
       call impact(contact_type(mass=m(i), stiffness=c(i), exponent=en(i), damping=b(i), &
          & velocity=v(i)), outcome, istat(i))
       if (istat(i) == hcimpact_ok) then
-         out(:, i) = outcome_array(outcome)
+         out(:, i) = outcome_array(outcome, 8)
       else
          out(:, i) = nan
          if (info == 0) info = i

@@ -2,15 +2,14 @@
 !> Helpers of the FORTRAN 77 entry points (src/hcimpact/f77/f77.f90): the LAPACK-style
 !> INFO of a contact's arguments and the flat result array of one impact.
 module hcimpact_f77_support
-   use, intrinsic :: iso_fortran_env, only : int64
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
-   use hcimpact_kinds, only : wp
-   use hcimpact_impact_model, only : outcome_type
+   use hcimpact_kinds, only : wp, nan
+   use hcimpact_status, only : hcimpact_ok
+   use hcimpact_contact, only : outcome_type, check_parameters
    use hcimpact_elastic, only : elastic_law
    implicit none
    private
 
-   public :: nan, contact_info, outcome_array, f77_law, f77_law_fn
+   public :: nan, n_outputs, contact_info, outcome_array, f77_law, f77_law_fn
 
    abstract interface
       !> A function of a FORTRAN 77 law: DOUBLE PRECISION FUNCTION F(X), X the compression
@@ -31,14 +30,15 @@ module hcimpact_f77_support
       procedure :: force_derivative => f77_force_derivative
    end type f77_law
 
-   !> Quiet NaN, the value of every real output on error
-   real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
+   !> Number of results of an impact in the FORTRAN 77 arrays (HCIMPN's largest NOUT)
+   integer, parameter :: n_outputs = 9
 
 contains
 
    !> INFO for the contact arguments (M, C, EN, B, V) in this order: -i for the first
-   !> that is NaN, infinite or outside its domain (M, C, EN, V > 0; B >= 0), else 0.
-   pure function contact_info(m, c, en, b, v) result(info)
+   !> that breaks the library's rules for it (hcimpact_contact's `check_parameters`:
+   !> NaN or infinite; M, C, V > 0; EN >= 1e-6; B >= 0), else 0.
+   elemental function contact_info(m, c, en, b, v) result(info)
       !> Mass in kg
       real(wp), intent(in) :: m
       !> Contact constant in N/m**EN
@@ -51,39 +51,37 @@ contains
       real(wp), intent(in) :: v
       !> 0 or -1 .. -5
       integer :: info
-      if (.not. positive(m)) then
+      if (check_parameters(mass=m) /= hcimpact_ok) then
          info = -1
-      else if (.not. positive(c)) then
+      else if (check_parameters(stiffness=c) /= hcimpact_ok) then
          info = -2
-      else if (.not. positive(en)) then
+      else if (check_parameters(exponent=en) /= hcimpact_ok) then
          info = -3
-      else if (.not. (positive(b) .or. b == 0.0_wp)) then
+      else if (check_parameters(damping=b) /= hcimpact_ok) then
          info = -4
-      else if (.not. positive(v)) then
+      else if (check_parameters(velocity=v) /= hcimpact_ok) then
          info = -5
       else
          info = 0
       end if
    end function contact_info
 
-   !> x finite and > 0 (no ordered comparison with NaN: -ffpe-trap=invalid)
-   elemental function positive(x) result(ok)
-      real(wp), intent(in) :: x
-      logical :: ok
-      ok = ieee_is_finite(x)
-      if (ok) ok = x > 0.0_wp
-   end function positive
-
-   !> The eight results of HCIMP in their order: k, 1 - k**2, rebound velocity,
-   !> x_max, peak force, compression at the peak force, compression time, contact time.
-   pure function outcome_array(outcome) result(out)
+   !> The results of an impact in the order of the FORTRAN 77 arrays: k, 1 - k**2,
+   !> rebound velocity, x_max, peak force, compression at the peak force, compression
+   !> time, contact time (the eight of HCIMP), then the time of the peak force (HCIMPN).
+   !> New results are appended, so that OUT(1..8) keeps its meaning.
+   pure function outcome_array(outcome, count) result(out)
       !> Outcome of `impact`
       type(outcome_type), intent(in) :: outcome
-      !> OUT(8)
-      real(wp) :: out(8)
-      out = [outcome%restitution, outcome%energy_loss_ratio, outcome%rebound_velocity, &
+      !> How many of the results, 1 .. n_outputs
+      integer, intent(in) :: count
+      !> The first `count` results
+      real(wp) :: out(count)
+      real(wp) :: all(n_outputs)
+      all = [outcome%restitution, outcome%energy_loss_ratio, outcome%rebound_velocity, &
          & outcome%max_compression, outcome%peak_force, outcome%compression_at_peak_force, &
-         & outcome%compression_time, outcome%contact_time]
+         & outcome%compression_time, outcome%contact_time, outcome%time_at_peak_force]
+      out = all(1:count)
    end function outcome_array
 
    pure function f77_force(self, x) result(y)

@@ -50,7 +50,8 @@
 module hcimpact_trajectory
    use hcimpact_kinds, only : wp, ik
    use hcimpact_libm, only : log1p, expm1
-   use hcimpact_double_double, only : dd_real, dd_two_prod_ext, dd_exp, dd_log
+   use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
+      & operator(-), operator(*), operator(/), dd_exp, dd_log
    use hcimpact_lambertw, only : lambert_w0p1
    use hcimpact_quadrature, only : integrand_type, quadrature_result, tanh_sinh, &
       & quadrature_success, tanh_sinh_max_levels
@@ -58,8 +59,6 @@ module hcimpact_trajectory
    implicit none
    private
 
-   ! The double-double operators, inline (see dd_ops.inc)
-   include "../numerics/dd_ops_interfaces.inc"
 
    public :: trajectory_type, new_trajectory, phase_integrand, phase_density, phase_end_time
    public :: compression_phase, restitution_phase
@@ -738,6 +737,5 @@ contains
       length = abs(tr%l_end(phase)%hi)
    end function phase_length_hi
 
-   include "../numerics/dd_ops.inc"
 
 end module hcimpact_trajectory

@@ -748,7 +748,353 @@ contains
       end if
    end function dd_log
 
-   ! dd, two_sum, two_prod and the operators (shared with the modules that inline them)
-   include "dd_ops.inc"
+   ! ------------------------------------------------------------------------------
+   ! dd, two_sum, two_prod and the operators. The error-free steps are written out in
+   ! doubles inside each operator: one call per operator instead of a nest of calls to
+   ! two_sum, FastTwoSum and two_prod (gfortran -O2 does not inline those within the
+   ! module). Other modules reach these operators by `use`; the Release build's
+   ! link-time optimisation inlines them there (doc/building.md). Knuth's TwoSum,
+   ! Dekker's FastTwoSum and product with Veltkamp's splitting, the accurate sum (two
+   ! TwoSums), the quotient by three quotient digits, whose second and third are
+   ! products with the reciprocal of the divisor (about 2**-157 relative, see
+   ! div_dd_dd). A product of numbers beyond 2**996, whose splitting would overflow, is
+   ! handed to `dd_two_prod_ext`, which scales. Exact in IEEE binary64 arithmetic with
+   ! rounding to nearest and no contraction into fused multiply-adds (the build does
+   ! not enable it).
+   ! ------------------------------------------------------------------------------
+
+   !> The double x as a double-double number
+   elemental function dd(x) result(a)
+      !> The value
+      real(wp), intent(in) :: x
+      !> x + 0
+      type(dd_real) :: a
+      a%hi = x
+      a%lo = 0.0_wp
+   end function dd
+
+   !> a + b exactly, as hi + lo (Knuth's TwoSum: no condition on the magnitudes)
+   elemental function two_sum(a, b) result(s)
+      !> Summands
+      real(wp), intent(in) :: a, b
+      !> The exact sum
+      type(dd_real) :: s
+      real(wp) :: bv
+      s%hi = a + b
+      bv = s%hi - a
+      s%lo = (a - (s%hi - bv)) + (b - bv)
+   end function two_sum
+
+   !> a*b exactly, as hi + lo (Dekker's product with Veltkamp's splitting, written out)
+   elemental function two_prod(a, b) result(p)
+      !> Factors
+      real(wp), intent(in) :: a, b
+      !> The exact product
+      type(dd_real) :: p
+      real(wp), parameter :: splitter = 134217729.0_wp   ! 2**27 + 1
+      real(wp), parameter :: split_max = 2.0_wp**996
+      real(wp) :: t, ah, al, bh, bl
+      p%hi = a * b
+      if (abs(a) <= split_max .and. abs(b) <= split_max .and. abs(p%hi) <= split_max) then
+         t = splitter * a
+         ah = t - (t - a)
+         al = a - ah
+         t = splitter * b
+         bh = t - (t - b)
+         bl = b - bh
+         p%lo = ((ah * bh - p%hi) + ah * bl + al * bh) + al * bl
+      else
+         p = dd_two_prod_ext(a, b)
+      end if
+   end function two_prod
+
+   !> Sum of two double-double numbers (two TwoSums: accurate when they cancel), the
+   !> steps of TwoSum and FastTwoSum written out: gfortran -O2 inlines none of them
+   !> here, and this sum is inside every subtraction and quotient
+   elemental function add_dd_dd(a, b) result(c)
+      type(dd_real), intent(in) :: a, b
+      type(dd_real) :: c
+      real(wp) :: sh, sl, th, tl, bv, u, h, l
+      ! two_sum(a%hi, b%hi), two_sum(a%lo, b%lo)
+      sh = a%hi + b%hi
+      bv = sh - a%hi
+      sl = (a%hi - (sh - bv)) + (b%hi - bv)
+      th = a%lo + b%lo
+      bv = th - a%lo
+      tl = (a%lo - (th - bv)) + (b%lo - bv)
+      ! FastTwoSum(sh, sl + th), then FastTwoSum(h, l + tl)
+      u = sl + th
+      h = sh + u
+      l = u - (h - sh)
+      u = l + tl
+      c%hi = h + u
+      c%lo = u - (c%hi - h)
+   end function add_dd_dd
+
+   !> Sum of a double-double number and a double (steps written out, as add_dd_dd)
+   elemental function add_dd_r(a, b) result(c)
+      type(dd_real), intent(in) :: a
+      real(wp), intent(in) :: b
+      type(dd_real) :: c
+      real(wp) :: sh, sl, bv, u
+      sh = a%hi + b
+      bv = sh - a%hi
+      sl = (a%hi - (sh - bv)) + (b - bv)
+      u = sl + a%lo
+      c%hi = sh + u
+      c%lo = u - (c%hi - sh)
+   end function add_dd_r
+
+   !> Sum of a double and a double-double number
+   elemental function add_r_dd(a, b) result(c)
+      real(wp), intent(in) :: a
+      type(dd_real), intent(in) :: b
+      type(dd_real) :: c
+      c = add_dd_r(b, a)
+   end function add_r_dd
+
+   !> Negation
+   elemental function neg_dd(a) result(c)
+      type(dd_real), intent(in) :: a
+      type(dd_real) :: c
+      c%hi = -a%hi
+      c%lo = -a%lo
+   end function neg_dd
+
+   !> Difference of two double-double numbers: add_dd_dd of a and -b (x + (-y) and
+   !> x - y are the same rounding), written out
+   elemental function sub_dd_dd(a, b) result(c)
+      type(dd_real), intent(in) :: a, b
+      type(dd_real) :: c
+      real(wp) :: sh, sl, th, tl, bv, u, h, l
+      sh = a%hi - b%hi
+      bv = sh - a%hi
+      sl = (a%hi - (sh - bv)) + (-b%hi - bv)
+      th = a%lo - b%lo
+      bv = th - a%lo
+      tl = (a%lo - (th - bv)) + (-b%lo - bv)
+      u = sl + th
+      h = sh + u
+      l = u - (h - sh)
+      u = l + tl
+      c%hi = h + u
+      c%lo = u - (c%hi - h)
+   end function sub_dd_dd
+
+   !> Difference of a double-double number and a double
+   elemental function sub_dd_r(a, b) result(c)
+      type(dd_real), intent(in) :: a
+      real(wp), intent(in) :: b
+      type(dd_real) :: c
+      c = add_dd_r(a, -b)
+   end function sub_dd_r
+
+   !> Difference of a double and a double-double number
+   elemental function sub_r_dd(a, b) result(c)
+      real(wp), intent(in) :: a
+      type(dd_real), intent(in) :: b
+      type(dd_real) :: c
+      c = add_dd_r(neg_dd(b), a)
+   end function sub_r_dd
+
+   !> Product of two double-double numbers (the product of the trailing parts, below
+   !> 2**-104 relative, is left out), two_prod(a%hi, b%hi) written out: gfortran -O2
+   !> does not inline it, and the call was a third of the cost of the product
+   elemental function mul_dd_dd(a, b) result(c)
+      type(dd_real), intent(in) :: a, b
+      type(dd_real) :: c
+      real(wp), parameter :: splitter = 134217729.0_wp   ! 2**27 + 1
+      real(wp), parameter :: split_max = 2.0_wp**996
+      real(wp) :: ph, pl, t, xh, xl, yh, yl, u
+      type(dd_real) :: p
+      ph = a%hi * b%hi
+      if (abs(a%hi) <= split_max .and. abs(b%hi) <= split_max .and. abs(ph) <= split_max) then
+         t = splitter * a%hi
+         xh = t - (t - a%hi)
+         xl = a%hi - xh
+         t = splitter * b%hi
+         yh = t - (t - b%hi)
+         yl = b%hi - yh
+         pl = ((xh * yh - ph) + xh * yl + xl * yh) + xl * yl
+      else
+         p = dd_two_prod_ext(a%hi, b%hi)
+         ph = p%hi
+         pl = p%lo
+      end if
+      u = pl + (a%hi * b%lo + a%lo * b%hi)
+      c%hi = ph + u
+      c%lo = u - (c%hi - ph)
+   end function mul_dd_dd
+
+   !> Product of a double-double number and a double (two_prod written out, as in
+   !> mul_dd_dd)
+   elemental function mul_dd_r(a, b) result(c)
+      type(dd_real), intent(in) :: a
+      real(wp), intent(in) :: b
+      type(dd_real) :: c
+      real(wp), parameter :: splitter = 134217729.0_wp   ! 2**27 + 1
+      real(wp), parameter :: split_max = 2.0_wp**996
+      real(wp) :: ph, pl, t, xh, xl, yh, yl, u
+      type(dd_real) :: p
+      ph = a%hi * b
+      if (abs(a%hi) <= split_max .and. abs(b) <= split_max .and. abs(ph) <= split_max) then
+         t = splitter * a%hi
+         xh = t - (t - a%hi)
+         xl = a%hi - xh
+         t = splitter * b
+         yh = t - (t - b)
+         yl = b - yh
+         pl = ((xh * yh - ph) + xh * yl + xl * yh) + xl * yl
+      else
+         p = dd_two_prod_ext(a%hi, b)
+         ph = p%hi
+         pl = p%lo
+      end if
+      u = pl + a%lo * b
+      c%hi = ph + u
+      c%lo = u - (c%hi - ph)
+   end function mul_dd_r
+
+   !> Product of a double and a double-double number
+   elemental function mul_r_dd(a, b) result(c)
+      real(wp), intent(in) :: a
+      type(dd_real), intent(in) :: b
+      type(dd_real) :: c
+      c = mul_dd_r(b, a)
+   end function mul_r_dd
+
+   !> Quotient of two double-double numbers: three quotient digits, each from the
+   !> remainder of the last. The remainder r - b q (mul_dd_r, then sub_dd_dd) is written
+   !> out in one loop: the nest of out-of-line operators it replaces was the largest
+   !> single cost of setting up an impact. The second and third digits are products with
+   !> 1/b%hi, formed while the first division runs, instead of two more divisions in
+   !> the chain: they are below 2**-52 and 2**-104 of the quotient, so their own
+   !> rounding (one ulp more at most) moves the sum by about 2**-157 relative.
+   elemental function div_dd_dd(a, b) result(c)
+      type(dd_real), intent(in) :: a, b
+      type(dd_real) :: c
+      real(wp), parameter :: splitter = 134217729.0_wp   ! 2**27 + 1
+      real(wp), parameter :: split_max = 2.0_wp**996
+      real(wp) :: q(3), rb, inv_rb, rh, rl, ph, pl, mh, ml, sh, sl, th, tl, bv, u, h, l
+      real(wp) :: t, ah, al, bh, bl
+      type(dd_real) :: p
+      integer :: i
+      rb = b%hi
+      inv_rb = 1.0_wp / rb
+      rh = a%hi
+      rl = a%lo
+      do i = 1, 2
+         if (i == 1) then
+            q(i) = rh / rb
+         else
+            q(i) = rh * inv_rb
+         end if
+         ! (mh, ml) = b q(i): two_prod(b%hi, q), then FastTwoSum with b%lo q
+         ph = b%hi * q(i)
+         if (abs(b%hi) <= split_max .and. abs(q(i)) <= split_max .and. abs(ph) <= split_max) then
+            t = splitter * b%hi
+            ah = t - (t - b%hi)
+            al = b%hi - ah
+            t = splitter * q(i)
+            bh = t - (t - q(i))
+            bl = q(i) - bh
+            pl = ((ah * bh - ph) + ah * bl + al * bh) + al * bl
+         else
+            p = dd_two_prod_ext(b%hi, q(i))
+            ph = p%hi
+            pl = p%lo
+         end if
+         u = pl + b%lo * q(i)
+         mh = ph + u
+         ml = u - (mh - ph)
+         ! (rh, rl) = (rh, rl) - (mh, ml), as sub_dd_dd
+         sh = rh - mh
+         bv = sh - rh
+         sl = (rh - (sh - bv)) + (-mh - bv)
+         th = rl - ml
+         bv = th - rl
+         tl = (rl - (th - bv)) + (-ml - bv)
+         u = sl + th
+         h = sh + u
+         l = u - (h - sh)
+         u = l + tl
+         rh = h + u
+         rl = u - (rh - h)
+      end do
+      q(3) = rh * inv_rb
+      ! add_dd_r(FastTwoSum(q1, q2), q3)
+      h = q(1) + q(2)
+      l = q(2) - (h - q(1))
+      sh = h + q(3)
+      bv = sh - h
+      sl = (h - (sh - bv)) + (q(3) - bv)
+      u = sl + l
+      c%hi = sh + u
+      c%lo = u - (c%hi - sh)
+   end function div_dd_dd
+
+   !> Quotient of a double-double number and a double (written out as div_dd_dd)
+   elemental function div_dd_r(a, b) result(c)
+      type(dd_real), intent(in) :: a
+      real(wp), intent(in) :: b
+      type(dd_real) :: c
+      real(wp), parameter :: splitter = 134217729.0_wp   ! 2**27 + 1
+      real(wp), parameter :: split_max = 2.0_wp**996
+      real(wp) :: q(2), rh, rl, mh, ml, sh, sl, th, tl, bv, u, h, l
+      real(wp) :: t, ah, al, bh, bl
+      type(dd_real) :: p
+      integer :: i
+      rh = a%hi
+      rl = a%lo
+      do i = 1, 2
+         q(i) = rh / b
+         ! (mh, ml) = two_prod(q, b)
+         mh = q(i) * b
+         if (abs(q(i)) <= split_max .and. abs(b) <= split_max .and. abs(mh) <= split_max) then
+            t = splitter * q(i)
+            ah = t - (t - q(i))
+            al = q(i) - ah
+            t = splitter * b
+            bh = t - (t - b)
+            bl = b - bh
+            ml = ((ah * bh - mh) + ah * bl + al * bh) + al * bl
+         else
+            p = dd_two_prod_ext(q(i), b)
+            mh = p%hi
+            ml = p%lo
+         end if
+         ! (rh, rl) = (rh, rl) - (mh, ml), as sub_dd_dd
+         sh = rh - mh
+         bv = sh - rh
+         sl = (rh - (sh - bv)) + (-mh - bv)
+         th = rl - ml
+         bv = th - rl
+         tl = (rl - (th - bv)) + (-ml - bv)
+         u = sl + th
+         h = sh + u
+         l = u - (h - sh)
+         u = l + tl
+         rh = h + u
+         rl = u - (rh - h)
+      end do
+      ! add_dd_r(FastTwoSum(q1, q2), r%hi/b)
+      h = q(1) + q(2)
+      l = q(2) - (h - q(1))
+      u = rh / b
+      sh = h + u
+      bv = sh - h
+      sl = (h - (sh - bv)) + (u - bv)
+      u = sl + l
+      c%hi = sh + u
+      c%lo = u - (c%hi - sh)
+   end function div_dd_r
+
+   !> Quotient of a double and a double-double number
+   elemental function div_r_dd(a, b) result(c)
+      real(wp), intent(in) :: a
+      type(dd_real), intent(in) :: b
+      type(dd_real) :: c
+      c = div_dd_dd(dd(a), b)
+   end function div_r_dd
 
 end module hcimpact_double_double

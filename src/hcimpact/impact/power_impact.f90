@@ -1,0 +1,394 @@
+! SPDX-License-Identifier: Apache-2.0
+!> One impact with the power law f = c x^n: its outcome (`impact_power`), the velocity
+!> at a depth (phase curves) and the time law x(t), x'(t), F(t).
+!>
+!> Nothing here stops or prints; every procedure returns a status (hcimpact_status) and
+!> NaN outputs when it is not hcimpact_ok. The method: doc/impact.md.
+module hcimpact_power_impact
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
+   use hcimpact_kinds, only : wp, ik, nan
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
+      & hcimpact_err_size
+   use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
+      & operator(-), operator(*), operator(/), &
+      & dd_exp, dd_log, dd_sqrt
+   use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
+   use hcimpact_contact, only : contact_type, outcome_type, check_contact, &
+      & reject_unrepresentable
+   use hcimpact_trajectory, only : compression_phase, restitution_phase, phase_duration, &
+      & invert_from_turn, invert_from_end, scaled_velocity, phase_length
+   use hcimpact_power_model, only : power_model, new_power_model, set_end_times, &
+      & power_peak, turn_sigma, end_sigma
+   use hcimpact_power_rules, only : power_phase_times, power_whole_cc, whole_max_beta
+   implicit none
+   private
+
+   public :: impact_power, velocity_at_depth, time_law_power, time_law_samples
+   public :: compression_branch, restitution_branch
+
+   !> Branch of `velocity_at_depth`: compression (x' > 0)
+   integer, parameter :: compression_branch = compression_phase
+   !> Branch of `velocity_at_depth`: restitution (x' < 0)
+   integer, parameter :: restitution_branch = restitution_phase
+
+contains
+
+   !> Everything about one impact with the power law (see `outcome_type`).
+   !>
+   !> Errors: hcimpact_err_not_finite (NaN or infinite field), _mass, _stiffness,
+   !> _exponent, _velocity (not positive), _damping (negative), _domain (results
+   !> outside the double range), _no_convergence (a quadrature failed: not seen for
+   !> 0.1 <= n <= 10 and beta = b V up to 1e12).
+   elemental subroutine impact_power(contact, outcome, stat, rtol)
+      !> The contact
+      type(contact_type), intent(in) :: contact
+      !> Its outcome; every real field NaN on error
+      type(outcome_type), intent(out) :: outcome
+      !> Status: hcimpact_ok or an error code of hcimpact_status
+      integer, intent(out) :: stat
+      !> Relative tolerance of the time quadratures (default: full double precision;
+      !> values below epsilon are taken as epsilon; NaN or <= 0 is hcimpact_err_domain).
+      !> Only the times depend on it: the other outputs are closed forms.
+      real(wp), intent(in), optional :: rtol
+      type(power_model) :: model
+      type(dd_real) :: k, t, dur(2), tpeak, q, y, u, lp
+      integer(ik) :: ev(3)
+      type(dd_real) :: xp
+      logical :: whole
+
+      outcome = outcome_type()
+      stat = check_contact(contact)
+      if (stat /= hcimpact_ok) return
+      call new_power_model(contact, model, stat)
+      if (stat /= hcimpact_ok) return
+      if (present(rtol)) then
+         if (ieee_is_nan(rtol)) then
+            stat = hcimpact_err_domain
+            return
+         else if (rtol <= 0.0_wp) then
+            stat = hcimpact_err_domain
+            return
+         end if
+         model%f%rtol = max(rtol, epsilon(1.0_wp))
+      end if
+
+      ev = 0_ik
+      ! the peak: q = u/beta at the peak, y = 1 - (x/x_max)^(n+1), l of the point
+      call power_peak(model, q, y, lp)
+      ! the times: one rule over the whole contact for small beta, else rules on the
+      ! phases (and their pieces)
+      whole = .false.
+      if (model%f%tr%beta%hi <= whole_max_beta) &
+         & call power_whole_cc(model, lp, dur, tpeak, ev(1), whole)
+      if (.not. whole) call power_phase_times(model, lp, dur, tpeak, ev, stat)
+      if (stat /= hcimpact_ok) return
+      u = model%f%tr%beta * q
+
+      k = model%f%tr%k
+      outcome%restitution = k%hi
+      t = (1.0_wp - k) * (k + 1.0_wp)
+      outcome%energy_loss_ratio = t%hi
+      t = -(k * contact%velocity)
+      outcome%rebound_velocity = t%hi
+      outcome%max_compression = model%x_max%hi
+      t = model%time_unit * dur(1)
+      outcome%compression_time = t%hi
+      t = model%time_unit * (dur(1) + dur(2))
+      outcome%contact_time = t%hi
+      t = model%time_unit * tpeak
+      outcome%time_at_peak_force = t%hi
+      ! x_peak = x_max (1 - y)^(1/(n+1)); F = c x_peak^n (1 + u), which is
+      ! (n+1) m V^2 H (1 - y) (1 + u)/x_peak since c x_peak^(n+1) = c x_max^(n+1) (1 - y)
+      if (model%ln_x_max_dd) then
+         t = model%ln_x_max + dd_log(1.0_wp - y) * model%inv_np1_dd
+         xp = dd_exp(t)
+      else
+         ! n = 1: x_max sqrt(1 - y)
+         xp = model%x_max * dd_sqrt(1.0_wp - y)
+      end if
+      outcome%compression_at_peak_force = xp%hi
+      if (model%energy_ok) then
+         t = model%energy * (1.0_wp - y) * (u + 1.0_wp) / xp
+         outcome%peak_force = t%hi
+      else
+         t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)
+         outcome%peak_force = dd_exp_hi(t)
+      end if
+      outcome%evaluations = ev
+      call reject_unrepresentable(outcome, stat)
+   end subroutine impact_power
+
+   !> exp of a double-double number, rounded to a double.
+   elemental function dd_exp_hi(a) result(x)
+      type(dd_real), intent(in) :: a
+      real(wp) :: x
+      type(dd_real) :: e
+      e = dd_exp(a)
+      x = e%hi
+   end function dd_exp_hi
+
+   !> Velocity (m/s) at the compression x on the compression or the restitution branch:
+   !> V(x) = u(h(beta) (1 - (x/x_max)^(n+1)))/b (MODEL.md), u from Lambert W (seed
+   !> eq. 14), or its series when the argument is small (then b -> 0 is smooth and
+   !> gives +-sqrt(V^2 - 2 Pi(x)/m)).
+   !>
+   !> Errors: those of `impact`, and hcimpact_err_not_finite for a NaN or infinite x,
+   !> hcimpact_err_domain for x < 0 or x > x_max (beyond 4 ulps) or another branch.
+   elemental subroutine velocity_at_depth(contact, x, branch, v, stat)
+      !> The contact
+      type(contact_type), intent(in) :: contact
+      !> Compression in m, 0 <= x <= x_max
+      real(wp), intent(in) :: x
+      !> compression_branch or restitution_branch
+      integer, intent(in) :: branch
+      !> Velocity x' in m/s: >= 0 on the compression branch, <= 0 on restitution
+      real(wp), intent(out) :: v
+      !> Status
+      integer, intent(out) :: stat
+      type(power_model) :: model
+      type(dd_real) :: yd, t
+      real(wp) :: y, xi, s, b, w
+
+      v = nan
+      stat = check_contact(contact)
+      if (stat /= hcimpact_ok) return
+      if (.not. ieee_is_finite(x)) then
+         stat = hcimpact_err_not_finite
+         return
+      end if
+      if (x < 0.0_wp .or. (branch /= compression_branch .and. branch /= restitution_branch)) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      call new_power_model(contact, model, stat)
+      if (stat /= hcimpact_ok) return
+      if (x > model%x_max%hi * (1.0_wp + 4.0_wp * epsilon(1.0_wp))) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      ! y = 1 - (x/x_max)^(n+1), in double-double
+      if (x > 0.0_wp) then
+         if (.not. model%ln_x_max_dd) model%ln_x_max = dd_log(model%x_max)
+         yd = 1.0_wp - dd_exp((dd_log(dd(x)) - model%ln_x_max) * two_sum(model%n, 1.0_wp))
+      else
+         yd = dd(1.0_wp)
+      end if
+      if (yd%hi < 0.0_wp) yd = dd(0.0_wp)
+      y = yd%hi
+      b = model%f%tr%beta%hi
+      ! velocity/V = u/beta; with xi = sqrt(2 H y) and s = beta xi = sqrt(2 t):
+      ! u+/beta = xi (1 + s/3 + s^2/36 - s^3/270 + ...),
+      ! u-/beta = -xi (1 - s/3 + s^2/36 + s^3/270 + ...)   (MODEL.md series of 1 + W)
+      xi = sqrt(2.0_wp * model%f%tr%hq%hi * y)
+      s = b * xi
+      if (s < 1.0e-4_wp) then
+         if (branch == compression_branch) then
+            w = xi * (1.0_wp + s * (1.0_wp / 3.0_wp + s * (1.0_wp / 36.0_wp - s / 270.0_wp)))
+         else
+            w = -xi * (1.0_wp - s * (1.0_wp / 3.0_wp - s * (1.0_wp / 36.0_wp + s / 270.0_wp)))
+         end if
+      else
+         t = model%f%tr%hq * model%f%tr%beta * model%f%tr%beta * yd
+         if (branch == compression_branch) then
+            w = -lambert_wm1p1(t%hi) / b
+         else
+            w = -lambert_w0p1(t%hi) / b
+         end if
+      end if
+      v = w * contact%velocity
+   end subroutine velocity_at_depth
+
+   !> Compression x(t), velocity x'(t) and contact force F(t) = c x^n (1 + b x') at the
+   !> times t(:). Before the contact (t <= 0): x = 0, x' = V, F = 0; after it
+   !> (t >= contact time): x = 0, x' = -k V, F = 0.
+   !>
+   !> Each time costs a few quadratures (Newton's method on the time as a function of
+   !> the position, bounded). Near the end of contact x(t) is ill-conditioned: it moves
+   !> by |x'| times the error of the contact time (a few ulps of it).
+   !>
+   !> Errors: those of `impact`; hcimpact_err_not_finite if a t is NaN or infinite;
+   !> hcimpact_err_size if the arrays differ in size.
+   pure subroutine time_law_power(contact, t, x, v, f, stat)
+      !> The contact
+      type(contact_type), intent(in) :: contact
+      !> Times in s from the start of contact, any order
+      real(wp), intent(in) :: t(:)
+      !> Compression x(t) in m
+      real(wp), intent(out) :: x(:)
+      !> Velocity x'(t) in m/s
+      real(wp), intent(out) :: v(:)
+      !> Contact force F(t) in N
+      real(wp), intent(out) :: f(:)
+      !> Status
+      integer, intent(out) :: stat
+      type(power_model) :: model
+      type(dd_real) :: dur(2)
+      integer(ik) :: ev
+      integer :: i
+
+      x = nan
+      v = nan
+      f = nan
+      if (size(x) /= size(t) .or. size(v) /= size(t) .or. size(f) /= size(t)) then
+         stat = hcimpact_err_size
+         return
+      end if
+      stat = check_contact(contact)
+      if (stat /= hcimpact_ok) return
+      if (.not. all(ieee_is_finite(t))) then
+         stat = hcimpact_err_not_finite
+         return
+      end if
+      call new_power_model(contact, model, stat)
+      if (stat /= hcimpact_ok) return
+      call set_end_times(model)
+      ev = 0_ik
+      call phase_duration(model%f, compression_phase, dur(1), ev, stat)
+      if (stat == hcimpact_ok) call phase_duration(model%f, restitution_phase, dur(2), ev, stat)
+      if (stat /= hcimpact_ok) return
+      do i = 1, size(t)
+         call power_state(model, dur, t(i), x(i), v(i), f(i), stat)
+         ! A state beyond the range of doubles is not an answer (never NaN with success)
+         if (stat == hcimpact_ok .and. .not. (ieee_is_finite(x(i)) .and. ieee_is_finite(v(i)) &
+            & .and. ieee_is_finite(f(i)))) stat = hcimpact_err_domain
+         if (stat /= hcimpact_ok) then
+            x = nan
+            v = nan
+            f = nan
+            return
+         end if
+      end do
+   end subroutine time_law_power
+
+   !> The time law on nsamples equally spaced times from 0 to the contact time
+   !> (both included): t(i) = contact_time (i - 1)/(nsamples - 1).
+   !>
+   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2. The outputs are
+   !> allocated with max(nsamples, 0) elements in every case, NaN on error.
+   pure subroutine time_law_samples(contact, nsamples, t, x, v, f, stat)
+      !> The contact
+      type(contact_type), intent(in) :: contact
+      !> Number of samples, >= 2
+      integer, intent(in) :: nsamples
+      !> Times in s
+      real(wp), allocatable, intent(out) :: t(:)
+      !> Compression in m
+      real(wp), allocatable, intent(out) :: x(:)
+      !> Velocity in m/s
+      real(wp), allocatable, intent(out) :: v(:)
+      !> Contact force in N
+      real(wp), allocatable, intent(out) :: f(:)
+      !> Status
+      integer, intent(out) :: stat
+      type(outcome_type) :: outcome
+      integer :: i
+
+      allocate(t(max(nsamples, 0)), x(max(nsamples, 0)), v(max(nsamples, 0)), &
+         & f(max(nsamples, 0)))
+      t = nan
+      x = nan
+      v = nan
+      f = nan
+      if (nsamples < 2) then
+         stat = hcimpact_err_size
+         return
+      end if
+      call impact_power(contact, outcome, stat)
+      if (stat /= hcimpact_ok) return
+      do i = 1, nsamples
+         t(i) = outcome%contact_time * (real(i - 1, wp) / real(nsamples - 1, wp))
+      end do
+      t(nsamples) = outcome%contact_time
+      call time_law_power(contact, t, x, v, f, stat)
+   end subroutine time_law_samples
+
+   !> State at the time t (s) of a power-law impact whose phase durations are known.
+   !>
+   !> The phase and its half nearer in time are found from the durations; the point is
+   !> then located from the turning point (by its l) or from the end of contact (by
+   !> rho = d^(1/(n+1)), d its distance in l from the end, which keeps the relative
+   !> accuracy of x for t -> 0 and near the end of contact).
+   pure subroutine power_state(model, dur, t, x, v, f, stat)
+      type(power_model), intent(inout) :: model
+      type(dd_real), intent(in) :: dur(2)
+      real(wp), intent(in) :: t
+      real(wp), intent(out) :: x, v, f
+      integer, intent(out) :: stat
+      type(dd_real) :: tau, target, l, e, lt, rho, d, length
+      real(wp) :: sigma, sigma_n
+      integer(ik) :: ev
+      integer :: phase
+      logical :: from_turn
+
+      stat = hcimpact_ok
+      ev = 0_ik
+      if (.not. t > 0.0_wp) then
+         x = 0.0_wp
+         v = model%velocity
+         f = 0.0_wp
+         return
+      end if
+      ! time in units of the integrals
+      tau = dd(t) / model%time_unit
+      e = dur(1) + dur(2)
+      if (tau%hi < 1.0e-20_wp * e%hi) then
+         ! The start of the motion: x = V t, x' = V, F = c x^n (1 + b V), with relative
+         ! corrections of order (t/T)^(n+1) < 1e-20, below an ulp. (The inversion below
+         ! would lose a time this small, down to subnormal t, in its rounding.)
+         x = model%velocity * t
+         v = model%velocity
+         ! F = (c x_max^n) (x/x_max)^n (1 + beta)
+         f = model%force_unit%hi * (x / model%x_max%hi)**model%n &
+            & * (1.0_wp + model%f%tr%beta%hi)
+         return
+      end if
+      if (.not. tau%hi < e%hi) then
+         e = -(model%f%tr%k * model%velocity)
+         x = 0.0_wp
+         v = e%hi
+         f = 0.0_wp
+         return
+      end if
+      if (tau%hi <= dur(1)%hi) then
+         phase = compression_phase
+         from_turn = tau%hi > 0.5_wp * dur(1)%hi
+         if (from_turn) then
+            target = dur(1) - tau
+         else
+            target = tau
+         end if
+      else
+         phase = restitution_phase
+         target = tau - dur(1)
+         from_turn = target%hi <= 0.5_wp * dur(2)%hi
+         if (.not. from_turn) target = (dur(1) + dur(2)) - tau
+      end if
+      if (target%hi < 0.0_wp) target = dd(0.0_wp)
+      length = phase_length(model%f%tr, phase)
+      if (from_turn) then
+         call invert_from_turn(model%f, phase, target, lt, ev, stat)
+         if (stat /= hcimpact_ok) return
+         d = length - lt
+      else
+         call invert_from_end(model%f, phase, model%np1_dd, target, rho, d, ev, stat)
+         if (stat /= hcimpact_ok) return
+         lt = length - d
+      end if
+      ! sigma = x/x_max from the form for the nearer end of the phase (in l)
+      if (lt%hi <= d%hi) then
+         call turn_sigma(model, phase, lt%hi, sigma, sigma_n)
+      else
+         if (from_turn) rho = dd_exp(dd_log(d) / model%np1_dd)
+         call end_sigma(model, phase, rho%hi, d%hi, sigma, sigma_n)
+      end if
+      l = lt
+      if (phase == restitution_phase) l = -lt
+      e = model%x_max * sigma
+      x = e%hi
+      v = scaled_velocity(model%f%tr, l) * model%velocity
+      ! F = c x^n (1 + u), 1 + u = exp(beta l)
+      e = model%force_unit * sigma_n * dd_exp(model%f%tr%beta * l)
+      f = e%hi
+   end subroutine power_state
+
+end module hcimpact_power_impact
