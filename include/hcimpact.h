@@ -28,9 +28,9 @@
 #ifndef HCIMPACT_H
 #define HCIMPACT_H
 
-#define HCIMPACT_VERSION_MAJOR 0
-#define HCIMPACT_VERSION_MINOR 2
-#define HCIMPACT_VERSION_PATCH 0
+#define HCIMPACT_VERSION_MAJOR 0 /**< major version of this header */
+#define HCIMPACT_VERSION_MINOR 2 /**< minor version of this header */
+#define HCIMPACT_VERSION_PATCH 0 /**< patch level of this header */
 /** Version as one integer: 10000*major + 100*minor + patch
  *  (hcimpact_version_number() returns that of the library at run time) */
 #define HCIMPACT_VERSION 200
@@ -74,7 +74,7 @@
 /** Branches of hcimpact_velocity_at_depth: compression (x' >= 0) and restitution
  *  (x' <= 0). */
 #define HCIMPACT_COMPRESSION_BRANCH 1
-#define HCIMPACT_RESTITUTION_BRANCH 2
+#define HCIMPACT_RESTITUTION_BRANCH 2 /**< see HCIMPACT_COMPRESSION_BRANCH */
 
 /** Smallest exponent n of the power law that hcimpact_impact accepts (as n -> 0 the
  *  law tends to a step and the peak force degenerates). */
@@ -135,8 +135,11 @@ HCIMPACT_API double hcimpact_lambert_wm1p1(double t);
  *  the domain gives NaN in its element only. */
 HCIMPACT_API int hcimpact_lambert_w0_array(int n, const double *z, double *w);
 HCIMPACT_API int hcimpact_lambert_wm1_array(int n, const double *z, double *w);
+/**< w[i] = hcimpact_lambert_wm1(z[i]), as hcimpact_lambert_w0_array */
 HCIMPACT_API int hcimpact_lambert_w0p1_array(int n, const double *t, double *v);
+/**< v[i] = hcimpact_lambert_w0p1(t[i]), as hcimpact_lambert_w0_array */
 HCIMPACT_API int hcimpact_lambert_wm1p1_array(int n, const double *t, double *v);
+/**< v[i] = hcimpact_lambert_wm1p1(t[i]), as hcimpact_lambert_w0_array */
 
 /* ------------------------------------------------------------------------
  * Restitution of the Hunt-Crossley impact (depends on beta = b V only)
@@ -175,9 +178,13 @@ HCIMPACT_API double hcimpact_u_minus_log1p(double u);
  *  outside the domain gives NaN in its element only. */
 HCIMPACT_API int hcimpact_restitution_array(int n, const double *beta, double *k);
 HCIMPACT_API int hcimpact_restitution_inverse_array(int n, const double *e, double *beta);
+/**< beta[i] = hcimpact_restitution_inverse(e[i]), as hcimpact_restitution_array */
 HCIMPACT_API int hcimpact_one_minus_restitution_array(int n, const double *beta, double *d);
+/**< d[i] = hcimpact_one_minus_restitution(beta[i]), as hcimpact_restitution_array */
 HCIMPACT_API int hcimpact_energy_loss_ratio_array(int n, const double *beta, double *r);
+/**< r[i] = hcimpact_energy_loss_ratio(beta[i]), as hcimpact_restitution_array */
 HCIMPACT_API int hcimpact_restitution_derivative_array(int n, const double *beta, double *dk);
+/**< dk[i] = hcimpact_restitution_derivative(beta[i]), as hcimpact_restitution_array */
 
 /** Damping constant b (s/m) that gives the restitution e (0 < e <= 1) at the
  *  approach speed velocity (m/s, >= 0): b = beta(e)/max(velocity, min_velocity).
