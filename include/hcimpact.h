@@ -342,6 +342,64 @@ HCIMPACT_API int hcimpact_time_law_samples(const hcimpact_contact *contact, int 
                                            double *x, double *v, double *f);
 
 /* ------------------------------------------------------------------------
+ * The contact-force element: the force of one contact inside the caller's own
+ * integrator. Fortran: src/hcimpact/model/force_element.f90 (module
+ * hcimpact_force_element); C wrappers src/hcimpact/capi/api_force.f90;
+ * doc/contact-force.md.
+ * ------------------------------------------------------------------------ */
+
+/** The contact force and what an integrator needs with it, at one state. */
+typedef struct {
+    double force;       /**< F = f(x) max(0, 1 + b v) in N, >= 0 (pushes the bodies apart) */
+    double dforce_dx;   /**< dF/dx in N/m (0 where the force is clamped) */
+    double dforce_dv;   /**< dF/dv in N s/m (0 where the force is clamped) */
+    double potential;   /**< elastic potential energy Pi(x) = c x^(n+1)/(n+1) in J */
+    double dissipation; /**< dissipated power (F - f(x)) v in W, >= 0 */
+} hcimpact_force;
+
+/** The element of one power-law contact f = c x^n at the deformation x (m; x <= 0:
+ *  no contact, every field 0) and the deformation rate v = dx/dt (m/s; > 0 while the
+ *  bodies approach). The force never pulls: where 1 + b v < 0 it is clamped at 0, and
+ *  so are both derivatives (also at 1 + b v = 0 exactly). 1 + b v is formed from the
+ *  exact product b v, so every field is within a few ulps of its exact value, also
+ *  next to the clamp; a result beyond the double range is +inf (dF/dx for n < 1 as
+ *  x -> 0+), never a finite representable value lost on the way.
+ *  Returns HCIMPACT_OK; HCIMPACT_ERR_NOT_FINITE (an argument NaN or infinite),
+ *  HCIMPACT_ERR_STIFFNESS (c <= 0), HCIMPACT_ERR_EXPONENT (n < 1e-6),
+ *  HCIMPACT_ERR_DAMPING (b < 0): every field NaN; HCIMPACT_ERR_NULL (f NULL). */
+HCIMPACT_API int hcimpact_contact_force(double stiffness, double exponent, double damping, double x,
+                                        double v, hcimpact_force *f);
+
+/** The element of n >= 1 contacts at once: f[i] from stiffness[i], exponent[i],
+ *  damping[i], x[i], v[i]. statuses (may be NULL) receives each status; the result is
+ *  HCIMPACT_OK when all succeeded, else the status of the first that failed (its
+ *  fields NaN; the others are computed regardless). HCIMPACT_ERR_NULL and
+ *  HCIMPACT_ERR_SIZE (n < 1) write nothing. */
+HCIMPACT_API int hcimpact_contact_force_array(int n, const double *stiffness, const double *exponent,
+                                              const double *damping, const double *x, const double *v,
+                                              hcimpact_force *f, int *statuses);
+
+/** The element of two bodies on a line, body 1 left of body 2, from their positions
+ *  (m) and velocities (m/s): x = distance - (q2 - q1), v = v1 - v2, both formed without
+ *  rounding error (the result is that of the exact x and v of these doubles).
+ *  distance = q2 - q1 at first touch (the sum of the radii for centres). The force on
+ *  body 2 is +F, on body 1 -F; dF/dq1 = dF/dx = -dF/dq2, dF/dv1 = dF/dv = -dF/dv2.
+ *  Statuses as hcimpact_contact_force; bodies apart by more than DBL_MAX have no
+ *  contact; an overlap or relative speed beyond DBL_MAX: HCIMPACT_ERR_DOMAIN. */
+HCIMPACT_API int hcimpact_contact_force_pair(double stiffness, double exponent, double damping,
+                                             double distance, double q1, double v1, double q2,
+                                             double v2, hcimpact_force *f);
+
+/** The element of a body (position q, velocity v) against a fixed wall at `wall`:
+ *  side = +1 when the wall is on the body's right (x = distance - (wall - q)), -1 on
+ *  its left (x = distance - (q - wall)); distance = |wall - q| at first touch. The
+ *  force on the body is -side F, and its derivatives with respect to q and v are
+ *  -dF/dx and -dF/dv. Another side: HCIMPACT_ERR_DOMAIN. */
+HCIMPACT_API int hcimpact_contact_force_wall(double stiffness, double exponent, double damping,
+                                             double distance, double q, double v, double wall, int side,
+                                             hcimpact_force *f);
+
+/* ------------------------------------------------------------------------
  * The optional components have headers of their own: hcimpact_cvode.h
  * (hcimpact_simulate, the ODE path; link libhcimpact_cvode) and hcimpact_lapack.h
  * (hcimpact_fit_*, calibration; link libhcimpact_lapack). Each includes this one.

@@ -24,6 +24,8 @@ module hcimpact
       & default_min_velocity, compression_branch, restitution_branch
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
+   use hcimpact_force_element, only : contact_force_type, contact_force, contact_force_pair, &
+      & contact_force_wall
    use hcimpact_legacy_damping, only : n_damping_rules, damping_rule_names, legacy_damping
    implicit none
    public

@@ -202,7 +202,7 @@ contains
       type(cvode_options), intent(in), optional :: options
       type(cvode_options) :: opts
       type(impact_system), target :: sys
-      real(wp) :: n, a, beta, ln_x, ln_f, s_max, k, atol(2), tau_max, bound, h0
+      real(wp) :: n, a, beta, ln_x, ln_f, s_max, k, atol(2), tau_max, h0
       character(len=:), allocatable :: why
 
       simulation%message = "success"
@@ -260,16 +260,6 @@ contains
       sys%length = exp(ln_x)
       sys%time = exp(ln_x - log(contact%velocity))
       sys%force_unit = exp(ln_f)
-      ! Without guards: |a s^n (1 + beta sigma)| and the Jacobian entries for s <= 2,
-      ! |sigma| <= 2 stay below e^700; with n < 1, s^(n-1) <= 1e100 for s >= small_s.
-      bound = log(a) + log(max(n, 1.0_wp)) + max(n, 1.0_wp) * log(2.0_wp) &
-         & + log(1.0_wp + 2.0_wp * beta)
-      if (n < 1.0_wp) then
-         bound = bound + 100.0_wp * log(10.0_wp)
-         ! (if this underflows, tiny**(n-1) is below 1e100 anyway)
-         sys%small_s = max(exp(-100.0_wp * log(10.0_wp) / (1.0_wp - n)), tiny(1.0_wp))
-      end if
-      sys%unguarded = bound < 700.0_wp
 
       if (opts%max_time > 0.0_wp) then
          tau_max = opts%max_time / sys%time
@@ -364,7 +354,10 @@ contains
       end if
       sys%kind = law_system
       allocate(sys%law, source=law)
-      if (present(external)) allocate(sys%external, source=external)
+      if (present(external)) then
+         allocate(sys%external, source=external)
+         sys%clamp = .true.
+      end if
       sys%beta = beta
       sys%mass = mass
       sys%damping = damping

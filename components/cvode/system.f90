@@ -16,9 +16,16 @@
 !> it depends on (n, beta) alone, so an absolute tolerance means the same thing for a
 !> bead and for a hammer.
 !>
+!> The contact force and its derivatives are those of the contact-force element
+!> (hcimpact_force_element): for the power law the element with the stiffness (n+1)/2
+!> and the damping beta in the scaled variables, for a user's law the element of the
+!> law in SI units. Without an external force the element's clamp is off (the exact
+!> motion never reaches 1 + b x' = 0, and the unclamped force attracts a numerical
+!> solution back to that line); with one it is on.
+!>
 !> The state is never modified here. The elastic force is evaluated at a clamped copy
-!> max(s, 0) (a step may overshoot the end of contact slightly, and s^n is NaN for
-!> s < 0); after the end of contact the body flies freely. A state for which a value
+!> max(s, 0) (a step may overshoot the end of contact slightly); after the end of
+!> contact the body flies freely. A state for which a value
 !> would overflow is reported as a recoverable failure (the solver then retries with a
 !> smaller step) instead of producing Inf or NaN.
 !>
@@ -35,7 +42,9 @@ module hcimpact_cvode_system
    use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp
+   use hcimpact_status, only : hcimpact_ok
    use hcimpact_elastic, only : elastic_law
+   use hcimpact_force_element, only : contact_force_type, contact_force
    implicit none
    private
 
@@ -110,11 +119,12 @@ module hcimpact_cvode_system
       real(wp) :: beta = 0.0_wp
       !> Power law: exponent n and (n+1)/2
       real(wp) :: n = 1.5_wp, half_np1 = 1.25_wp
-      !> Power law: s^n, s^(n-1) and the products stay finite without guards for
-      !> 0 <= s <= 2, |sigma| <= 2 (and s >= small_s when n < 1)
-      logical :: unguarded = .true.
-      !> Power law with n < 1: below this s the Jacobian takes the guarded path
-      real(wp) :: small_s = 0.0_wp
+      !> Whether the contact force is clamped at 0 where 1 + b x' < 0 (the contact-force
+      !> element's clamp). Off without an external force: the exact motion of one impact
+      !> never reaches 1 + b x' = 0, and the unclamped force keeps a numerical solution
+      !> that overshoots the line attracted to it (doc/contact-force.md); on with an
+      !> external force, which may pull the body away faster than 1/b.
+      logical :: clamp = .false.
       !> User law and external force (law_system only)
       class(elastic_law), allocatable :: law
       class(external_force), allocatable :: external
@@ -235,10 +245,12 @@ contains
       real(wp), intent(out) :: dy(2)
       !> rhs_ok, rhs_recoverable or rhs_law_failure
       integer, intent(out) :: stat
-      real(wp) :: s, sigma, w, sn, f, g
-      logical :: ok
+      real(wp) :: s, sigma, w, g
+      type(contact_force_type) :: element
+      integer :: fstat
 
       stat = rhs_ok
+      w = 0.0_wp
       dy(1) = y(1)
       dy(2) = 0.0_wp
       if (.not. (ieee_is_finite(y(1)) .and. ieee_is_finite(y(2)))) then
@@ -251,41 +263,25 @@ contains
 
       select case (sys%kind)
       case (power_system)
-         if (sys%unguarded .and. s <= 2.0_wp .and. abs(sigma) <= 2.0_wp) then
-            dy(2) = -sys%half_np1 * s**sys%n * (1.0_wp + sys%beta * sigma)
-            return
-         end if
-         w = guarded_product(sys%beta, sigma)
-         if (abs(w) >= huge(w)) then
-            stat = rhs_recoverable
-            return
-         end if
-         w = 1.0_wp + w
-         call guarded_power(s, sys%n, sn, ok)
-         if (.not. ok) then
-            stat = rhs_recoverable
-            return
-         end if
-         dy(2) = -guarded_product(sys%half_np1 * sn, w)
-         if (abs(dy(2)) >= huge(w)) stat = rhs_recoverable
+         ! the contact force of the scaled problem: stiffness (n+1)/2, damping beta
+         call contact_force(sys%half_np1, sys%n, sys%beta, s, sigma, element, &
+            & clamp=sys%clamp)
+         dy(2) = -element%force
+         if (.not. dy(2) > -huge(w)) stat = rhs_recoverable
       case default
-         f = sys%law%force(sys%length * s)
+         call contact_force(sys%law, sys%damping, sys%length * s, sys%velocity * sigma, &
+            & element, fstat, sys%clamp)
          g = 0.0_wp
          if (allocated(sys%external)) then
             g = sys%external%force(sys%time * tau, sys%length * y(1), sys%velocity * sigma)
          end if
-         if (.not. (ieee_is_finite(f) .and. ieee_is_finite(g))) then
+         if (fstat /= hcimpact_ok .or. .not. ieee_is_finite(g)) then
             stat = rhs_law_failure
             return
          end if
-         w = guarded_product(sys%beta, sigma)
-         if (abs(w) >= huge(w)) then
-            stat = rhs_recoverable
-            return
-         end if
-         f = guarded_product(f, 1.0_wp + w)
-         dy(2) = guarded_product(sys%accel, g - f)
-         if (abs(f) >= huge(f) .or. abs(dy(2)) >= huge(f)) stat = rhs_recoverable
+         dy(2) = guarded_product(sys%accel, g - element%force)
+         if (.not. (abs(element%force) < huge(w) .and. abs(dy(2)) < huge(w))) &
+            & stat = rhs_recoverable
       end select
    end subroutine system_rhs
 
@@ -304,8 +300,9 @@ contains
       real(wp), intent(out) :: jac(2, 2)
       !> rhs_ok, rhs_recoverable or rhs_law_failure
       integer, intent(out) :: stat
-      real(wp) :: s, sigma, w, snm1, sn, f, df, gx, gv
-      logical :: ok
+      real(wp) :: s, sigma, gx, gv
+      type(contact_force_type) :: element
+      integer :: fstat
 
       stat = rhs_ok
       jac = 0.0_wp
@@ -317,45 +314,32 @@ contains
       s = max(y(1), 0.0_wp)
       sigma = y(2)
 
+      ! the derivatives of the contact force; at s = 0 those from the right (the
+      ! element has none at x <= 0: there is no contact yet), at the smallest normal s
+      s = max(s, tiny(1.0_wp))
       select case (sys%kind)
       case (power_system)
-         if (sys%unguarded .and. s <= 2.0_wp .and. abs(sigma) <= 2.0_wp &
-            & .and. s >= sys%small_s) then
-            w = 1.0_wp + sys%beta * sigma
-            if (sys%n == 1.0_wp) then
-               jac(2, 1) = -sys%half_np1 * w
-               jac(2, 2) = -sys%half_np1 * sys%beta * s
-            else
-               snm1 = s**(sys%n - 1.0_wp)
-               jac(2, 1) = -sys%half_np1 * sys%n * snm1 * w
-               jac(2, 2) = -sys%half_np1 * sys%beta * (snm1 * s)
-            end if
-            return
-         end if
-         w = 1.0_wp + guarded_product(sys%beta, sigma)
-         call guarded_power(s, sys%n - 1.0_wp, snm1, ok)
-         call guarded_power(s, sys%n, sn, ok)
-         jac(2, 1) = -guarded_product(sys%half_np1 * sys%n, guarded_product(snm1, w))
-         jac(2, 2) = -guarded_product(sys%half_np1 * sys%beta, sn)
+         call contact_force(sys%half_np1, sys%n, sys%beta, s, sigma, element, &
+            & clamp=sys%clamp)
+         jac(2, 1) = -max(-huge(1.0_wp), min(element%dforce_dx, huge(1.0_wp)))
+         jac(2, 2) = -min(element%dforce_dv, huge(1.0_wp))
       case default
-         f = sys%law%force(sys%length * s)
-         df = sys%law%force_derivative(sys%length * s)
+         call contact_force(sys%law, sys%damping, sys%length * s, sys%velocity * sigma, &
+            & element, fstat, sys%clamp)
          gx = 0.0_wp
          gv = 0.0_wp
          if (allocated(sys%external)) then
             call sys%external%derivatives(sys%time * tau, sys%length * y(1), &
                & sys%velocity * sigma, gx, gv)
          end if
-         if (.not. (ieee_is_finite(f) .and. ieee_is_finite(df) .and. ieee_is_finite(gx) &
-            & .and. ieee_is_finite(gv))) then
+         if (.not. (fstat == hcimpact_ok .and. ieee_is_finite(gx) .and. ieee_is_finite(gv))) then
             stat = rhs_law_failure
             return
          end if
-         w = 1.0_wp + guarded_product(sys%beta, sigma)
-         ! p L [ -f'(L s)(1 + beta sigma) + g_x ]  and  p [ -f(L s) beta + V g_v ]
-         jac(2, 1) = guarded_product(sys%accel * sys%length, gx - guarded_product(df, w))
-         jac(2, 2) = guarded_product(sys%accel, guarded_product(sys%velocity, gv) &
-            & - guarded_product(f, sys%beta))
+         ! p L [ g_x - dF/dx ]  and  p V [ g_v - dF/dv ]
+         jac(2, 1) = guarded_product(sys%accel * sys%length, gx - element%dforce_dx)
+         jac(2, 2) = guarded_product(sys%accel, guarded_product(sys%velocity, &
+            & gv - element%dforce_dv))
       end select
    end subroutine system_jacobian
 
@@ -429,8 +413,8 @@ contains
       end select
    end subroutine system_events
 
-   !> Contact force F = f(x)(1 + b x') in N at the scaled state y; +huge if it
-   !> overflows (ok false then).
+   !> Contact force F = f(x) max(0, 1 + b x') in N at the scaled state y (the contact-force
+   !> element); +huge if it overflows or the law fails (ok false then).
    pure subroutine system_force(sys, y, force, ok)
       !> The system
       type(impact_system), intent(in) :: sys
@@ -440,29 +424,23 @@ contains
       real(wp), intent(out) :: force
       !> Whether the force is finite
       logical, intent(out) :: ok
-      real(wp) :: s, w, lf
+      real(wp) :: s
+      type(contact_force_type) :: element
 
       ok = .true.
       s = max(y(1), 0.0_wp)
-      w = 1.0_wp + guarded_product(sys%beta, y(2))
       select case (sys%kind)
       case (power_system)
-         ! F = force_unit s^n (1 + beta sigma), formed in logarithms
-         if (s == 0.0_wp .or. w == 0.0_wp) then
-            force = 0.0_wp
-            return
-         end if
-         lf = log(sys%force_unit) + sys%n * log(s) + log(abs(w))
-         if (lf > log(huge(1.0_wp))) then
-            force = huge(1.0_wp)
-            ok = .false.
-         else
-            force = sign(exp(lf), w)
-         end if
+         ! force_unit s^n (1 + beta sigma) = the element with the stiffness force_unit
+         call contact_force(sys%force_unit, sys%n, sys%beta, s, y(2), element, &
+            & clamp=sys%clamp)
       case default
-         force = guarded_product(sys%law%force(sys%length * s), w)
-         ok = ieee_is_finite(force) .and. abs(force) < huge(force)
+         call contact_force(sys%law, sys%damping, sys%length * s, sys%velocity * y(2), &
+            & element, clamp=sys%clamp)
       end select
+      force = element%force
+      ok = ieee_is_finite(force) .and. abs(force) < huge(force)
+      if (.not. ok) force = huge(1.0_wp)
    end subroutine system_force
 
    !> Largest modulus of the eigenvalues of [[0, 1], [j21, j22]], without overflow:

@@ -38,8 +38,9 @@ _API = (
 _TYPES = ("ImpactResult", "HcimpactError", "InputError", "ComputationError",
           "UnavailableError", "STATUS_NAMES")
 _LIBRARY = ("LibraryNotFoundError",)
+_FORCE = ("contact_force", "ContactForce")
 
-__all__ = list(_API + _TYPES + _LIBRARY)
+__all__ = list(_API + _TYPES + _LIBRARY + _FORCE)
 
 
 def __getattr__(name: str) -> Any:
@@ -49,6 +50,8 @@ def __getattr__(name: str) -> Any:
         module = importlib.import_module("._types", __name__)
     elif name in _LIBRARY:
         module = importlib.import_module("._library", __name__)
+    elif name in _FORCE:
+        module = importlib.import_module("._force", __name__)
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     value = getattr(module, name)

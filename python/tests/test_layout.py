@@ -2,7 +2,8 @@
 """Python's view of the C structures against include/hcimpact.h.
 
 ctypes cannot read a header: the package mirrors ``hcimpact_contact``,
-``hcimpact_outcome`` and ``hcimpact_elastic_law`` by hand (hcimpact/_types.py). These
+``hcimpact_outcome``, ``hcimpact_elastic_law`` (hcimpact/_types.py) and
+``hcimpact_force`` (hcimpact/_force.py) by hand. These
 tests parse the header's declarations and compare them with the mirrors field by field
 (name, order, C type), and the callback type with the header's typedef, so that a field
 added, removed, reordered or retyped in the header fails here instead of silently
@@ -20,7 +21,7 @@ from pathlib import Path
 
 import pytest
 
-from hcimpact import _types
+from hcimpact import _force, _types
 
 
 def header_text() -> str:
@@ -64,6 +65,7 @@ def python_fields(structure: type[ctypes.Structure]) -> list[tuple[str, object]]
     ("hcimpact_contact", _types.Contact),
     ("hcimpact_outcome", _types.Outcome),
     ("hcimpact_elastic_law", _types.ElasticLaw),
+    ("hcimpact_force", _force.Force),
 ])
 def test_structure_matches_header(c_name, structure):
     declared = struct_fields(header_text(), c_name)

@@ -598,6 +598,59 @@ static void test_trajectory(void)
   check_status("time_law_samples (NULL contact)", hcimpact_time_law_samples(NULL, 2, t, x, xd, f), HCIMPACT_ERR_NULL);
 }
 
+/* The contact-force element through C: the formula of the header at ordinary states,
+ * the clamp, no contact, the array, pair and wall forms, bad input and NULL. */
+static void test_contact_force(void)
+{
+  const double c = 1.7135e10, n = 1.5, b = 0.1;
+  double x = 5.0e-5, v = 2.0, f0 = c * pow(x, n);
+  double cs[3] = {c, c, -1.0}, ns[3] = {n, n, n}, bs[3] = {b, b, b};
+  double xs[3] = {x, -1.0e-6, x}, vs[3] = {v, v, v};
+  hcimpact_force f, many[3], pair, wall;
+  int statuses[3];
+
+  check_true("hcimpact_force is five doubles", sizeof(hcimpact_force) == 5 * sizeof(double));
+  check_status("contact_force", hcimpact_contact_force(c, n, b, x, v, &f), HCIMPACT_OK);
+  check_close("contact_force F", f.force, f0 * (1.0 + b * v), 1e-14);
+  check_close("contact_force dF/dx", f.dforce_dx, n * f0 / x * (1.0 + b * v), 1e-14);
+  check_close("contact_force dF/dv", f.dforce_dv, b * f0, 1e-14);
+  check_close("contact_force potential", f.potential, f0 * x / (n + 1.0), 1e-14);
+  check_close("contact_force dissipation", f.dissipation, b * f0 * v * v, 1e-14);
+  /* separating faster than 1/b: clamped, the dissipation -f(x) v */
+  check_status("contact_force clamped", hcimpact_contact_force(c, n, b, x, -20.0, &f),
+               HCIMPACT_OK);
+  check_true("clamped: no force", f.force == 0.0 && f.dforce_dx == 0.0 && f.dforce_dv == 0.0);
+  check_close("clamped dissipation", f.dissipation, 20.0 * f0, 1e-14);
+  check_status("contact_force apart", hcimpact_contact_force(c, n, b, -x, v, &f), HCIMPACT_OK);
+  check_true("apart: all zero", f.force == 0.0 && f.potential == 0.0 && f.dissipation == 0.0);
+  check_status("contact_force(n < 1e-6)", hcimpact_contact_force(c, 1e-7, b, x, v, &f),
+               HCIMPACT_ERR_EXPONENT);
+  check_true("bad exponent: NaN", isnan(f.force) && isnan(f.dissipation));
+  check_status("contact_force(v NaN)", hcimpact_contact_force(c, n, b, x, NAN, &f),
+               HCIMPACT_ERR_NOT_FINITE);
+  check_status("contact_force(NULL)", hcimpact_contact_force(c, n, b, x, v, NULL),
+               HCIMPACT_ERR_NULL);
+  check_status("contact_force_array", hcimpact_contact_force_array(3, cs, ns, bs, xs, vs,
+               many, statuses), HCIMPACT_ERR_STIFFNESS);
+  check_true("array statuses", statuses[0] == HCIMPACT_OK && statuses[1] == HCIMPACT_OK
+             && statuses[2] == HCIMPACT_ERR_STIFFNESS);
+  check_close("array F", many[0].force, f0 * (1.0 + b * v), 1e-14);
+  check_true("array: apart, bad", many[1].force == 0.0 && isnan(many[2].force));
+  check_status("contact_force_array(n = 0)", hcimpact_contact_force_array(0, cs, ns, bs, xs,
+               vs, many, NULL), HCIMPACT_ERR_SIZE);
+  check_status("contact_force_array(NULL)", hcimpact_contact_force_array(3, cs, ns, NULL,
+               xs, vs, many, NULL), HCIMPACT_ERR_NULL);
+  /* two balls of radius 1 cm at 1 m from the origin, overlapping by x */
+  check_status("contact_force_pair", hcimpact_contact_force_pair(c, n, b, 0.02, 1.0, 1.5,
+               1.02 - x, -0.5, &pair), HCIMPACT_OK);
+  check_close("pair F", pair.force, f0 * (1.0 + b * v), 1e-9);
+  check_status("contact_force_wall", hcimpact_contact_force_wall(c, n, b, 0.01, 1.0 + x,
+               v, 1.01, 1, &wall), HCIMPACT_OK);
+  check_close("wall F", wall.force, f0 * (1.0 + b * v), 1e-9);
+  check_status("contact_force_wall(side 0)", hcimpact_contact_force_wall(c, n, b, 0.01,
+               1.0, v, 1.01, 0, &wall), HCIMPACT_ERR_DOMAIN);
+}
+
 int main(void)
 {
   test_version();
@@ -608,6 +661,7 @@ int main(void)
   test_impact();
   test_impact_law();
   test_trajectory();
+  test_contact_force();
 
   if (failures > 0) {
     printf("%d of %d checks failed\n", failures, checks);

@@ -11,7 +11,8 @@ C
       COMMON /CHKCNT/ NFAIL, NCHECK
       DOUBLE PRECISION XMASS, C, EN, B, V, X, XDOT, W, RK, BETA, D, R
       DOUBLE PRECISION OUT(8), VS(6), RKS(6), BETAS(6), ES(3)
-      DOUBLE PRECISION OUT9(9)
+      DOUBLE PRECISION OUT9(9), FE(5), FES(5, 2), XE(2), VE(2), F0
+      INTEGER ISTE(2)
       DOUBLE PRECISION RKOUT(3)
       DOUBLE PRECISION T(5), XS(5), XDS(5), FS(5), ZERO, XNAN, BIG
       DOUBLE PRECISION XMS(3), CS(3), ENS(3), BS(3), VV(3), TAB(8, 3)
@@ -188,6 +189,53 @@ C     HCIMPN: the same eight results, then the time of the peak force
       CALL HCIMPN(XMASS, C, 1.0D-20, B, VS(6), 9, OUT9, INFO)
       CALL CHKI('HCIMPN(EN = 1e-20) INFO', INFO, -3)
       CALL CHKN('HCIMPN(EN = 1e-20) OUT', OUT9(9))
+C
+C     The contact-force element: the steel ball's law at X = 5e-5 m
+      F0 = C * (5.0D-5)**1.5D0
+      CALL HCFRC(C, EN, B, 5.0D-5, 2.0D0, FE, INFO)
+      CALL CHKI('HCFRC INFO', INFO, 0)
+      CALL CHKR('HCFRC F', FE(1), F0 * (1.0D0 + B * 2.0D0), 1.0D-14)
+      CALL CHKR('HCFRC DFDV', FE(3), B * F0, 1.0D-14)
+      CALL CHKR('HCFRC POTENTIAL', FE(4),
+     &          C * (5.0D-5)**2.5D0 / 2.5D0, 1.0D-14)
+      CALL HCFRC(C, EN, B, 5.0D-5, -20.0D0, FE, INFO)
+      CALL CHKI('HCFRC(clamped) INFO', INFO, 0)
+      CALL CHKR('HCFRC(clamped) F', FE(1), 0.0D0, 0.0D0)
+      CALL CHKR('HCFRC(clamped) dissipation', FE(5),
+     &          20.0D0 * F0, 1.0D-14)
+      CALL HCFRC(C, 1.0D-7, B, 5.0D-5, 2.0D0, FE, INFO)
+      CALL CHKI('HCFRC(EN = 1e-7) INFO', INFO, -2)
+      CALL CHKN('HCFRC(EN = 1e-7) F', FE(1))
+      CALL HCFRC(C, EN, B, XNAN, 2.0D0, FE, INFO)
+      CALL CHKI('HCFRC(X = NaN) INFO', INFO, -4)
+      XE(1) = 5.0D-5
+      XE(2) = 5.0D-5
+      VE(1) = 2.0D0
+      VE(2) = 2.0D0
+      CS(1) = C
+      CS(2) = -C
+      ENS(1) = EN
+      ENS(2) = EN
+      BS(1) = B
+      BS(2) = B
+      CALL HCFRCA(2, CS, ENS, BS, XE, VE, FES, ISTE, INFO)
+      CALL CHKI('HCFRCA INFO', INFO, 2)
+      CALL CHKI('HCFRCA ISTAT(2)', ISTE(2), 3)
+      CALL CHKR('HCFRCA F(1, 1)', FES(1, 1),
+     &          F0 * (1.0D0 + B * 2.0D0), 1.0D-14)
+      CALL CHKN('HCFRCA F(1, 2)', FES(1, 2))
+      CALL HCFRCP(C, EN, B, 0.02D0, 1.0D0, 1.5D0, 1.02D0 - 5.0D-5,
+     &            -0.5D0, FE, INFO)
+      CALL CHKI('HCFRCP INFO', INFO, 0)
+      CALL CHKR('HCFRCP F', FE(1),
+     &          F0 * (1.0D0 + B * 2.0D0), 1.0D-9)
+      CALL HCFRCW(C, EN, B, 0.01D0, 1.0D0 + 5.0D-5, 2.0D0, 1.01D0, 1,
+     &            FE, INFO)
+      CALL CHKI('HCFRCW INFO', INFO, 0)
+      CALL CHKR('HCFRCW F', FE(1),
+     &          F0 * (1.0D0 + B * 2.0D0), 1.0D-9)
+      CALL HCFRCW(C, EN, B, 0.01D0, 1.0D0, 2.0D0, 1.01D0, 0, FE, INFO)
+      CALL CHKI('HCFRCW(ISIDE = 0) INFO', INFO, -8)
 C
 C     The same ball through HCIMPL: the Hertz law as EXTERNAL functions,
 C     its constant in COMMON /HCLAW/

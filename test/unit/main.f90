@@ -16,6 +16,7 @@ program tester
    use test_impact, only : collect_impact
    use test_double_double, only : collect_double_double
    use test_modified_cc, only : collect_modified_cc
+   use test_contact_force, only : collect_contact_force
    implicit none
    type(testsuite_type), allocatable :: testsuites(:)
 
@@ -26,7 +27,8 @@ program tester
       new_testsuite("restitution", collect_restitution), &
       new_testsuite("impact", collect_impact), &
       new_testsuite("double_double", collect_double_double), &
-      new_testsuite("modified_cc", collect_modified_cc) &
+      new_testsuite("modified_cc", collect_modified_cc), &
+      new_testsuite("contact_force", collect_contact_force) &
       ]
 
    call run_tester(testsuites)

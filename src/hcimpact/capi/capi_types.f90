@@ -11,10 +11,12 @@ module hcimpact_capi_types
    use, intrinsic :: iso_c_binding, only : c_double
    use hcimpact_kinds, only : wp
    use hcimpact_contact, only : contact_type, outcome_type
+   use hcimpact_force_element, only : contact_force_type
    implicit none
    private
 
    public :: hcimpact_contact, hcimpact_outcome, to_contact, from_outcome
+   public :: hcimpact_force, from_force
 
    !> typedef struct { double mass, stiffness, exponent, damping, velocity; } hcimpact_contact;
    type, bind(C) :: hcimpact_contact
@@ -54,6 +56,21 @@ module hcimpact_capi_types
       real(c_double) :: contact_time
    end type hcimpact_outcome
 
+   !> typedef struct { double force, dforce_dx, dforce_dv, potential, dissipation; }
+   !> hcimpact_force;
+   type, bind(C) :: hcimpact_force
+      !> Contact force F in N (>= 0)
+      real(c_double) :: force
+      !> dF/dx in N/m
+      real(c_double) :: dforce_dx
+      !> dF/dv in N s/m
+      real(c_double) :: dforce_dv
+      !> Elastic potential energy in J
+      real(c_double) :: potential
+      !> Dissipated power in W (>= 0)
+      real(c_double) :: dissipation
+   end type hcimpact_force
+
 contains
 
    !> The Fortran contact of a C one.
@@ -83,5 +100,18 @@ contains
       c%compression_time = outcome%compression_time
       c%contact_time = outcome%contact_time
    end function from_outcome
+
+   !> The C element of a Fortran one.
+   elemental function from_force(element) result(c)
+      !> Fortran type
+      type(contact_force_type), intent(in) :: element
+      !> C structure
+      type(hcimpact_force) :: c
+      c%force = element%force
+      c%dforce_dx = element%dforce_dx
+      c%dforce_dv = element%dforce_dv
+      c%potential = element%potential
+      c%dissipation = element%dissipation
+   end function from_force
 
 end module hcimpact_capi_types

@@ -767,3 +767,160 @@ subroutine hctsam(m, c, en, b, v, nt, t, x, xdot, f, info)
       f(1:nt) = nan
    end if
 end subroutine hctsam
+
+!> HCFRC(C, EN, B, X, XDOT, F, INFO): the contact-force element of one power-law contact
+!> f = C x**EN with the damping B (s/m), at the deformation X (m; X <= 0: no contact)
+!> and the deformation rate XDOT (m/s, > 0 while the bodies approach). F(1..5) = force
+!> (N, never pulling: clamped at 0 where 1 + B XDOT < 0), dF/dX (N/m), dF/dXDOT (N s/m),
+!> elastic potential energy (J), dissipated power (W). See doc/contact-force.md.
+subroutine hcfrc(c, en, b, x, xdot, f, info)
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use hcimpact_kinds, only : wp
+   use hcimpact_force_element, only : contact_force_type, contact_force
+   use hcimpact_f77_support, only : nan, law_info, force_array
+   implicit none
+   !> Contact constant in N/m**EN, > 0
+   real(wp), intent(in) :: c
+   !> Exponent of the elastic law, >= 1e-6
+   real(wp), intent(in) :: en
+   !> Damping in s/m, >= 0
+   real(wp), intent(in) :: b
+   !> Deformation in m
+   real(wp), intent(in) :: x
+   !> Deformation rate in m/s
+   real(wp), intent(in) :: xdot
+   !> F(5), see above
+   real(wp), intent(out) :: f(5)
+   !> 0; -1 .. -5 for the first invalid argument (C, EN, B out of their domain; X or
+   !> XDOT NaN or infinite)
+   integer, intent(out) :: info
+   type(contact_force_type) :: element
+   f = nan
+   info = law_info(c, en, b)
+   if (info /= 0) return
+   if (.not. ieee_is_finite(x)) then
+      info = -4
+   else if (.not. ieee_is_finite(xdot)) then
+      info = -5
+   else
+      call contact_force(c, en, b, x, xdot, element)
+      f = force_array(element)
+   end if
+end subroutine hcfrc
+
+!> HCFRCA(N, C, EN, B, X, XDOT, F, ISTAT, INFO): HCFRC for N contacts at once: C(N),
+!> EN(N), B(N), X(N), XDOT(N) give F(5, N); ISTAT(N) the library status of each.
+subroutine hcfrca(n, c, en, b, x, xdot, f, istat, info)
+   use hcimpact_kinds, only : wp
+   use hcimpact_status, only : hcimpact_ok
+   use hcimpact_force_element, only : contact_force_type, contact_force
+   use hcimpact_f77_support, only : force_array
+   implicit none
+   !> Number of contacts, N >= 0
+   integer, intent(in) :: n
+   !> Contact constants (N/m**EN), exponents, damping constants (s/m)
+   real(wp), intent(in) :: c(*), en(*), b(*)
+   !> Deformations (m) and deformation rates (m/s)
+   real(wp), intent(in) :: x(*), xdot(*)
+   !> F(5, N): column I is the element of contact I (NaN if it failed)
+   real(wp), intent(inout) :: f(5, *)
+   !> ISTAT(N): the library status code of each contact (0 = success; HCMSG)
+   integer, intent(inout) :: istat(*)
+   !> 0; -1 for N < 0; J > 0: contact J is the first that failed (see ISTAT(J))
+   integer, intent(out) :: info
+   type(contact_force_type) :: element
+   integer :: i
+   info = 0
+   if (n < 0) then
+      info = -1
+      return
+   end if
+   do i = 1, n
+      call contact_force(c(i), en(i), b(i), x(i), xdot(i), element, istat(i))
+      f(:, i) = force_array(element)
+      if (istat(i) /= hcimpact_ok .and. info == 0) info = i
+   end do
+end subroutine hcfrca
+
+!> HCFRCP(C, EN, B, D, Q1, V1, Q2, V2, F, INFO): the element of two bodies on a line,
+!> body 1 (position Q1, velocity V1) left of body 2 (Q2, V2): deformation
+!> D - (Q2 - Q1) and rate V1 - V2, both without rounding error; D = Q2 - Q1 at first
+!> touch (the sum of the radii for centres). The force on body 2 is +F(1), on body 1
+!> -F(1). F(5) as in HCFRC.
+subroutine hcfrcp(c, en, b, d, q1, v1, q2, v2, f, info)
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use hcimpact_kinds, only : wp
+   use hcimpact_force_element, only : contact_force_type, contact_force_pair
+   use hcimpact_f77_support, only : nan, law_info, force_array
+   implicit none
+   !> Contact constant (N/m**EN), exponent, damping (s/m)
+   real(wp), intent(in) :: c, en, b
+   !> Q2 - Q1 at first touch, m
+   real(wp), intent(in) :: d
+   !> Position (m) and velocity (m/s) of body 1 and of body 2
+   real(wp), intent(in) :: q1, v1, q2, v2
+   !> F(5)
+   real(wp), intent(out) :: f(5)
+   !> 0; -1 .. -8 for the first invalid argument; 8 for an overlap or relative speed
+   !> beyond the double range
+   integer, intent(out) :: info
+   type(contact_force_type) :: element
+   real(wp) :: args(5)
+   integer :: i
+   f = nan
+   info = law_info(c, en, b)
+   if (info /= 0) return
+   args = [d, q1, v1, q2, v2]
+   do i = 1, 5
+      if (.not. ieee_is_finite(args(i))) then
+         info = -3 - i
+         return
+      end if
+   end do
+   call contact_force_pair(c, en, b, d, q1, v1, q2, v2, element, info)
+   f = force_array(element)
+end subroutine hcfrcp
+
+!> HCFRCW(C, EN, B, D, Q, V, W, ISIDE, F, INFO): the element of a body (position Q,
+!> velocity V) against a fixed wall at W: ISIDE = 1 when the wall is on the body's
+!> right, -1 on its left; D = |W - Q| at first touch. The force on the body is
+!> -ISIDE F(1). F(5) as in HCFRC.
+subroutine hcfrcw(c, en, b, d, q, v, w, iside, f, info)
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use hcimpact_kinds, only : wp
+   use hcimpact_force_element, only : contact_force_type, contact_force_wall
+   use hcimpact_f77_support, only : nan, law_info, force_array
+   implicit none
+   !> Contact constant (N/m**EN), exponent, damping (s/m)
+   real(wp), intent(in) :: c, en, b
+   !> |W - Q| at first touch, m
+   real(wp), intent(in) :: d
+   !> Position (m) and velocity (m/s) of the body, position of the wall (m)
+   real(wp), intent(in) :: q, v, w
+   !> 1: wall on the right of the body; -1: on its left
+   integer, intent(in) :: iside
+   !> F(5)
+   real(wp), intent(out) :: f(5)
+   !> 0; -1 .. -8 for the first invalid argument (-8: ISIDE not 1 or -1); 8 for an
+   !> overlap or speed beyond the double range
+   integer, intent(out) :: info
+   type(contact_force_type) :: element
+   real(wp) :: args(4)
+   integer :: i
+   f = nan
+   info = law_info(c, en, b)
+   if (info /= 0) return
+   args = [d, q, v, w]
+   do i = 1, 4
+      if (.not. ieee_is_finite(args(i))) then
+         info = -3 - i
+         return
+      end if
+   end do
+   if (iside /= 1 .and. iside /= -1) then
+      info = -8
+      return
+   end if
+   call contact_force_wall(c, en, b, d, q, v, w, iside, element, info)
+   f = force_array(element)
+end subroutine hcfrcw

@@ -5,11 +5,13 @@ module hcimpact_f77_support
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_contact, only : outcome_type, check_parameters
+   use hcimpact_force_element, only : contact_force_type
    use hcimpact_elastic, only : elastic_law
    implicit none
    private
 
    public :: nan, n_outputs, contact_info, outcome_array, f77_law, f77_law_fn
+   public :: law_info, force_array
 
    abstract interface
       !> A function of a FORTRAN 77 law: DOUBLE PRECISION FUNCTION F(X), X the compression
@@ -65,6 +67,39 @@ contains
          info = 0
       end if
    end function contact_info
+
+   !> INFO for the law arguments (C, EN, B) of the contact-force routines, in this
+   !> order: -i for the first that breaks the library's rules for it, else 0.
+   elemental function law_info(c, en, b) result(info)
+      !> Contact constant in N/m**EN
+      real(wp), intent(in) :: c
+      !> Exponent of the elastic law
+      real(wp), intent(in) :: en
+      !> Damping in s/m
+      real(wp), intent(in) :: b
+      !> 0 or -1 .. -3
+      integer :: info
+      if (check_parameters(stiffness=c) /= hcimpact_ok) then
+         info = -1
+      else if (check_parameters(exponent=en) /= hcimpact_ok) then
+         info = -2
+      else if (check_parameters(damping=b) /= hcimpact_ok) then
+         info = -3
+      else
+         info = 0
+      end if
+   end function law_info
+
+   !> The element as the array F(5) of the contact-force routines: force, dF/dx, dF/dv,
+   !> potential, dissipation.
+   pure function force_array(element) result(f)
+      !> The element
+      type(contact_force_type), intent(in) :: element
+      !> F(5)
+      real(wp) :: f(5)
+      f = [element%force, element%dforce_dx, element%dforce_dv, element%potential, &
+         & element%dissipation]
+   end function force_array
 
    !> The results of an impact in the order of the FORTRAN 77 arrays: k, 1 - k**2,
    !> rebound velocity, x_max, peak force, compression at the peak force, compression

@@ -13,6 +13,7 @@
 !> `power_law` is f = c x^n, Pi = c x^(n+1)/(n+1): the Hertz law for n = 3/2.
 module hcimpact_elastic
    use hcimpact_kinds, only : wp
+   use hcimpact_power_force, only : power_law_force, power_law_potential, power_law_derivative
    implicit none
    private
 
@@ -56,45 +57,28 @@ module hcimpact_elastic
 
 contains
 
-   !> c x^n
+   !> c x^n (hcimpact_power_force)
    pure function power_force(self, x) result(y)
-      !> The law
       class(power_law), intent(in) :: self
-      !> Deformation in m, >= 0
       real(wp), intent(in) :: x
-      !> Force in N
       real(wp) :: y
-      y = self%stiffness * x**self%exponent
+      y = power_law_force(self%stiffness, self%exponent, x)
    end function power_force
 
-   !> c x^(n+1)/(n+1)
+   !> c x^(n+1)/(n+1) (hcimpact_power_force)
    pure function power_potential(self, x) result(y)
-      !> The law
       class(power_law), intent(in) :: self
-      !> Deformation in m, >= 0
       real(wp), intent(in) :: x
-      !> Energy in J
       real(wp) :: y
-      y = self%stiffness * x**self%exponent * x / (self%exponent + 1.0_wp)
+      y = power_law_potential(self%stiffness, self%exponent, x)
    end function power_potential
 
-   !> n c x^(n-1) (0 at x = 0 for n > 1, +inf there for n < 1)
+   !> n c x^(n-1), its limit from the right at x = 0 (hcimpact_power_force)
    pure function power_force_derivative(self, x) result(y)
-      !> The law
       class(power_law), intent(in) :: self
-      !> Deformation in m, >= 0
       real(wp), intent(in) :: x
-      !> Stiffness in N/m
       real(wp) :: y
-      if (x > 0.0_wp) then
-         y = self%exponent * self%stiffness * x**self%exponent / x
-      else if (self%exponent > 1.0_wp) then
-         y = 0.0_wp
-      else if (self%exponent == 1.0_wp) then
-         y = self%stiffness
-      else
-         y = huge(1.0_wp)
-      end if
+      y = power_law_derivative(self%stiffness, self%exponent, x)
    end function power_force_derivative
 
 end module hcimpact_elastic

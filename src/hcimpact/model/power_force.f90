@@ -1,0 +1,134 @@
+! SPDX-License-Identifier: Apache-2.0
+!> The power law f = c x^n, its potential and its derivative, evaluated once for the
+!> whole library: products of correctly rounded factors that never overflow or underflow
+!> on the way (a representable result is returned as such).
+!>
+!> hcimpact_elastic's `power_law` and the contact-force element (hcimpact_force_element)
+!> both evaluate the law here.
+module hcimpact_power_force
+   use hcimpact_kinds, only : wp
+   use hcimpact_double_double, only : dd_real, dd, two_sum, operator(+), operator(-), &
+      & operator(*), dd_exp, dd_log
+   implicit none
+   private
+
+   public :: power_law_force, power_law_potential, power_law_derivative
+   public :: power_product, product_of, signed_product
+
+contains
+
+   !> f(x) = c x^n in N for x > 0 (0 for x <= 0); within about 1.5 ulp.
+   elemental function power_law_force(c, n, x) result(f)
+      !> Contact constant c in N/m^n (> 0) and exponent n (> 0)
+      real(wp), intent(in) :: c, n
+      !> Deformation in m
+      real(wp), intent(in) :: x
+      !> Force in N
+      real(wp) :: f
+      f = 0.0_wp
+      if (x > 0.0_wp) f = power_product(x**n, x, n, [c], 1.0_wp)
+   end function power_law_force
+
+   !> Pi(x) = c x^(n+1)/(n+1) in J for x > 0 (0 for x <= 0); within a few ulps.
+   elemental function power_law_potential(c, n, x) result(p)
+      !> Contact constant c in N/m^n (> 0) and exponent n (> 0)
+      real(wp), intent(in) :: c, n
+      !> Deformation in m
+      real(wp), intent(in) :: x
+      !> Potential energy in J
+      real(wp) :: p
+      type(dd_real) :: np1
+      p = 0.0_wp
+      if (.not. x > 0.0_wp) return
+      np1 = two_sum(n, 1.0_wp)
+      p = power_product(x**n, x, n, [c, x], np1%hi)
+   end function power_law_potential
+
+   !> f'(x) = n c x^(n-1) in N/m for x > 0, formed as n f(x)/x (no rounding of n - 1
+   !> in the exponent); within a few ulps, +Inf only where it overflows. At x <= 0 the
+   !> limit from the right: 0 for n > 1, c for n = 1, and for n < 1 (where it is
+   !> infinite) the largest double.
+   elemental function power_law_derivative(c, n, x) result(d)
+      !> Contact constant c in N/m^n (> 0) and exponent n (> 0)
+      real(wp), intent(in) :: c, n
+      !> Deformation in m
+      real(wp), intent(in) :: x
+      !> Derivative in N/m
+      real(wp) :: d
+      if (x > 0.0_wp) then
+         d = power_product(x**n, x, n, [c, n], x)
+      else if (n > 1.0_wp) then
+         d = 0.0_wp
+      else if (n == 1.0_wp) then
+         d = c
+      else
+         d = huge(1.0_wp)
+      end if
+   end function power_law_derivative
+
+   !> factors(1) * ... * factors(k) * x^p / divisor for positive finite factors (none
+   !> zero), x > 0 and a positive finite divisor, with xp = x**p already formed. Multiplied directly
+   !> when x^p and the partial products stay normal (each rounding then relative);
+   !> otherwise from double-double logarithms (`log_product`).
+   pure function power_product(xp, x, p, factors, divisor) result(y)
+      real(wp), intent(in) :: xp, x, p
+      real(wp), intent(in) :: factors(:)
+      real(wp), intent(in) :: divisor
+      real(wp) :: y
+      integer :: i
+
+      if (xp >= tiny(1.0_wp) .and. xp <= huge(1.0_wp)) then
+         y = xp
+         do i = 1, size(factors)
+            y = y * factors(i)
+            if (.not. (y >= tiny(1.0_wp) .and. y <= huge(1.0_wp))) exit
+         end do
+         if (y >= tiny(1.0_wp) .and. y <= huge(1.0_wp)) then
+            y = y / divisor
+            if (y >= tiny(1.0_wp) .and. y <= huge(1.0_wp)) return
+         end if
+      end if
+      y = log_product(x, p, factors, divisor)
+   end function power_product
+
+   !> factors(1) * ... * factors(k) * x^p / divisor from the sum of their logarithms in
+   !> double-double (each ln(2^e f) = e ln 2 + ln f to about 2^-100 relative), then one
+   !> exponential: a result above the largest double is +Inf, below the smallest
+   !> subnormal 0, and a subnormal result is rounded once more to its precision.
+   pure function log_product(x, p, factors, divisor) result(y)
+      real(wp), intent(in) :: x, p
+      real(wp), intent(in) :: factors(:)
+      real(wp), intent(in) :: divisor
+      real(wp) :: y
+      type(dd_real) :: l, r
+      integer :: i
+
+      l = p * dd_log(dd(x)) - dd_log(dd(divisor))
+      do i = 1, size(factors)
+         l = l + dd_log(dd(factors(i)))
+      end do
+      r = dd_exp(l)
+      y = r%hi
+   end function log_product
+
+   !> The product of positive finite doubles without overflow or underflow on the way:
+   !> direct when the partial products stay normal, else from logarithms.
+   pure function product_of(factors) result(y)
+      real(wp), intent(in) :: factors(:)
+      real(wp) :: y
+      if (any(factors == 0.0_wp)) then
+         y = 0.0_wp
+         return
+      end if
+      y = power_product(1.0_wp, 1.0_wp, 0.0_wp, factors, 1.0_wp)
+   end function product_of
+
+   !> a times the product of positive finite factors, a of either sign.
+   pure function signed_product(a, factors) result(y)
+      real(wp), intent(in) :: a
+      real(wp), intent(in) :: factors(:)
+      real(wp) :: y
+      y = sign(product_of([abs(a), factors]), a)
+   end function signed_product
+
+end module hcimpact_power_force
