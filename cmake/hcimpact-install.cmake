@@ -1,60 +1,84 @@
 # SPDX-License-Identifier: Apache-2.0
 #
-# Install rules: the library (and built components), the .mod files, the C
-# header, the CMake package hcimpact (target hcimpact::hcimpact) and the
-# pkg-config file hcimpact.pc. Layout, relative to the prefix:
+# Install rules: the library and the built components, the .mod files, the C
+# headers, the CMake package hcimpact (targets hcimpact::hcimpact, hcimpact::cvode,
+# hcimpact::lapack) and the pkg-config files. Layout, relative to the prefix:
 #
-#   lib/libhcimpact.{a,so}                      (CMAKE_INSTALL_LIBDIR)
-#   include/hcimpact.h                          (CMAKE_INSTALL_INCLUDEDIR)
-#   include/hcimpact/<compiler>-<major>/*.mod   (HCIMPACT_INSTALL_MODULEDIR)
-#   lib/cmake/hcimpact/hcimpact-*.cmake         (HCIMPACT_INSTALL_CMAKEDIR)
-#   lib/pkgconfig/hcimpact.pc                   (HCIMPACT_INSTALL_PKGCONFIGDIR)
+#   lib/libhcimpact{,_cvode,_lapack}.{a,so}         (CMAKE_INSTALL_LIBDIR)
+#   include/hcimpact*.h                             (CMAKE_INSTALL_INCLUDEDIR)
+#   include/hcimpact/<compiler>-<major>/*.mod       (HCIMPACT_INSTALL_MODULEDIR)
+#   lib/cmake/hcimpact/hcimpact-config.cmake, -config-version.cmake,
+#     hcimpact-targets.cmake (core), hcimpact-<component>-targets.cmake,
+#     Findhcimpact_sundials.cmake                   (HCIMPACT_INSTALL_CMAKEDIR)
+#   lib/pkgconfig/hcimpact.pc, hcimpact-<component>.pc (HCIMPACT_INSTALL_PKGCONFIGDIR)
+#
+# Install components: hcimpact_runtime (the shared libraries) and
+# hcimpact_development (everything else: static libraries, the shared libraries'
+# names for the linker, headers, .mod files, CMake and pkg-config files); the Python
+# wheel takes the runtime only (python/pyproject.toml).
+#
+# Everything is relocatable: the CMake package finds itself from its own directory,
+# and the pkg-config files name their prefix relative to theirs (${pcfiledir}), so a
+# prefix chosen at install time (cmake --install <build> --prefix <dir>) works, and
+# so does moving the installed tree.
 
 include(CMakePackageConfigHelpers)
 
 get_property(_hcimpact_components GLOBAL PROPERTY HCIMPACT_COMPONENT_TARGETS)
 
-install(
-  TARGETS hcimpact ${_hcimpact_components}
-  EXPORT hcimpact-targets
-  ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}"
-  LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}"
-  RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}")
-install(
-  DIRECTORY "${HCIMPACT_MODULE_DIR}/"
-  DESTINATION "${HCIMPACT_INSTALL_MODULEDIR}"
-  FILES_MATCHING PATTERN "*.mod" PATTERN "*.smod")
-install(
-  FILES "${PROJECT_SOURCE_DIR}/include/hcimpact.h"
-  DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}")
+# The core and each component in an export set of its own: the package loads a
+# component's targets only when that component is wanted and its dependency found.
+set(_hcimpact_library_destinations
+  ARCHIVE DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT hcimpact_development
+  LIBRARY DESTINATION "${CMAKE_INSTALL_LIBDIR}" COMPONENT hcimpact_runtime
+    NAMELINK_COMPONENT hcimpact_development
+  RUNTIME DESTINATION "${CMAKE_INSTALL_BINDIR}" COMPONENT hcimpact_runtime)
+install(TARGETS hcimpact EXPORT hcimpact-targets ${_hcimpact_library_destinations})
 install(
   EXPORT hcimpact-targets
   NAMESPACE hcimpact::
-  DESTINATION "${HCIMPACT_INSTALL_CMAKEDIR}")
+  DESTINATION "${HCIMPACT_INSTALL_CMAKEDIR}"
+  COMPONENT hcimpact_development)
+set(HCIMPACT_PACKAGE_COMPONENTS "")
+foreach(_hcimpact_component_target IN LISTS _hcimpact_components)
+  string(REGEX REPLACE "^hcimpact_" "" _hcimpact_component "${_hcimpact_component_target}")
+  list(APPEND HCIMPACT_PACKAGE_COMPONENTS "${_hcimpact_component}")
+  install(TARGETS ${_hcimpact_component_target}
+    EXPORT hcimpact-${_hcimpact_component}-targets ${_hcimpact_library_destinations})
+  install(
+    EXPORT hcimpact-${_hcimpact_component}-targets
+    NAMESPACE hcimpact::
+    DESTINATION "${HCIMPACT_INSTALL_CMAKEDIR}"
+    COMPONENT hcimpact_development)
+endforeach()
 
-# Libraries a non-Fortran linker needs in addition to a static libhcimpact.a:
-# the Fortran runtime. For gfortran that is -lgfortran -lm; for other
-# compilers, what the Fortran link adds beyond the C link.
-if(CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
-  set(HCIMPACT_FORTRAN_RUNTIME gfortran m)
-else()
-  set(HCIMPACT_FORTRAN_RUNTIME ${CMAKE_Fortran_IMPLICIT_LINK_LIBRARIES})
-  if(HCIMPACT_HAVE_C)
-    list(REMOVE_ITEM HCIMPACT_FORTRAN_RUNTIME ${CMAKE_C_IMPLICIT_LINK_LIBRARIES})
-  endif()
-  list(REMOVE_DUPLICATES HCIMPACT_FORTRAN_RUNTIME)
-endif()
+install(
+  DIRECTORY "${HCIMPACT_MODULE_DIR}/"
+  DESTINATION "${HCIMPACT_INSTALL_MODULEDIR}"
+  COMPONENT hcimpact_development
+  FILES_MATCHING PATTERN "*.mod" PATTERN "*.smod")
+install(
+  DIRECTORY "${PROJECT_SOURCE_DIR}/include/"
+  DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
+  COMPONENT hcimpact_development
+  FILES_MATCHING PATTERN "hcimpact*.h")
 
+# ---------------------------------------------------------------------------
+# CMake package
+# ---------------------------------------------------------------------------
 if(BUILD_SHARED_LIBS)
   set(HCIMPACT_PACKAGE_SHARED TRUE)
 else()
   set(HCIMPACT_PACKAGE_SHARED FALSE)
 endif()
-set(HCIMPACT_PACKAGE_COMPONENTS "")
-foreach(_hcimpact_component_target IN LISTS _hcimpact_components)
-  string(REGEX REPLACE "^hcimpact_" "" _hcimpact_component "${_hcimpact_component_target}")
-  list(APPEND HCIMPACT_PACKAGE_COMPONENTS "${_hcimpact_component}")
-endforeach()
+# Why each component that was not built is missing, for the package's messages.
+set(HCIMPACT_PACKAGE_CVODE_STATUS "${HCIMPACT_CVODE_STATUS}")
+set(HCIMPACT_PACKAGE_LAPACK_STATUS "${HCIMPACT_LAPACK_STATUS}")
+# Where the build found SUNDIALS: a hint (not a requirement) for the consumer's search.
+set(HCIMPACT_PACKAGE_SUNDIALS_HINT "")
+if(HCIMPACT_SUNDIALS_INCLUDE_DIR)
+  get_filename_component(HCIMPACT_PACKAGE_SUNDIALS_HINT "${HCIMPACT_SUNDIALS_INCLUDE_DIR}" DIRECTORY)
+endif()
 
 configure_package_config_file(
   "${PROJECT_SOURCE_DIR}/cmake/hcimpact-config.cmake.in"
@@ -69,11 +93,22 @@ install(
   FILES
     "${PROJECT_BINARY_DIR}/hcimpact-config.cmake"
     "${PROJECT_BINARY_DIR}/hcimpact-config-version.cmake"
-  DESTINATION "${HCIMPACT_INSTALL_CMAKEDIR}")
+    "${PROJECT_SOURCE_DIR}/cmake/Findhcimpact_sundials.cmake"
+  DESTINATION "${HCIMPACT_INSTALL_CMAKEDIR}"
+  COMPONENT hcimpact_development)
 
-# pkg-config: directories are written relative to ${prefix} (the install
-# prefix given at configure time) unless they were given as absolute paths;
-# pkg-config then drops the system ones such as -I/usr/include by itself.
+# ---------------------------------------------------------------------------
+# pkg-config: hcimpact.pc, and hcimpact-<component>.pc for each built component
+# ---------------------------------------------------------------------------
+# The prefix relative to the .pc file's own directory, so that the files stay right
+# wherever the tree is installed; absolute only when a directory was given absolute.
+if(IS_ABSOLUTE "${HCIMPACT_INSTALL_PKGCONFIGDIR}")
+  set(HCIMPACT_PC_PREFIX "${CMAKE_INSTALL_PREFIX}")
+else()
+  file(RELATIVE_PATH _hcimpact_up "/hcimpact-root/${HCIMPACT_INSTALL_PKGCONFIGDIR}" "/hcimpact-root")
+  string(REGEX REPLACE "/$" "" _hcimpact_up "${_hcimpact_up}")
+  set(HCIMPACT_PC_PREFIX "\${pcfiledir}/${_hcimpact_up}")
+endif()
 foreach(_hcimpact_dir IN ITEMS LIBDIR INCLUDEDIR MODULEDIR)
   if(_hcimpact_dir STREQUAL "MODULEDIR")
     set(_hcimpact_path "${HCIMPACT_INSTALL_MODULEDIR}")
@@ -86,15 +121,68 @@ foreach(_hcimpact_dir IN ITEMS LIBDIR INCLUDEDIR MODULEDIR)
     set(HCIMPACT_PC_${_hcimpact_dir} "\${prefix}/${_hcimpact_path}")
   endif()
 endforeach()
-set(HCIMPACT_PC_LIBS_PRIVATE "")
-foreach(_hcimpact_lib IN LISTS HCIMPACT_FORTRAN_RUNTIME)
-  string(APPEND HCIMPACT_PC_LIBS_PRIVATE " -l${_hcimpact_lib}")
+
+# "-L<dir> -l<name>" for a list of libraries given as full paths, names or targets
+# (imported targets are expanded through their INTERFACE_LINK_LIBRARIES); the
+# linker's own directories are left out.
+function(_hcimpact_pc_link_flags out_var)
+  set(flags "")
+  set(dirs "")
+  set(items ${ARGN})
+  while(items)
+    list(POP_FRONT items item)
+    if(TARGET "${item}")
+      get_target_property(inner "${item}" INTERFACE_LINK_LIBRARIES)
+      if(inner)
+        list(PREPEND items ${inner})
+      endif()
+      continue()
+    endif()
+    if(item MATCHES "^-")
+      list(APPEND flags "${item}")
+    elseif(IS_ABSOLUTE "${item}")
+      get_filename_component(dir "${item}" DIRECTORY)
+      get_filename_component(name "${item}" NAME_WE)
+      string(REGEX REPLACE "^lib" "" name "${name}")
+      if(NOT dir IN_LIST CMAKE_C_IMPLICIT_LINK_DIRECTORIES
+          AND NOT dir IN_LIST CMAKE_Fortran_IMPLICIT_LINK_DIRECTORIES
+          AND NOT dir IN_LIST dirs)
+        list(APPEND dirs "${dir}")
+        list(APPEND flags "-L${dir}")
+      endif()
+      list(APPEND flags "-l${name}")
+    elseif(item)
+      list(APPEND flags "-l${item}")
+    endif()
+  endwhile()
+  list(JOIN flags " " flags)
+  set(${out_var} "${flags}" PARENT_SCOPE)
+endfunction()
+
+_hcimpact_pc_link_flags(HCIMPACT_PC_LIBS_PRIVATE ${HCIMPACT_FORTRAN_RUNTIME})
+set(HCIMPACT_PC_NAME "hcimpact")
+set(HCIMPACT_PC_DESCRIPTION "${PROJECT_DESCRIPTION}")
+set(HCIMPACT_PC_REQUIRES "")
+set(HCIMPACT_PC_LIBS "-L\${libdir} -lhcimpact")
+set(HCIMPACT_PC_CFLAGS "Cflags: -I\${includedir} -I\${moduledir}")
+configure_file("${PROJECT_SOURCE_DIR}/cmake/hcimpact.pc.in" "${PROJECT_BINARY_DIR}/hcimpact.pc" @ONLY)
+install(FILES "${PROJECT_BINARY_DIR}/hcimpact.pc" DESTINATION "${HCIMPACT_INSTALL_PKGCONFIGDIR}"
+  COMPONENT hcimpact_development)
+
+set(_hcimpact_pc_cvode_what "the ODE path through SUNDIALS CVODE (hcimpact_simulate)")
+set(_hcimpact_pc_lapack_what "calibration with LAPACK (hcimpact_fit_*)")
+foreach(_hcimpact_component IN LISTS HCIMPACT_PACKAGE_COMPONENTS)
+  get_target_property(_hcimpact_deps hcimpact_${_hcimpact_component} LINK_LIBRARIES)
+  list(REMOVE_ITEM _hcimpact_deps hcimpact)
+  _hcimpact_pc_link_flags(HCIMPACT_PC_LIBS_PRIVATE ${_hcimpact_deps})
+  set(HCIMPACT_PC_NAME "hcimpact-${_hcimpact_component}")
+  set(HCIMPACT_PC_DESCRIPTION "hcimpact component ${_hcimpact_component}: ${_hcimpact_pc_${_hcimpact_component}_what}")
+  set(HCIMPACT_PC_REQUIRES "Requires: hcimpact = ${PROJECT_VERSION}")
+  set(HCIMPACT_PC_LIBS "-L\${libdir} -lhcimpact_${_hcimpact_component}")
+  # the include directories come with hcimpact (Requires)
+  set(HCIMPACT_PC_CFLAGS "")
+  configure_file("${PROJECT_SOURCE_DIR}/cmake/hcimpact.pc.in"
+    "${PROJECT_BINARY_DIR}/hcimpact-${_hcimpact_component}.pc" @ONLY)
+  install(FILES "${PROJECT_BINARY_DIR}/hcimpact-${_hcimpact_component}.pc"
+    DESTINATION "${HCIMPACT_INSTALL_PKGCONFIGDIR}" COMPONENT hcimpact_development)
 endforeach()
-string(STRIP "${HCIMPACT_PC_LIBS_PRIVATE}" HCIMPACT_PC_LIBS_PRIVATE)
-configure_file(
-  "${PROJECT_SOURCE_DIR}/cmake/hcimpact.pc.in"
-  "${PROJECT_BINARY_DIR}/hcimpact.pc"
-  @ONLY)
-install(
-  FILES "${PROJECT_BINARY_DIR}/hcimpact.pc"
-  DESTINATION "${HCIMPACT_INSTALL_PKGCONFIGDIR}")

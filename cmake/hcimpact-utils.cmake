@@ -18,6 +18,33 @@ function(hcimpact_feature_mode option_name out_var)
   set(${out_var} "${mode}" PARENT_SCOPE)
 endfunction()
 
+# The libraries a C or C++ linker needs, beyond its own, to link objects compiled by
+# the Fortran compiler: -lgfortran -lm for gfortran; for other compilers what the
+# Fortran link adds beyond the C link.
+function(hcimpact_fortran_runtime out_var)
+  if(CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
+    set(runtime gfortran m)
+  else()
+    set(runtime ${CMAKE_Fortran_IMPLICIT_LINK_LIBRARIES})
+    if(CMAKE_C_IMPLICIT_LINK_LIBRARIES)
+      list(REMOVE_ITEM runtime ${CMAKE_C_IMPLICIT_LINK_LIBRARIES})
+    endif()
+    list(REMOVE_DUPLICATES runtime)
+  endif()
+  set(${out_var} "${runtime}" PARENT_SCOPE)
+endfunction()
+
+# VERSION and SOVERSION of a library (libhcimpact.so.0.1 -> libhcimpact.so.0.1.0),
+# except in the Python wheel: a wheel cannot hold the symbolic links, so there the
+# libraries are plain libhcimpact.so, libhcimpact_cvode.so, ...
+function(hcimpact_library_version target)
+  if(NOT SKBUILD)
+    set_target_properties(${target} PROPERTIES
+      VERSION "${PROJECT_VERSION}"
+      SOVERSION "${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}")
+  endif()
+endfunction()
+
 # The extra Fortran flags of a Debug build with HCIMPACT_DEBUG_CHECKS=ON.
 # -ffpe-trap takes effect in programs whose main unit is compiled with it; it
 # turns an invalid operation (including an ordered comparison such as x < y
@@ -84,14 +111,14 @@ function(hcimpact_library_lto target)
   endif()
 endfunction()
 
-# hcimpact_add_component(<name> [LIBRARIES ...] [INCLUDE_DIRS ...] [DEFINITIONS ...])
+# hcimpact_add_component(<name> [LIBRARIES ...] [DEFINITIONS ...])
 #
 # Build the library hcimpact_<name> (alias hcimpact::<name>, exported as
 # hcimpact::<name>) from components/<name>/*.f90 / *.F90, if that directory
 # holds any source. Sources are preprocessed, so DEFINITIONS reach them.
 # The target is only created when there is something to compile.
 function(hcimpact_add_component name)
-  cmake_parse_arguments(arg "" "" "LIBRARIES;INCLUDE_DIRS;DEFINITIONS" ${ARGN})
+  cmake_parse_arguments(arg "" "" "LIBRARIES;DEFINITIONS" ${ARGN})
   set(dir "${PROJECT_SOURCE_DIR}/components/${name}")
   if(NOT IS_DIRECTORY "${dir}")
     return()
@@ -109,15 +136,18 @@ function(hcimpact_add_component name)
     POSITION_INDEPENDENT_CODE ON
     Fortran_PREPROCESS ON
     Fortran_MODULE_DIRECTORY "${HCIMPACT_MODULE_DIR}"
-    VERSION "${PROJECT_VERSION}"
-    SOVERSION "${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR}"
     INSTALL_RPATH_USE_LINK_PATH TRUE)
+  hcimpact_library_version(${target})
+  # An installed component finds libhcimpact beside it, wherever the tree was
+  # installed (the prefix may be chosen at install time) or moved to.
+  if(APPLE)
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH "@loader_path")
+  elseif(UNIX)
+    set_target_properties(${target} PROPERTIES INSTALL_RPATH "\$ORIGIN")
+  endif()
   target_link_libraries(${target} PUBLIC hcimpact)
   if(arg_LIBRARIES)
     target_link_libraries(${target} PRIVATE ${arg_LIBRARIES})
-  endif()
-  if(arg_INCLUDE_DIRS)
-    target_include_directories(${target} PRIVATE ${arg_INCLUDE_DIRS})
   endif()
   if(arg_DEFINITIONS)
     target_compile_definitions(${target} PRIVATE ${arg_DEFINITIONS})

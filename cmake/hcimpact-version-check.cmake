@@ -2,7 +2,9 @@
 #
 # Script mode (cmake -DSOURCE_DIR=... -DEXPECTED=x.y.z -P this-file): check that
 # the version written in CMakeLists.txt (EXPECTED) is also the one in fpm.toml,
-# src/hcimpact/version_info.f90 and include/hcimpact.h.
+# src/hcimpact/version_info.f90, include/hcimpact.h, the Python package
+# (python/pyproject.toml, python/hcimpact/__init__.py), the components' fpm packages
+# and CITATION.cff.
 
 if(NOT SOURCE_DIR OR NOT EXPECTED)
   message(FATAL_ERROR "usage: cmake -DSOURCE_DIR=<dir> -DEXPECTED=<x.y.z> -P hcimpact-version-check.cmake")
@@ -45,7 +47,15 @@ _hc_expect("include/hcimpact.h" "#define[ \t]+HCIMPACT_VERSION_PATCH[ \t]+([0-9]
 _hc_expect("include/hcimpact.h" "#define[ \t]+HCIMPACT_VERSION[ \t]+([0-9]+)" "${_compact}"
   "HCIMPACT_VERSION")
 
+_hc_expect("python/pyproject.toml" "^version[ \t]*=[ \t]*\"([^\"]*)\"" "${EXPECTED}" "version")
+_hc_expect("python/hcimpact/__init__.py" "^__version__[ \t]*=[ \t]*\"([^\"]*)\"" "${EXPECTED}"
+  "__version__")
+_hc_expect("components/cvode/fpm.toml" "^version[ \t]*=[ \t]*\"([^\"]*)\"" "${EXPECTED}" "version")
+_hc_expect("components/lapack/fpm.toml" "^version[ \t]*=[ \t]*\"([^\"]*)\"" "${EXPECTED}" "version")
+_hc_expect("CITATION.cff" "^version:[ \t]*([0-9.]+)" "${EXPECTED}" "version")
+
 if(_errors)
   message(FATAL_ERROR "Version numbers disagree with CMakeLists.txt (${EXPECTED}):${_errors}")
 endif()
-message(STATUS "hcimpact ${EXPECTED}: fpm.toml, version_info.f90 and hcimpact.h agree")
+message(STATUS "hcimpact ${EXPECTED}: fpm.toml, version_info.f90, hcimpact.h, the Python "
+  "package, the components' fpm.toml and CITATION.cff agree")

@@ -21,19 +21,33 @@
  *  - The library keeps no state: every function may be called from several threads
  *    at once, and no function allocates memory that the caller must free.
  *
- * Link: -lhcimpact (pkg-config --libs hcimpact); hcimpact_simulate is in the
- * optional component library -lhcimpact_cvode, the calibration functions in
- * -lhcimpact_lapack.
+ * Link: -lhcimpact (pkg-config --libs hcimpact). The optional components are
+ * declared in hcimpact_cvode.h (the ODE path, -lhcimpact_cvode) and
+ * hcimpact_lapack.h (calibration, -lhcimpact_lapack).
  */
 #ifndef HCIMPACT_H
 #define HCIMPACT_H
 
-#define HCIMPACT_VERSION_MAJOR 0
-#define HCIMPACT_VERSION_MINOR 2
-#define HCIMPACT_VERSION_PATCH 0
+#define HCIMPACT_VERSION_MAJOR 0 /**< major version of this header */
+#define HCIMPACT_VERSION_MINOR 2 /**< minor version of this header */
+#define HCIMPACT_VERSION_PATCH 0 /**< patch level of this header */
 /** Version as one integer: 10000*major + 100*minor + patch
  *  (hcimpact_version_number() returns that of the library at run time) */
 #define HCIMPACT_VERSION 200
+
+/** HCIMPACT_API marks every function of the library (and of its components): the
+ *  default symbol visibility with GCC and Clang, __declspec(dllimport) on Windows
+ *  when the library is a DLL (define HCIMPACT_SHARED there; the CMake package does).
+ *  Define HCIMPACT_API yourself before including the header to override it. */
+#ifndef HCIMPACT_API
+#if defined(_WIN32) && defined(HCIMPACT_SHARED)
+#define HCIMPACT_API __declspec(dllimport)
+#elif defined(__GNUC__) && __GNUC__ >= 4
+#define HCIMPACT_API __attribute__((visibility("default")))
+#else
+#define HCIMPACT_API
+#endif
+#endif
 
 /* ------------------------------------------------------------------------
  * Status codes (src/hcimpact/status.f90)
@@ -60,7 +74,7 @@
 /** Branches of hcimpact_velocity_at_depth: compression (x' >= 0) and restitution
  *  (x' <= 0). */
 #define HCIMPACT_COMPRESSION_BRANCH 1
-#define HCIMPACT_RESTITUTION_BRANCH 2
+#define HCIMPACT_RESTITUTION_BRANCH 2 /**< see HCIMPACT_COMPRESSION_BRANCH */
 
 /** Smallest exponent n of the power law that hcimpact_impact accepts (as n -> 0 the
  *  law tends to a step and the peak force degenerates). */
@@ -82,14 +96,14 @@ extern "C" {
 /** Text of a status code, e.g. "mass must be positive". A pointer to constant
  *  storage: never NULL, never to be freed or written, valid for the life of the
  *  program; unknown codes give "unknown status code". Thread-safe. */
-const char *hcimpact_status_message(int status);
+HCIMPACT_API const char *hcimpact_status_message(int status);
 
 /** Version of the library as "major.minor.patch" (constant storage, do not free). */
-const char *hcimpact_version(void);
+HCIMPACT_API const char *hcimpact_version(void);
 
 /** Version of the library as 10000*major + 100*minor + patch; compare it with the
  *  header's HCIMPACT_VERSION to detect a mismatch between header and library. */
-int hcimpact_version_number(void);
+HCIMPACT_API int hcimpact_version_number(void);
 
 /* ------------------------------------------------------------------------
  * Lambert W, real branches
@@ -99,30 +113,33 @@ int hcimpact_version_number(void);
  *  The double nearest to -1/e lies just below -1/e (by 1.2e-17): it and every
  *  z down to -1/e - 2^-54 return -1 exactly (the branch point, which is what a
  *  rounded -1/e stands for); z further below, and NaN, return NaN. */
-double hcimpact_lambert_w0(double z);
+HCIMPACT_API double hcimpact_lambert_w0(double z);
 
 /** Lower branch W-1(z), -1/e <= z < 0. Returns W-1 in (-inf, -1].
  *  Same treatment of the doubles just below -1/e as hcimpact_lambert_w0;
  *  z >= 0, z below the branch point, and NaN return NaN. z = -0.0 returns -inf. */
-double hcimpact_lambert_wm1(double z);
+HCIMPACT_API double hcimpact_lambert_wm1(double z);
 
 /** 1 + W0(-exp(-1 - t)) for t >= 0, computed from t (no loss near t = 0).
  *  Lies in [0, 1); equals sqrt(2t) - 2t/3 + ... for small t. t < 0 or NaN: NaN;
  *  t = +inf: 1. */
-double hcimpact_lambert_w0p1(double t);
+HCIMPACT_API double hcimpact_lambert_w0p1(double t);
 
 /** 1 + W-1(-exp(-1 - t)) for t >= 0, computed from t (no loss near t = 0).
  *  Lies in (-inf, 0]; equals -sqrt(2t) - 2t/3 - ... for small t. t < 0 or NaN:
  *  NaN; t = +inf: -inf. */
-double hcimpact_lambert_wm1p1(double t);
+HCIMPACT_API double hcimpact_lambert_wm1p1(double t);
 
 /** Array forms: w[i] = hcimpact_lambert_w0(z[i]) etc. for i < n (n >= 1).
  *  Returns HCIMPACT_OK, HCIMPACT_ERR_NULL or HCIMPACT_ERR_SIZE; an argument outside
  *  the domain gives NaN in its element only. */
-int hcimpact_lambert_w0_array(int n, const double *z, double *w);
-int hcimpact_lambert_wm1_array(int n, const double *z, double *w);
-int hcimpact_lambert_w0p1_array(int n, const double *t, double *v);
-int hcimpact_lambert_wm1p1_array(int n, const double *t, double *v);
+HCIMPACT_API int hcimpact_lambert_w0_array(int n, const double *z, double *w);
+HCIMPACT_API int hcimpact_lambert_wm1_array(int n, const double *z, double *w);
+/**< w[i] = hcimpact_lambert_wm1(z[i]), as hcimpact_lambert_w0_array */
+HCIMPACT_API int hcimpact_lambert_w0p1_array(int n, const double *t, double *v);
+/**< v[i] = hcimpact_lambert_w0p1(t[i]), as hcimpact_lambert_w0_array */
+HCIMPACT_API int hcimpact_lambert_wm1p1_array(int n, const double *t, double *v);
+/**< v[i] = hcimpact_lambert_wm1p1(t[i]), as hcimpact_lambert_w0_array */
 
 /* ------------------------------------------------------------------------
  * Restitution of the Hunt-Crossley impact (depends on beta = b V only)
@@ -131,39 +148,43 @@ int hcimpact_lambert_wm1p1_array(int n, const double *t, double *v);
 /** Coefficient of restitution k(beta) = -V+/V- for beta = b V- >= 0
  *  (damping b in s/m times approach speed V- in m/s). k(0) = 1, k ~ 1/beta for
  *  large beta, k(+inf) = 0. Within 2 ulp of the exact value. beta < 0 or NaN: NaN. */
-double hcimpact_restitution(double beta);
+HCIMPACT_API double hcimpact_restitution(double beta);
 
 /** The exact inverse: beta >= 0 with k(beta) = e, for 0 < e <= 1 (then b = beta/V-).
  *  beta(1) = 0; within 4 ulp. e outside (0, 1] or NaN: NaN; e below 1/DBL_MAX
  *  (where beta would exceed DBL_MAX): +inf. */
-double hcimpact_restitution_inverse(double e);
+HCIMPACT_API double hcimpact_restitution_inverse(double e);
 
 /** 1 - k(beta), accurate also where k is close to 1 (small beta). Domain as
  *  hcimpact_restitution. */
-double hcimpact_one_minus_restitution(double beta);
+HCIMPACT_API double hcimpact_one_minus_restitution(double beta);
 
 /** Share of the kinetic energy lost in the impact, 1 - k(beta)^2 (dimensionless).
  *  Domain as hcimpact_restitution. */
-double hcimpact_energy_loss_ratio(double beta);
+HCIMPACT_API double hcimpact_energy_loss_ratio(double beta);
 
 /** Sensitivity dk/dbeta of the restitution (negative; -2/3 at beta = 0, -0 at
  *  beta = +inf). dk/db = V dk/dbeta, dk/dV = b dk/dbeta. Domain as
  *  hcimpact_restitution. */
-double hcimpact_restitution_derivative(double beta);
+HCIMPACT_API double hcimpact_restitution_derivative(double beta);
 
 /** h(u) = u - ln(1 + u) >= 0 for u > -1 (the first integral of the motion,
  *  MODEL.md), accurate near u = 0 where it is u^2/2. u = -1 and u = +inf: +inf;
  *  u < -1, NaN: NaN. */
-double hcimpact_u_minus_log1p(double u);
+HCIMPACT_API double hcimpact_u_minus_log1p(double u);
 
 /** Array forms of the five functions above (not h): out[i] = f(in[i]) for i < n
  *  (n >= 1). Returns HCIMPACT_OK, HCIMPACT_ERR_NULL or HCIMPACT_ERR_SIZE; an argument
  *  outside the domain gives NaN in its element only. */
-int hcimpact_restitution_array(int n, const double *beta, double *k);
-int hcimpact_restitution_inverse_array(int n, const double *e, double *beta);
-int hcimpact_one_minus_restitution_array(int n, const double *beta, double *d);
-int hcimpact_energy_loss_ratio_array(int n, const double *beta, double *r);
-int hcimpact_restitution_derivative_array(int n, const double *beta, double *dk);
+HCIMPACT_API int hcimpact_restitution_array(int n, const double *beta, double *k);
+HCIMPACT_API int hcimpact_restitution_inverse_array(int n, const double *e, double *beta);
+/**< beta[i] = hcimpact_restitution_inverse(e[i]), as hcimpact_restitution_array */
+HCIMPACT_API int hcimpact_one_minus_restitution_array(int n, const double *beta, double *d);
+/**< d[i] = hcimpact_one_minus_restitution(beta[i]), as hcimpact_restitution_array */
+HCIMPACT_API int hcimpact_energy_loss_ratio_array(int n, const double *beta, double *r);
+/**< r[i] = hcimpact_energy_loss_ratio(beta[i]), as hcimpact_restitution_array */
+HCIMPACT_API int hcimpact_restitution_derivative_array(int n, const double *beta, double *dk);
+/**< dk[i] = hcimpact_restitution_derivative(beta[i]), as hcimpact_restitution_array */
 
 /** Damping constant b (s/m) that gives the restitution e (0 < e <= 1) at the
  *  approach speed velocity (m/s, >= 0): b = beta(e)/max(velocity, min_velocity).
@@ -172,8 +193,8 @@ int hcimpact_restitution_derivative_array(int n, const double *beta, double *dk)
  *  Returns HCIMPACT_OK; HCIMPACT_ERR_NOT_FINITE (NaN or infinite argument),
  *  HCIMPACT_ERR_RESTITUTION (e outside (0, 1]), HCIMPACT_ERR_VELOCITY (velocity < 0
  *  or min_velocity <= 0): *damping = NaN; HCIMPACT_ERR_NULL (damping is NULL). */
-int hcimpact_damping_for_restitution(double e, double velocity, double min_velocity,
-                                     double *damping);
+HCIMPACT_API int hcimpact_damping_for_restitution(double e, double velocity, double min_velocity,
+                                                  double *damping);
 
 /* ------------------------------------------------------------------------
  * Two bodies: Hertz constant, effective mass, velocities after the impact
@@ -184,13 +205,13 @@ int hcimpact_damping_for_restitution(double e, double velocity, double min_veloc
  *  young (Pa) > 0 finite, -1 < poisson <= 1/2, radius (m) > 0 or INFINITY for a
  *  flat body (a plate; not both). Otherwise NaN. Steel ball R = 1.452 cm on a steel
  *  plate (E = 2e11 Pa, nu = 0.25): 1.7138e10. */
-double hcimpact_hertz_constant(double young1, double poisson1, double radius1,
-                               double young2, double poisson2, double radius2);
+HCIMPACT_API double hcimpact_hertz_constant(double young1, double poisson1, double radius1,
+                                            double young2, double poisson2, double radius2);
 
 /** Effective mass m1 m2/(m1 + m2) in kg, the mass of the equivalent one-body impact.
  *  mass1 > 0 finite, mass2 > 0 (INFINITY: an immovable obstacle, gives mass1).
  *  Otherwise NaN. */
-double hcimpact_effective_mass(double mass1, double mass2);
+HCIMPACT_API double hcimpact_effective_mass(double mass1, double mass2);
 
 /** Velocities (m/s) of two bodies after a collinear impact with the coefficient of
  *  restitution k (e.g. from hcimpact_impact with the effective mass and the relative
@@ -200,9 +221,9 @@ double hcimpact_effective_mass(double mass1, double mass2);
  *  Returns HCIMPACT_OK; HCIMPACT_ERR_NOT_FINITE, HCIMPACT_ERR_MASS (a mass <= 0),
  *  HCIMPACT_ERR_VELOCITY (velocity1 <= velocity2: no approach),
  *  HCIMPACT_ERR_RESTITUTION (k outside [0, 1]): outputs NaN; HCIMPACT_ERR_NULL. */
-int hcimpact_two_body_velocities(double mass1, double mass2, double velocity1,
-                                 double velocity2, double restitution,
-                                 double *velocity1_after, double *velocity2_after);
+HCIMPACT_API int hcimpact_two_body_velocities(double mass1, double mass2, double velocity1,
+                                              double velocity2, double restitution,
+                                              double *velocity1_after, double *velocity2_after);
 
 /* ------------------------------------------------------------------------
  * One impact (issue #3): m x'' = -c x^n (1 + b x'), x(0) = 0, x'(0) = V.
@@ -250,7 +271,7 @@ typedef struct {
  *  HCIMPACT_ERR_NO_CONVERGENCE (9) a quadrature did not converge (not seen for
  *                                b V up to 1e6),
  *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written). */
-int hcimpact_impact(const hcimpact_contact *contact, hcimpact_outcome *outcome);
+HCIMPACT_API int hcimpact_impact(const hcimpact_contact *contact, hcimpact_outcome *outcome);
 
 /** A callback of an elastic law: a value at the compression x >= 0 (m); `data` is the
  *  pointer given in hcimpact_elastic_law. */
@@ -273,16 +294,16 @@ typedef struct {
  *  hcimpact_impact (mass, damping, velocity checked alike); a NULL law, outcome or
  *  callback gives HCIMPACT_ERR_NULL (nothing written), and a callback returning a
  *  value that is not finite, or a law that is not increasing, HCIMPACT_ERR_ELASTIC_LAW. */
-int hcimpact_impact_law(const hcimpact_elastic_law *law, double mass, double damping,
-                        double velocity, hcimpact_outcome *outcome);
+HCIMPACT_API int hcimpact_impact_law(const hcimpact_elastic_law *law, double mass, double damping,
+                                     double velocity, hcimpact_outcome *outcome);
 
 /** hcimpact_impact for each of n >= 1 contacts: outcomes[i] from contacts[i].
  *  statuses (may be NULL) receives the status of each; an impact that fails has NaN
  *  in its outcome and does not stop the others. Returns HCIMPACT_OK when all
  *  succeeded, otherwise the status of the first that failed; HCIMPACT_ERR_NULL
  *  (contacts or outcomes NULL) and HCIMPACT_ERR_SIZE (n < 1) write nothing. */
-int hcimpact_impact_array(int n, const hcimpact_contact *contacts,
-                          hcimpact_outcome *outcomes, int *statuses);
+HCIMPACT_API int hcimpact_impact_array(int n, const hcimpact_contact *contacts,
+                                       hcimpact_outcome *outcomes, int *statuses);
 
 /* ------------------------------------------------------------------------
  * Trajectory: velocity at a depth (phase curves), time law x(t), x'(t), F(t)
@@ -296,14 +317,14 @@ int hcimpact_impact_array(int n, const hcimpact_contact *contacts,
  *  HCIMPACT_ERR_NOT_FINITE (x NaN or infinite), HCIMPACT_ERR_DOMAIN (x < 0,
  *  x > x_max by more than 4 ulp, or another branch): *velocity = NaN;
  *  HCIMPACT_ERR_NULL. */
-int hcimpact_velocity_at_depth(const hcimpact_contact *contact, double x, int branch,
-                               double *velocity);
+HCIMPACT_API int hcimpact_velocity_at_depth(const hcimpact_contact *contact, double x, int branch,
+                                            double *velocity);
 
 /** velocity[i] = the velocity at the compression x[i], for i < n (n >= 1), on one
  *  branch. On an error every velocity is NaN and the status is that of the first x
  *  that failed (or of the contact). */
-int hcimpact_velocity_at_depth_array(const hcimpact_contact *contact, int n,
-                                     const double *x, int branch, double *velocity);
+HCIMPACT_API int hcimpact_velocity_at_depth_array(const hcimpact_contact *contact, int n,
+                                                  const double *x, int branch, double *velocity);
 
 /** The time law at n >= 1 times t[i] (s from the start of contact, any order):
  *  compression x[i] (m), velocity v[i] = x' (m/s) and contact force
@@ -311,14 +332,14 @@ int hcimpact_velocity_at_depth_array(const hcimpact_contact *contact, int n,
  *  after it: x = 0, x' = -k V, F = 0. Each time costs a few quadratures.
  *  Returns HCIMPACT_OK; the statuses of hcimpact_impact; HCIMPACT_ERR_NOT_FINITE (a
  *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE. */
-int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
-                      double *x, double *v, double *f);
+HCIMPACT_API int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
+                                   double *x, double *v, double *f);
 
 /** The time law on n >= 2 equally spaced times t[i] = contact_time i/(n - 1), written
  *  to t, with x, v and f as in hcimpact_time_law (x[0] = x[n-1] = 0).
  *  Returns as hcimpact_time_law; n < 2 gives HCIMPACT_ERR_SIZE. */
-int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
-                              double *x, double *v, double *f);
+HCIMPACT_API int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
+                                           double *x, double *v, double *f);
 
 /* ------------------------------------------------------------------------
  * The contact-force element: the force of one contact inside the caller's own
@@ -346,17 +367,17 @@ typedef struct {
  *  Returns HCIMPACT_OK; HCIMPACT_ERR_NOT_FINITE (an argument NaN or infinite),
  *  HCIMPACT_ERR_STIFFNESS (c <= 0), HCIMPACT_ERR_EXPONENT (n < 1e-6),
  *  HCIMPACT_ERR_DAMPING (b < 0): every field NaN; HCIMPACT_ERR_NULL (f NULL). */
-int hcimpact_contact_force(double stiffness, double exponent, double damping, double x,
-                           double v, hcimpact_force *f);
+HCIMPACT_API int hcimpact_contact_force(double stiffness, double exponent, double damping, double x,
+                                        double v, hcimpact_force *f);
 
 /** The element of n >= 1 contacts at once: f[i] from stiffness[i], exponent[i],
  *  damping[i], x[i], v[i]. statuses (may be NULL) receives each status; the result is
  *  HCIMPACT_OK when all succeeded, else the status of the first that failed (its
  *  fields NaN; the others are computed regardless). HCIMPACT_ERR_NULL and
  *  HCIMPACT_ERR_SIZE (n < 1) write nothing. */
-int hcimpact_contact_force_array(int n, const double *stiffness, const double *exponent,
-                                 const double *damping, const double *x, const double *v,
-                                 hcimpact_force *f, int *statuses);
+HCIMPACT_API int hcimpact_contact_force_array(int n, const double *stiffness, const double *exponent,
+                                              const double *damping, const double *x, const double *v,
+                                              hcimpact_force *f, int *statuses);
 
 /** The element of two bodies on a line, body 1 left of body 2, from their positions
  *  (m) and velocities (m/s): x = distance - (q2 - q1), v = v1 - v2, both formed without
@@ -365,153 +386,24 @@ int hcimpact_contact_force_array(int n, const double *stiffness, const double *e
  *  body 2 is +F, on body 1 -F; dF/dq1 = dF/dx = -dF/dq2, dF/dv1 = dF/dv = -dF/dv2.
  *  Statuses as hcimpact_contact_force; bodies apart by more than DBL_MAX have no
  *  contact; an overlap or relative speed beyond DBL_MAX: HCIMPACT_ERR_DOMAIN. */
-int hcimpact_contact_force_pair(double stiffness, double exponent, double damping,
-                                double distance, double q1, double v1, double q2,
-                                double v2, hcimpact_force *f);
+HCIMPACT_API int hcimpact_contact_force_pair(double stiffness, double exponent, double damping,
+                                             double distance, double q1, double v1, double q2,
+                                             double v2, hcimpact_force *f);
 
 /** The element of a body (position q, velocity v) against a fixed wall at `wall`:
  *  side = +1 when the wall is on the body's right (x = distance - (wall - q)), -1 on
  *  its left (x = distance - (q - wall)); distance = |wall - q| at first touch. The
  *  force on the body is -side F, and its derivatives with respect to q and v are
  *  -dF/dx and -dF/dv. Another side: HCIMPACT_ERR_DOMAIN. */
-int hcimpact_contact_force_wall(double stiffness, double exponent, double damping,
-                                double distance, double q, double v, double wall, int side,
-                                hcimpact_force *f);
+HCIMPACT_API int hcimpact_contact_force_wall(double stiffness, double exponent, double damping,
+                                             double distance, double q, double v, double wall, int side,
+                                             hcimpact_force *f);
 
 /* ------------------------------------------------------------------------
- * The impact integrated as an ODE (issue #4). Part of the optional CVODE
- * component: link libhcimpact_cvode (CMake: hcimpact::cvode; it brings the
- * SUNDIALS libraries) as well as libhcimpact. A program linked with the core
- * alone gets an undefined reference to hcimpact_simulate at link time; there is
- * no stub in the core. Fortran: components/cvode/api.f90 (module
- * hcimpact_cvode_api), physics in components/cvode/solver.f90; doc/cvode.md.
+ * The optional components have headers of their own: hcimpact_cvode.h
+ * (hcimpact_simulate, the ODE path; link libhcimpact_cvode) and hcimpact_lapack.h
+ * (hcimpact_fit_*, calibration; link libhcimpact_lapack). Each includes this one.
  * ------------------------------------------------------------------------ */
-
-/** The impact of hcimpact_impact integrated by SUNDIALS CVODE (BDF, dense Newton
- *  with the analytic Jacobian, root finding for x' = 0, dF/dt = 0 and x = 0) in
- *  the scaled variables x/X, t V/X, with the relative tolerance rtol and absolute
- *  tolerances rtol times the natural scale of each variable. Measured on the
- *  benchmark contacts (doc/cvode.md): the contact time within 50 rtol, the other
- *  fields within about 250 rtol, for rtol from 1e-4 to 1e-11; far below 1e-13
- *  CVODE gives up (HCIMPACT_ERR_SOLVER, CV_TOO_MUCH_ACC). On success, as for the
- *  exact model, 0 < restitution <= 1 and 0 <= energy_loss_ratio <= 1: where the
- *  solver's k comes out above 1 (b V small against rtol; b = 0 gives k - 1 of
- *  some rtol either side), k = 1, no energy lost and rebound -V are reported,
- *  never further from the exact values than the solver's (the Fortran interface
- *  keeps the solver's k: solver_restitution, restitution_clamped). Thread-safe.
- *  Returns 0 (HCIMPACT_OK) on success; otherwise a status and, except for
- *  HCIMPACT_ERR_NULL, every field of *outcome is NaN:
- *  the input errors of hcimpact_impact (1 to 6),
- *  HCIMPACT_ERR_NOT_FINITE (1)   rtol is NaN or infinite,
- *  HCIMPACT_ERR_DOMAIN (8)       rtol outside (0, 1); b V above about 1e140 (the
- *                                absolute tolerance of x' would fall below
- *                                1e-150); exponent above 100; scales outside
- *                                the double range,
- *  HCIMPACT_ERR_NO_CONVERGENCE (9) the contact did not end in time (not seen),
- *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written),
- *  HCIMPACT_ERR_SOLVER (11)      CVODE failed (the Fortran interface returns its
- *                                flag name, e.g. CV_TOO_MUCH_WORK, in a message). */
-int hcimpact_simulate(const hcimpact_contact *contact, double rtol,
-                      hcimpact_outcome *outcome);
-
-/* ------------------------------------------------------------------------
- * Calibration (issue #7): fit the model to measured data. Part of the
- * optional LAPACK component: link libhcimpact_lapack (CMake: hcimpact::lapack)
- * and LAPACK as well as libhcimpact. Fortran: components/lapack/calibration.f90
- * (module hcimpact_calibration), C wrappers components/lapack/calibration_api.f90;
- * doc/calibration.md.
- *
- * Common rules:
- * - Arrays hold npoints doubles unless said otherwise. An array marked
- *   "or NULL" is optional; any other NULL pointer gives HCIMPACT_ERR_NULL.
- * - sigma arrays are standard deviations in the units of the data (s, N, or
- *   dimensionless for restitution). NULL: the series' scatter is estimated
- *   from its residuals (for a fit of several series, each its own).
- * - absolute_sigma != 0: the sigmas are the true ones and the covariance is
- *   (J^T W J)^-1; 0: it is rescaled by chi^2/(N - p).
- * - covariance is p x p (symmetric, so row- or column-major alike).
- * - Residuals are ln(observed/model) for times and forces, observed - model
- *   for restitution, unweighted; several series are stored one after the
- *   other in the order time, force, restitution (only those given).
- * - Returns 0 (HCIMPACT_OK) or a status. HCIMPACT_ERR_NULL and
- *   HCIMPACT_ERR_SIZE write nothing (the rule of the whole interface); on any
- *   other error every output that is not NULL is set to NaN:
- *   HCIMPACT_ERR_NOT_FINITE (1)     a NaN or infinite value,
- *   HCIMPACT_ERR_MASS (2)           mass <= 0,
- *   HCIMPACT_ERR_VELOCITY (5)       a speed <= 0,
- *   HCIMPACT_ERR_DAMPING (6)        a given damping < 0,
- *   HCIMPACT_ERR_RESTITUTION (7)    a restitution <= 0 or > 2 (values in
- *                                   (1, 2], noise, are allowed),
- *   HCIMPACT_ERR_DOMAIN (8)         another value <= 0 (deflection, force,
- *                                   time, sigma, guess), or a sigma beyond
- *                                   1e100 times its value (1 for restitution),
- *   HCIMPACT_ERR_NO_CONVERGENCE (9) the iteration did not converge,
- *   HCIMPACT_ERR_NULL (10)          a required pointer is NULL,
- *   HCIMPACT_ERR_SIZE (14)          npoints < 0, npoints above INT_MAX/2
- *                                   (fit_elastic) or INT_MAX/3 (fit_impact),
- *                                   or too many points for the memory the
- *                                   fit needs (out of memory),
- *   HCIMPACT_ERR_UNDERDETERMINED (15) the data cannot determine the
- *                                   parameters: fewer observations than
- *                                   parameters + 1, or too little variation
- *                                   (e.g. contact times at a single speed).
- * ------------------------------------------------------------------------ */
-
-/** Damping b (s/m) from restitution e_i measured at approach speeds V_i,
- *  with the exact law e = k(b V) (nonlinear least squares). npoints >= 2;
- *  the speeds may all be equal. b >= 0 (e = 1 everywhere gives 0).
- *  standard_error and residuals (e_i - k(b V_i)) may be NULL. */
-int hcimpact_fit_damping(int npoints, const double *velocity,
-                         const double *restitution, const double *sigma,
-                         int absolute_sigma, double *damping,
-                         double *standard_error, double *residuals);
-
-/** The common linear law e = 1 - alpha V, returned as b = 3 alpha / 2 (s/m),
- *  the small-beta slope of the exact law, for comparison: on data following
- *  the exact law it is biased low (20 % for the seed's steel ball at
- *  0.5...5 m/s). Residuals e_i - (1 - alpha V_i). Same arguments as
- *  hcimpact_fit_damping. */
-int hcimpact_fit_damping_linear(int npoints, const double *velocity,
-                                const double *restitution, const double *sigma,
-                                int absolute_sigma, double *damping,
-                                double *standard_error, double *residuals);
-
-/** Elastic law F = c x^n from a static force-deflection curve: weighted
- *  linear least squares on ln F = ln c + n ln x. npoints >= 3 at two or more
- *  different deflections. sigma (N) or NULL (equal relative errors).
- *  parameters[2] = {c in N/m^n, n}; covariance[4] or NULL; residuals
- *  (ln F_i - ln(c x_i^n)) or NULL. */
-int hcimpact_fit_static(int npoints, const double *deflection,
-                        const double *force, const double *sigma,
-                        int absolute_sigma, double parameters[2],
-                        double covariance[4], double *residuals);
-
-/** Elastic law (c, n) from impact data, the damping b (s/m, >= 0) known:
- *  contact times (s) and/or peak forces (N) measured at approach speeds V_i
- *  (m/s) on a body of mass `mass` (kg). Either series may be NULL, not both;
- *  one series needs two or more different speeds, both together determine
- *  (c, n) even at one speed. guess[2] = {c, n} or NULL (from the data).
- *  parameters[2] = {c in N/m^n, n}; covariance[4] or NULL; residuals
- *  (npoints per series given) or NULL. */
-int hcimpact_fit_elastic(int npoints, double mass, double damping,
-                         const double *velocity, const double *contact_time,
-                         const double *peak_force, const double *sigma_time,
-                         const double *sigma_force, int absolute_sigma,
-                         const double guess[2], double parameters[2],
-                         double covariance[4], double *residuals);
-
-/** Joint fit of (c, n, b) to impact data: contact times (s), peak forces (N)
- *  and restitution measured at approach speeds V_i (m/s), mass in kg. Any
- *  series may be NULL if the others still determine the three parameters.
- *  guess[3] = {c, n, b} or NULL. parameters[3] = {c in N/m^n, n, b in s/m};
- *  covariance[9] or NULL; residuals (npoints per series given) or NULL. */
-int hcimpact_fit_impact(int npoints, double mass, const double *velocity,
-                        const double *contact_time, const double *peak_force,
-                        const double *restitution, const double *sigma_time,
-                        const double *sigma_force,
-                        const double *sigma_restitution, int absolute_sigma,
-                        const double guess[3], double parameters[3],
-                        double covariance[9], double *residuals);
 
 #ifdef __cplusplus
 }

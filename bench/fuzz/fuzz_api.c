@@ -34,6 +34,8 @@
 #include <string.h>
 
 #include "hcimpact.h"
+#include "hcimpact_cvode.h"
+#include "hcimpact_lapack.h"
 
 #define MAX_N 16
 

@@ -1,15 +1,18 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> C interface of the CVODE component: `hcimpact_simulate`.
+!> C interface of the CVODE component: `hcimpact_simulate` and
+!> `hcimpact_simulate_message`.
 !>
 !> It lives in libhcimpact_cvode (hcimpact::cvode), not in the core library: a C
 !> program that calls it must link the component, and one that links only the core
 !> gets an undefined reference at link time rather than a status at run time. The
-!> declaration is in include/hcimpact.h (text in doc/cvode-c-api.h.txt); the
-!> structures are those of hcimpact_impact (hcimpact_capi_types).
+!> declarations are in include/hcimpact_cvode.h; the structures are those of
+!> hcimpact_impact (hcimpact_capi_types).
 module hcimpact_cvode_api
-   use, intrinsic :: iso_c_binding, only : c_double, c_int, c_ptr, c_associated, c_f_pointer
+   use, intrinsic :: iso_c_binding, only : c_double, c_int, c_ptr, c_size_t, c_char, &
+      & c_null_char, c_associated, c_f_pointer
    use hcimpact_kinds, only : wp
-   use hcimpact_status, only : hcimpact_err_null, hcimpact_err_not_finite, hcimpact_err_domain
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_not_finite, &
+      & hcimpact_err_domain, status_message
    use hcimpact_impact_model, only : outcome_type
    use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome, to_contact, from_outcome
    use hcimpact_cvode_system, only : finite_value
@@ -18,7 +21,7 @@ module hcimpact_cvode_api
    implicit none
    private
 
-   public :: c_simulate
+   public :: c_simulate, c_simulate_message
 
 contains
 
@@ -44,6 +47,60 @@ contains
       type(c_ptr), value :: outcome
       !> Status
       integer(c_int) :: stat
+      character(len=:), allocatable :: message
+
+      stat = simulate_to_c(contact, rtol, outcome, message)
+   end function c_simulate
+
+   !> int hcimpact_simulate_message(const hcimpact_contact *contact, double rtol,
+   !>                               hcimpact_outcome *outcome, char *message,
+   !>                               size_t message_size);
+   !>
+   !> hcimpact_simulate, and the solver's account of the run ("success", or CVODE's
+   !> flag name and message) in the caller's buffer: message_size bytes, cut to fit
+   !> and NUL-terminated when message_size >= 1; nothing is written to a NULL buffer.
+   !> The buffer belongs to the caller, so no state is kept between calls.
+   function c_simulate_message(contact, rtol, outcome, message, message_size) result(stat) &
+         & bind(C, name="hcimpact_simulate_message")
+      !> const hcimpact_contact *
+      type(c_ptr), value :: contact
+      !> Relative tolerance of CVODE, 0 < rtol < 1
+      real(c_double), value :: rtol
+      !> hcimpact_outcome *
+      type(c_ptr), value :: outcome
+      !> char *: the caller's buffer, or NULL
+      type(c_ptr), value :: message
+      !> Size of the buffer in bytes
+      integer(c_size_t), value :: message_size
+      !> Status
+      integer(c_int) :: stat
+      character(len=:), allocatable :: text
+      character(kind=c_char), pointer :: buffer(:)
+      integer(c_size_t) :: i, count
+
+      stat = simulate_to_c(contact, rtol, outcome, text)
+      if (.not. c_associated(message) .or. message_size < 1_c_size_t) return
+      call c_f_pointer(message, buffer, [message_size])
+      count = min(int(len(text), c_size_t), message_size - 1_c_size_t)
+      do i = 1_c_size_t, count
+         buffer(i) = text(i:i)
+      end do
+      buffer(count + 1_c_size_t) = c_null_char
+   end function c_simulate_message
+
+   !> The common body: checks, the integration and the copy to *outcome; `message`
+   !> receives the solver's account (or the status text when the solver did not run).
+   function simulate_to_c(contact, rtol, outcome, message) result(stat)
+      !> const hcimpact_contact *
+      type(c_ptr), intent(in) :: contact
+      !> Relative tolerance of CVODE, 0 < rtol < 1
+      real(c_double), intent(in) :: rtol
+      !> hcimpact_outcome *
+      type(c_ptr), intent(in) :: outcome
+      !> What happened, in words
+      character(len=:), allocatable, intent(out) :: message
+      !> Status
+      integer(c_int) :: stat
       type(hcimpact_contact), pointer :: c_in
       type(hcimpact_outcome), pointer :: c_out
       type(simulation_type) :: simulation
@@ -52,6 +109,7 @@ contains
 
       if (.not. (c_associated(contact) .and. c_associated(outcome))) then
          stat = int(hcimpact_err_null, c_int)
+         message = status_message(hcimpact_err_null)
          return
       end if
       call c_f_pointer(contact, c_in)
@@ -60,16 +118,25 @@ contains
       if (.not. finite_value(rtol)) then
          status = hcimpact_err_not_finite
          result = outcome_type()
+         message = "rtol is NaN or infinite"
       else if (.not. (rtol > 0.0_c_double .and. rtol < 1.0_c_double)) then
          status = hcimpact_err_domain
          result = outcome_type()
+         message = "rtol must lie in (0, 1)"
       else
          call simulate_power(to_contact(c_in), &
             & simulation, status, cvode_options(method=cvode_bdf, rtol=real(rtol, wp)))
          result = simulation%outcome
+         if (allocated(simulation%message)) then
+            message = simulation%message
+         else if (status == hcimpact_ok) then
+            message = "success"
+         else
+            message = status_message(status)
+         end if
       end if
       c_out = from_outcome(result)
       stat = int(status, c_int)
-   end function c_simulate
+   end function simulate_to_c
 
 end module hcimpact_cvode_api

@@ -18,7 +18,12 @@
 !>   Checked against a real SUNDIALS 7.1 C library by .ci/sundials7-check.
 !>
 !> HCIMPACT_SUNDIALS_MAJOR (6 or 7) comes from the build (CMake, from
-!> sundials_config.h).
+!> sundials_config.h); a build that does not define it (fpm: components/cvode/fpm.toml)
+!> takes SUNDIALS_VERSION_MAJOR from that header here.
+#ifndef HCIMPACT_SUNDIALS_MAJOR
+#include <sundials/sundials_config.h>
+#define HCIMPACT_SUNDIALS_MAJOR SUNDIALS_VERSION_MAJOR
+#endif
 module hcimpact_cvode_sundials
    use, intrinsic :: iso_c_binding, only : c_int, c_ptr, c_char, c_size_t, c_null_ptr, &
       & c_funloc, c_associated, c_f_pointer

@@ -1,5 +1,5 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> Calibration: fit the Hunt-Crossley contact model to measured data (issue #7).
+!> Calibration of the Hunt-Crossley contact model: fit it to measured data (issue #7).
 !>
 !> The fits, and what they return in `fit_type%parameters`:
 !>

@@ -10,8 +10,8 @@
 !> Optional inputs are copied into allocatables (unallocated: absent; the copies
 !> with stat=) before they are passed on: gfortran reads the address of an absent
 !> explicit-shape array when it passes it to an assumed-shape dummy, which the
-!> undefined-behaviour sanitizer reports. The declarations are in include/hcimpact.h
-!> (text also in doc/calibration-c-api.h.txt).
+!> undefined-behaviour sanitizer reports. The declarations are in
+!> include/hcimpact_lapack.h.
 module hcimpact_calibration_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int
    use, intrinsic :: iso_fortran_env, only : int64

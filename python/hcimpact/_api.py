@@ -16,16 +16,16 @@ from __future__ import annotations
 
 import ctypes
 import math
+import operator
 from ctypes import POINTER, byref, c_double, c_int
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, Callable
 
 import numpy as np
 
 from . import _library
-from ._types import (OUTCOME_FIELDS, Contact, ElasticLaw, ImpactResult, LawFunction,
-                     Outcome, UnavailableError,
-                     error_class)
+from ._types import (CONTACT_FIELDS, OUTCOME_FIELDS, Contact, ElasticLaw, ImpactResult,
+                     InputError, LawFunction, Outcome, UnavailableError, error_class)
 
 __all__ = [
     "lambert_w0", "lambert_wm1", "lambert_w0p1", "lambert_wm1p1",
@@ -48,6 +48,12 @@ DEFAULT_MIN_VELOCITY = 1.0e-3
 
 # the C interface counts elements with an int
 _CHUNK = 2**30
+# bytes for the solver's message (hcimpact_simulate_message); longer ones are cut
+_MESSAGE_SIZE = 512
+# the range of a C int, which ctypes would wrap silently
+_INT_MIN, _INT_MAX = -2**31, 2**31 - 1
+# status codes of the checks done here (hcimpact.h)
+_ERR_DOMAIN, _ERR_SIZE = 8, 14
 _PD = POINTER(c_double)
 
 
@@ -59,13 +65,52 @@ def _lib() -> ctypes.CDLL:
     return _library.load()
 
 
-def _raise(status: int, function: str, index: Any = None) -> None:
+def _raise(status: int, function: str, index: Any = None, detail: str = "") -> None:
+    """Raise the exception of a status; ``detail`` is the library's account of the
+    failure when it gives one (the ODE solver's message), else the status text."""
     message = _lib().hcimpact_status_message(status).decode()
+    if detail and detail != message:
+        message = f"{message}: {detail}"
     raise error_class(status)(status, message, function, index)
 
 
 def _ptr(a: np.ndarray) -> Any:
     return a.ctypes.data_as(_PD)
+
+
+def _real(x: Any, name: str, function: str) -> np.ndarray:
+    """x as float64 (a 0-d array for a scalar). Complex input is refused: NumPy would
+    drop the imaginary part with only a warning."""
+    if np.iscomplexobj(x):
+        raise InputError(_ERR_DOMAIN, f"{name} is complex; hcimpact works on real numbers",
+                         function)
+    try:
+        return np.asarray(x, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise InputError(_ERR_DOMAIN, f"{name} is not a real number or array: {exc}",
+                         function) from None
+
+
+def _scalar(x: Any, name: str, function: str) -> float:
+    """x as one float; an array is refused with the functions that do take arrays."""
+    value = _real(x, name, function)
+    if value.ndim != 0:
+        raise InputError(_ERR_DOMAIN, f"{name} must be a scalar here (shape {value.shape}); "
+                         "impact, time_law and simulate broadcast arrays of contacts",
+                         function)
+    return float(value)
+
+
+def _c_int(x: Any, name: str, function: str, status: int = _ERR_SIZE) -> int:
+    """An integer argument of the C interface, checked against the range of a C int
+    (ctypes would wrap 2**32 + 3 into 3) and refused when it is not an integer."""
+    try:
+        value = operator.index(x)
+    except TypeError:
+        raise InputError(status, f"{name} must be an integer, not {x!r}", function) from None
+    if not _INT_MIN <= value <= _INT_MAX:
+        raise InputError(status, f"{name} = {value} is outside the range of a C int", function)
+    return value
 
 
 def _is_scalar(x: Any) -> bool:
@@ -75,9 +120,10 @@ def _is_scalar(x: Any) -> bool:
 def _unary(name: str, x: Any) -> Any:
     """f(x) through hcimpact_<name> (scalar) or hcimpact_<name>_array."""
     lib = _lib()
-    if _is_scalar(x):
-        return float(getattr(lib, f"hcimpact_{name}")(float(x)))
-    a = np.ascontiguousarray(x, dtype=np.float64)
+    a = _real(x, "the argument", f"hcimpact_{name}")
+    if a.ndim == 0:
+        return float(getattr(lib, f"hcimpact_{name}")(float(a)))
+    a = np.ascontiguousarray(a)
     out = np.empty_like(a)
     flat_in, flat_out = a.reshape(-1), out.reshape(-1)
     array_form = getattr(lib, f"hcimpact_{name}_array")
@@ -89,10 +135,11 @@ def _unary(name: str, x: Any) -> Any:
     return out
 
 
-def _contact(mass: float, stiffness: float, exponent: float, damping: float,
-             velocity: float) -> Contact:
-    return Contact(float(mass), float(stiffness), float(exponent), float(damping),
-                   float(velocity))
+def _contact(mass: Any, stiffness: Any, exponent: Any, damping: Any, velocity: Any,
+             function: str = "hcimpact_impact") -> Contact:
+    """One hcimpact_contact from scalars (an array is refused with a clear message)."""
+    values = (mass, stiffness, exponent, damping, velocity)
+    return Contact(*[_scalar(v, n, function) for v, n in zip(values, CONTACT_FIELDS)])
 
 
 def _result(outcome: Outcome) -> ImpactResult:
@@ -173,9 +220,9 @@ def restitution_derivative(beta: Any) -> Any:
 def u_minus_log1p(u: Any) -> Any:
     """h(u) = u - ln(1 + u) for u > -1 (the first integral, MODEL.md); NaN for u < -1."""
     function = _lib().hcimpact_u_minus_log1p
-    if _is_scalar(u):
-        return float(function(float(u)))
-    a = np.asarray(u, dtype=np.float64)
+    a = _real(u, "u", "hcimpact_u_minus_log1p")
+    if a.ndim == 0:
+        return float(function(float(a)))
     return np.array([function(float(v)) for v in a.reshape(-1)]).reshape(a.shape)
 
 
@@ -188,8 +235,10 @@ def damping_for_restitution(e: float, velocity: float,
     Raises InputError for e outside (0, 1], velocity < 0, min_velocity <= 0, NaN.
     """
     damping = c_double()
-    status = _lib().hcimpact_damping_for_restitution(float(e), float(velocity),
-                                                     float(min_velocity), byref(damping))
+    where = "hcimpact_damping_for_restitution"
+    status = _lib().hcimpact_damping_for_restitution(
+        _scalar(e, "e", where), _scalar(velocity, "velocity", where),
+        _scalar(min_velocity, "min_velocity", where), byref(damping))
     if status != 0:
         _raise(status, "hcimpact_damping_for_restitution")
     return damping.value
@@ -207,9 +256,11 @@ def hertz_constant(young1: float, poisson1: float, radius1: float, young2: float
     Pa, radii in m (``math.inf``: a flat body; the default for body 2). NaN outside the
     domain (E > 0, -1 < nu <= 1/2, R > 0, not both flat).
     """
-    return float(_lib().hcimpact_hertz_constant(float(young1), float(poisson1),
-                                                 float(radius1), float(young2),
-                                                 float(poisson2), float(radius2)))
+    where = "hcimpact_hertz_constant"
+    return float(_lib().hcimpact_hertz_constant(
+        *[_scalar(v, n, where) for v, n in ((young1, "young1"), (poisson1, "poisson1"),
+                                            (radius1, "radius1"), (young2, "young2"),
+                                            (poisson2, "poisson2"), (radius2, "radius2"))]))
 
 
 def effective_mass(mass1: float, mass2: float = math.inf) -> float:
@@ -217,7 +268,9 @@ def effective_mass(mass1: float, mass2: float = math.inf) -> float:
 
     NaN unless mass1 > 0 is finite and mass2 > 0.
     """
-    return float(_lib().hcimpact_effective_mass(float(mass1), float(mass2)))
+    where = "hcimpact_effective_mass"
+    return float(_lib().hcimpact_effective_mass(_scalar(mass1, "mass1", where),
+                                                _scalar(mass2, "mass2", where)))
 
 
 def two_body_velocities(mass1: float, mass2: float, velocity1: float, velocity2: float,
@@ -229,9 +282,12 @@ def two_body_velocities(mass1: float, mass2: float, velocity1: float, velocity2:
     (velocity1_after, velocity2_after). Raises InputError for bad arguments.
     """
     v1, v2 = c_double(), c_double()
-    status = _lib().hcimpact_two_body_velocities(float(mass1), float(mass2),
-                                                 float(velocity1), float(velocity2),
-                                                 float(restitution), byref(v1), byref(v2))
+    where = "hcimpact_two_body_velocities"
+    status = _lib().hcimpact_two_body_velocities(
+        *[_scalar(v, n, where) for v, n in ((mass1, "mass1"), (mass2, "mass2"),
+                                            (velocity1, "velocity1"), (velocity2, "velocity2"),
+                                            (restitution, "restitution"))],
+        byref(v1), byref(v2))
     if status != 0:
         _raise(status, "hcimpact_two_body_velocities")
     return v1.value, v2.value
@@ -270,10 +326,11 @@ def impact(*, mass: Any, stiffness: Any, exponent: Any = 1.5, damping: Any = 0.0
         if status != 0 and errors == "raise":
             _raise(status, "hcimpact_impact")
         return _result(outcome)
-    arrays = np.broadcast_arrays(*[np.asarray(a, dtype=np.float64) for a in args])
+    arrays = _broadcast([_real(a, n, "hcimpact_impact_array")
+                         for a, n in zip(args, CONTACT_FIELDS)], "hcimpact_impact_array")
     shape = arrays[0].shape
     n = int(np.prod(shape, dtype=np.int64))
-    contacts = np.empty((n, 5), dtype=np.float64)
+    contacts = np.empty((n, len(CONTACT_FIELDS)), dtype=np.float64)
     for j, a in enumerate(arrays):
         contacts[:, j] = a.reshape(-1)
     outcomes = np.empty((n, len(OUTCOME_FIELDS)), dtype=np.float64)
@@ -293,11 +350,17 @@ def impact(*, mass: Any, stiffness: Any, exponent: Any = 1.5, damping: Any = 0.0
 
 
 def _branch(branch: Any) -> int:
-    if branch in (COMPRESSION, "compression"):
-        return COMPRESSION
-    if branch in (RESTITUTION, "restitution"):
-        return RESTITUTION
-    raise ValueError(f"branch must be 'compression' or 'restitution', not {branch!r}")
+    """The branch code from its name or from the integer COMPRESSION / RESTITUTION; a
+    float or a bool is refused (1.0 == 1 and True == 1 would otherwise pass)."""
+    names = {"compression": COMPRESSION, "restitution": RESTITUTION}
+    if isinstance(branch, str) and branch in names:
+        return names[branch]
+    if (isinstance(branch, (int, np.integer)) and not isinstance(branch, (bool, np.bool_))
+            and int(branch) in (COMPRESSION, RESTITUTION)):
+        return int(branch)
+    raise InputError(_ERR_DOMAIN, "branch must be 'compression' or 'restitution' (or "
+                     f"hcimpact.COMPRESSION, hcimpact.RESTITUTION), not {branch!r}",
+                     "hcimpact_velocity_at_depth")
 
 
 def impact_law(force: Callable[[float], float], potential: Callable[[float], float],
@@ -309,28 +372,41 @@ def impact_law(force: Callable[[float], float], potential: Callable[[float], flo
     from 0 to x in J, ``force_derivative(x)`` f'(x) in N/m, for a compression x >= 0
     in m; ``mass`` in kg, ``damping`` b in s/m, ``velocity`` V in m/s (scalars).
     The functions are called many times and must not change what they read. An
-    exception inside one of them makes it return NaN, which the library reports as
-    an invalid law (HCIMPACT_ERR_ELASTIC_LAW, an :class:`InputError`).
+    exception raised inside one of them (any, SystemExit and KeyboardInterrupt too)
+    stops the computation: the library gets NaN for that call and for every later one,
+    gives up, and the exception is raised again here, with its traceback. A function
+    that returns a value that is not finite is an invalid law (HCIMPACT_ERR_ELASTIC_LAW,
+    an :class:`InputError`).
 
     >>> c = 1.7135e10
     >>> r = impact_law(lambda x: c * x**1.5, lambda x: c * x**2.5 / 2.5,
     ...                lambda x: 1.5 * c * x**0.5, mass=0.1, damping=0.1, velocity=2.0)
     """
+    where = "hcimpact_impact_law"
+    # the first exception of any callback; none of them is called again after it
+    raised: list[BaseException] = []
+
     def wrap(function: Callable[[float], float]) -> Any:
         def callback(x: float, data: Any) -> float:
+            if raised:
+                return math.nan
             try:
                 return float(function(x))
-            except Exception:           # never let an exception cross the C boundary
-                return float("nan")
+            except BaseException as exc:    # never let an exception cross the C boundary
+                raised.append(exc)
+                return math.nan
         return LawFunction(callback)
 
     callbacks = [wrap(force), wrap(potential), wrap(force_derivative)]
     law = ElasticLaw(callbacks[0], callbacks[1], callbacks[2], None)
     outcome = Outcome()
-    status = _lib().hcimpact_impact_law(byref(law), float(mass), float(damping),
-                                        float(velocity), byref(outcome))
+    status = _lib().hcimpact_impact_law(byref(law), _scalar(mass, "mass", where),
+                                        _scalar(damping, "damping", where),
+                                        _scalar(velocity, "velocity", where), byref(outcome))
+    if raised:
+        raise raised[0]
     if status != 0:
-        _raise(status, "hcimpact_impact_law")
+        _raise(status, where)
     return _result(outcome)
 
 
@@ -339,49 +415,91 @@ def velocity_at_depth(x: Any, *, mass: float, stiffness: float, exponent: float 
                       branch: Any = "compression") -> Any:
     """Velocity x' (m/s) at the compression x (m, 0 <= x <= x_max): the phase curve.
 
-    ``branch`` is ``"compression"`` (x' >= 0) or ``"restitution"`` (x' <= 0). x may be an
-    array (one call of the C array form). Raises InputError for x outside [0, x_max] or
-    a bad contact.
+    ``branch`` is ``"compression"`` (x' >= 0) or ``"restitution"`` (x' <= 0), or the
+    integer :data:`COMPRESSION` / :data:`RESTITUTION`. x may be an array (one call of
+    the C array form). Raises InputError for x outside [0, x_max], a bad contact or a
+    bad branch.
     """
     lib = _lib()
-    contact = _contact(mass, stiffness, exponent, damping, velocity)
+    where = "hcimpact_velocity_at_depth"
+    contact = _contact(mass, stiffness, exponent, damping, velocity, where)
     code = _branch(branch)
-    if _is_scalar(x):
+    a = _real(x, "x", where)
+    if a.ndim == 0:
         v = c_double()
-        status = lib.hcimpact_velocity_at_depth(byref(contact), float(x), code, byref(v))
+        status = lib.hcimpact_velocity_at_depth(byref(contact), float(a), code, byref(v))
         if status != 0:
-            _raise(status, "hcimpact_velocity_at_depth")
+            _raise(status, where)
         return v.value
-    a = np.ascontiguousarray(x, dtype=np.float64)
+    a = np.ascontiguousarray(a)
     out = np.empty_like(a)
     if a.size:
-        status = lib.hcimpact_velocity_at_depth_array(byref(contact), a.size, _ptr(a), code,
+        n = _c_int(a.size, "the size of x", where + "_array")
+        status = lib.hcimpact_velocity_at_depth_array(byref(contact), n, _ptr(a), code,
                                                       _ptr(out))
         if status != 0:
-            _raise(status, "hcimpact_velocity_at_depth_array")
+            _raise(status, where + "_array")
     return out
 
 
-def time_law(t: Any, *, mass: float, stiffness: float, exponent: float = 1.5,
-             damping: float = 0.0, velocity: float) -> tuple[Any, Any, Any]:
+def _broadcast(arrays: list[np.ndarray], function: str) -> list[np.ndarray]:
+    """np.broadcast_arrays, with an InputError that names the shapes when they do not
+    broadcast."""
+    try:
+        return np.broadcast_arrays(*arrays)
+    except ValueError:
+        shapes = ", ".join(str(a.shape) for a in arrays)
+        raise InputError(_ERR_SIZE, f"the arguments' shapes {shapes} do not broadcast "
+                         "together", function) from None
+
+
+def _contact_rows(args: tuple, extra: list[tuple[Any, str]], function: str
+                  ) -> tuple[tuple[int, ...], np.ndarray, list[np.ndarray]]:
+    """The contact arguments and ``extra`` (value, name) arrays broadcast together:
+    (shape, contacts as an (N, 5) array, the extra arrays flattened)."""
+    reals = [_real(a, n, function) for a, n in zip(args, CONTACT_FIELDS)]
+    reals += [_real(v, n, function) for v, n in extra]
+    arrays = _broadcast(reals, function)
+    shape = arrays[0].shape
+    contacts = np.stack([a.reshape(-1) for a in arrays[:len(CONTACT_FIELDS)]], axis=1)
+    return shape, np.ascontiguousarray(contacts), [a.reshape(-1) for a in
+                                                   arrays[len(CONTACT_FIELDS):]]
+
+
+def time_law(t: Any, *, mass: Any, stiffness: Any, exponent: Any = 1.5, damping: Any = 0.0,
+             velocity: Any) -> tuple[Any, Any, Any]:
     """Compression x(t) (m), velocity x'(t) (m/s) and force F(t) (N) at the times t (s).
 
     t counts from the start of contact, in any order; before it x = 0, x' = V, F = 0,
-    after it x = 0, x' = -k V, F = 0. Returns (x, v, f), each of t's shape (floats for
-    a scalar t).
+    after it x = 0, x' = -k V, F = 0. The contact's arguments may be arrays too: t and
+    they broadcast together (NumPy's rules), and element i is the time law of contact i
+    at time t[i] (one C call per distinct contact). Returns (x, v, f) of the broadcast
+    shape (floats when everything is scalar). Raises InputError for a bad contact (with
+    the element's ``index``) or shapes that do not broadcast.
     """
     lib = _lib()
-    contact = _contact(mass, stiffness, exponent, damping, velocity)
-    a = np.ascontiguousarray(np.atleast_1d(np.asarray(t, dtype=np.float64)))
-    x, v, f = np.empty_like(a), np.empty_like(a), np.empty_like(a)
-    if a.size:
-        status = lib.hcimpact_time_law(byref(contact), a.size, _ptr(a), _ptr(x), _ptr(v),
-                                       _ptr(f))
+    where = "hcimpact_time_law"
+    args = (mass, stiffness, exponent, damping, velocity)
+    shape, contacts, (times,) = _contact_rows(args, [(t, "t")], where)
+    x, v, f = (np.empty(times.size) for _ in range(3))
+    # the distinct contacts, each with all its times in one call
+    unique, inverse = np.unique(contacts, axis=0, return_inverse=True)
+    inverse = np.asarray(inverse).reshape(-1)
+    for row in range(unique.shape[0]):
+        members = np.flatnonzero(inverse == row)
+        ts = np.ascontiguousarray(times[members])
+        xs, vs, fs = np.empty_like(ts), np.empty_like(ts), np.empty_like(ts)
+        contact = Contact(*[float(c) for c in unique[row]])
+        n = _c_int(ts.size, "the number of times", where)
+        status = lib.hcimpact_time_law(byref(contact), n, _ptr(ts), _ptr(xs), _ptr(vs),
+                                       _ptr(fs))
         if status != 0:
-            _raise(status, "hcimpact_time_law")
-    if _is_scalar(t):
+            first = int(members[0])
+            index = np.unravel_index(first, shape) if len(shape) > 1 else first
+            _raise(status, where, index if shape else None)
+        x[members], v[members], f[members] = xs, vs, fs
+    if not shape:
         return float(x[0]), float(v[0]), float(f[0])
-    shape = np.shape(t)
     return x.reshape(shape), v.reshape(shape), f.reshape(shape)
 
 
@@ -389,17 +507,18 @@ def time_law_samples(n: int, *, mass: float, stiffness: float, exponent: float =
                      damping: float = 0.0, velocity: float) -> tuple[Any, Any, Any, Any]:
     """The time law on n >= 2 equally spaced times from 0 to the contact time.
 
-    Returns (t, x, v, f), arrays of n elements (s, m, m/s, N).
+    One contact (scalars). Returns (t, x, v, f), arrays of n elements (s, m, m/s, N).
     """
     lib = _lib()
-    contact = _contact(mass, stiffness, exponent, damping, velocity)
-    n = int(n)
-    arrays = [np.empty(max(n, 0), dtype=np.float64) for _ in range(4)]
+    where = "hcimpact_time_law_samples"
+    contact = _contact(mass, stiffness, exponent, damping, velocity, where)
+    n = _c_int(n, "n", where)
     if n < 2:
-        _raise(14, "hcimpact_time_law_samples")
+        _raise(_ERR_SIZE, where)
+    arrays = [np.empty(n, dtype=np.float64) for _ in range(4)]
     status = lib.hcimpact_time_law_samples(byref(contact), n, *[_ptr(a) for a in arrays])
     if status != 0:
-        _raise(status, "hcimpact_time_law_samples")
+        _raise(status, where)
     return tuple(arrays)
 
 
@@ -407,12 +526,28 @@ def time_law_samples(n: int, *, mass: float, stiffness: float, exponent: float =
 # Components
 # ---------------------------------------------------------------------------
 
-def _component_function(function: str, stem: str, what: str) -> Any:
+#: What each component needs, for the message when it is missing
+_COMPONENT_NEEDS = {
+    "cvode": "SUNDIALS CVODE with its Fortran modules (Debian: libsundials-dev "
+             "libsundials-fortran-dev)",
+    "lapack": "LAPACK (Debian: liblapack-dev)",
+}
+
+
+def _component_function(function: str, component: str, what: str) -> Any:
+    stem = f"hcimpact_{component}"
     lib = _library.component(function, stem)
     if lib is None:
-        message = (f"this hcimpact has no {what} (lib{stem} was not found next to "
-                   f"{_library.library_path()}); build it with the component on")
-        raise UnavailableError(12, message, function)
+        built = _library.build_info().get("components", {}).get(component)
+        if built is not None and not built.get("built", False):
+            why = (f"this hcimpact was built without it: component {component} "
+                   f"{built.get('status', 'OFF')}. Install {_COMPONENT_NEEDS[component]} "
+                   "and reinstall hcimpact (pip install ./python)")
+        else:
+            why = (f"lib{stem} was not found next to {_library.library_path()}; build "
+                   f"hcimpact with {_COMPONENT_NEEDS[component]} present "
+                   f"(HCIMPACT_WITH_{component.upper()}=ON)")
+        raise UnavailableError(12, f"the {what} is not available: {why}", function)
     return getattr(lib, function)
 
 
@@ -421,35 +556,61 @@ def has_simulate() -> bool:
     return _library.component("hcimpact_simulate", "hcimpact_cvode") is not None
 
 
-def simulate(*, mass: float, stiffness: float, exponent: float = 1.5, damping: float = 0.0,
-             velocity: float, rtol: float = 1.0e-10) -> ImpactResult:
+def simulate(*, mass: Any, stiffness: Any, exponent: Any = 1.5, damping: Any = 0.0,
+             velocity: Any, rtol: Any = 1.0e-10, errors: str = "raise") -> ImpactResult:
     """The impact integrated by SUNDIALS CVODE with the relative tolerance ``rtol``.
 
-    Same arguments and result as :func:`impact` (to about rtol). Needs the CVODE
-    component (``libhcimpact_cvode``); without it raises :class:`UnavailableError`.
+    Same arguments and result as :func:`impact` (to about rtol): scalars, or arrays
+    (``rtol`` too) that broadcast together, one integration per element. Needs the CVODE
+    component (``libhcimpact_cvode``); without it raises :class:`UnavailableError`
+    naming what is missing. When CVODE fails, the :class:`ComputationError` carries its
+    flag name and message (``hcimpact_simulate_message``), e.g. ``CV_TOO_MUCH_ACC``.
+    ``errors="nan"`` gives NaN fields for the elements that fail instead of raising.
     """
-    function = _component_function("hcimpact_simulate", "hcimpact_cvode",
+    if errors not in ("raise", "nan"):
+        raise ValueError(f"errors must be 'raise' or 'nan', not {errors!r}")
+    where = "hcimpact_simulate"
+    function = _component_function("hcimpact_simulate_message", "cvode",
                                     "CVODE component (hcimpact_simulate)")
+    args = (mass, stiffness, exponent, damping, velocity)
+    shape, contacts, (tolerances,) = _contact_rows(args, [(rtol, "rtol")], where)
+    outcomes = np.empty((tolerances.size, len(OUTCOME_FIELDS)), dtype=np.float64)
+    message = ctypes.create_string_buffer(_MESSAGE_SIZE)
     outcome = Outcome()
-    status = function(byref(_contact(mass, stiffness, exponent, damping, velocity)),
-                      float(rtol), byref(outcome))
-    if status != 0:
-        _raise(status, "hcimpact_simulate")
-    return _result(outcome)
+    for i in range(tolerances.size):
+        contact = Contact(*[float(c) for c in contacts[i]])
+        status = function(byref(contact), float(tolerances[i]), byref(outcome), message,
+                          _MESSAGE_SIZE)
+        if status != 0 and errors == "raise":
+            index = (np.unravel_index(i, shape) if len(shape) > 1 else i) if shape else None
+            _raise(status, where, index, detail=message.value.decode(errors="replace"))
+        outcomes[i] = [getattr(outcome, name) for name in OUTCOME_FIELDS]
+    if not shape:
+        return ImpactResult(**{name: float(outcomes[0, j])
+                               for j, name in enumerate(OUTCOME_FIELDS)})
+    return ImpactResult(**{name: outcomes[:, j].reshape(shape)
+                           for j, name in enumerate(OUTCOME_FIELDS)})
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class FitResult:
     """Result of a calibration fit (LAPACK component).
 
     ``parameters``: the fitted values (a dict, SI units); ``covariance``: their
     covariance matrix (in the order of ``parameters``); ``residuals``: as documented
-    for each fit (doc/calibration-c-api.h.txt).
+    for each fit (include/hcimpact_lapack.h); ``data``: the observations fitted (a dict
+    of arrays: ``velocity`` or ``deflection`` and the series given), which
+    :func:`hcimpact.plot.plot_fit` draws against the fitted model; ``kind``: the fit
+    (``"damping"``, ``"damping_linear"``, ``"static"``, ``"elastic"``, ``"impact"``);
+    ``fixed``: the known values the fit used (``mass``, ``damping``).
     """
 
     parameters: dict
     covariance: np.ndarray
     residuals: np.ndarray
+    data: dict = field(default_factory=dict)
+    kind: str = ""
+    fixed: dict = field(default_factory=dict)
 
     @property
     def standard_errors(self) -> dict:
@@ -457,11 +618,22 @@ class FitResult:
         return {name: float(math.sqrt(self.covariance[i, i]))
                 for i, name in enumerate(self.parameters)}
 
+    def __repr__(self) -> str:
+        errors = self.standard_errors
+        values = ", ".join(f"{name}={value:.6g} ± {errors[name]:.2g}"
+                           for name, value in self.parameters.items())
+        rms = float(np.sqrt(np.mean(self.residuals**2))) if self.residuals.size else 0.0
+        kind = f"{self.kind}: " if self.kind else ""
+        return (f"FitResult({kind}{values}; {self.residuals.size} residuals, "
+                f"rms {rms:.3g})")
 
-def _data(x: Any, n: int | None = None, name: str = "") -> np.ndarray:
-    a = np.ascontiguousarray(np.asarray(x, dtype=np.float64).reshape(-1))
+
+def _data(x: Any, n: int | None = None, name: str = "data") -> np.ndarray:
+    a = np.ascontiguousarray(_real(x, name, "hcimpact_fit").reshape(-1))
     if n is not None and a.size != n:
-        raise ValueError(f"{name} has {a.size} values, expected {n}")
+        raise InputError(_ERR_SIZE, f"{name} has {a.size} values, expected {n}",
+                         "hcimpact_fit")
+    _c_int(a.size, f"the size of {name}", "hcimpact_fit")
     return a
 
 
@@ -474,7 +646,7 @@ def _optional(x: Any, n: int, name: str) -> tuple[Any, Any]:
 
 def _fit_damping(function_name: str, velocity: Any, restitution: Any, sigma: Any,
                  absolute_sigma: bool) -> FitResult:
-    function = _component_function(function_name, "hcimpact_lapack",
+    function = _component_function(function_name, "lapack",
                                    "LAPACK component (calibration)")
     v = _data(velocity)
     e = _data(restitution, v.size, "restitution")
@@ -485,7 +657,9 @@ def _fit_damping(function_name: str, velocity: Any, restitution: Any, sigma: Any
                       byref(damping), byref(error), _ptr(residuals))
     if status != 0:
         _raise(status, function_name)
-    return FitResult({"damping": damping.value}, np.array([[error.value**2]]), residuals)
+    kind = "damping_linear" if function_name.endswith("linear") else "damping"
+    return FitResult({"damping": damping.value}, np.array([[error.value**2]]), residuals,
+                     data={"velocity": v, "restitution": e}, kind=kind)
 
 
 def fit_damping(velocity: Any, restitution: Any, sigma: Any = None,
@@ -513,7 +687,7 @@ def fit_static(deflection: Any, force: Any, sigma: Any = None,
 
     Residuals ln F_i - ln(c x_i**n). Needs the LAPACK component.
     """
-    function = _component_function("hcimpact_fit_static", "hcimpact_lapack",
+    function = _component_function("hcimpact_fit_static", "lapack",
                                    "LAPACK component (calibration)")
     x = _data(deflection)
     f = _data(force, x.size, "force")
@@ -524,7 +698,8 @@ def fit_static(deflection: Any, force: Any, sigma: Any = None,
     if status != 0:
         _raise(status, "hcimpact_fit_static")
     return FitResult({"stiffness": float(parameters[0]), "exponent": float(parameters[1])},
-                     covariance, residuals)
+                     covariance, residuals, data={"deflection": x, "force": f},
+                     kind="static")
 
 
 def fit_elastic(velocity: Any, *, mass: float, damping: float, contact_time: Any = None,
@@ -534,7 +709,7 @@ def fit_elastic(velocity: Any, *, mass: float, damping: float, contact_time: Any
     the damping b known. Residuals ln(observed/model), time series first.
     Needs the LAPACK component.
     """
-    function = _component_function("hcimpact_fit_elastic", "hcimpact_lapack",
+    function = _component_function("hcimpact_fit_elastic", "lapack",
                                    "LAPACK component (calibration)")
     v = _data(velocity)
     series = [contact_time, peak_force]
@@ -545,14 +720,18 @@ def fit_elastic(velocity: Any, *, mass: float, damping: float, contact_time: Any
     parameters, covariance = np.empty(2), np.empty((2, 2))
     count = v.size * sum(s is not None for s in series)
     residuals = np.empty(max(count, 1))
-    status = function(v.size, float(mass), float(damping), _ptr(v), *[p for _, p in pairs],
+    mass_value = _scalar(mass, "mass", "hcimpact_fit_elastic")
+    damping_value = _scalar(damping, "damping", "hcimpact_fit_elastic")
+    status = function(v.size, mass_value, damping_value, _ptr(v), *[p for _, p in pairs],
                       int(bool(absolute_sigma)), guess_ptr, _ptr(parameters),
                       _ptr(covariance), _ptr(residuals))
     if status != 0:
         _raise(status, "hcimpact_fit_elastic")
-    count = v.size * sum(s is not None for s in series)
+    data = {"velocity": v}
+    data.update({name: a for (a, _), name in zip(pairs[:2], names[:2]) if a is not None})
     return FitResult({"stiffness": float(parameters[0]), "exponent": float(parameters[1])},
-                     covariance, residuals[:count])
+                     covariance, residuals[:count], data=data, kind="elastic",
+                     fixed={"mass": mass_value, "damping": damping_value})
 
 
 def fit_impact(velocity: Any, *, mass: float, contact_time: Any = None,
@@ -563,7 +742,7 @@ def fit_impact(velocity: Any, *, mass: float, contact_time: Any = None,
     the speeds ``velocity``. Residuals per series given (time, force, restitution).
     Needs the LAPACK component.
     """
-    function = _component_function("hcimpact_fit_impact", "hcimpact_lapack",
+    function = _component_function("hcimpact_fit_impact", "lapack",
                                    "LAPACK component (calibration)")
     v = _data(velocity)
     series = [contact_time, peak_force, restitution]
@@ -575,13 +754,17 @@ def fit_impact(velocity: Any, *, mass: float, contact_time: Any = None,
     parameters, covariance = np.empty(3), np.empty((3, 3))
     count = v.size * sum(s is not None for s in series)
     residuals = np.empty(max(count, 1))
-    status = function(v.size, float(mass), _ptr(v), *[p for _, p in pairs],
+    mass_value = _scalar(mass, "mass", "hcimpact_fit_impact")
+    status = function(v.size, mass_value, _ptr(v), *[p for _, p in pairs],
                       int(bool(absolute_sigma)), guess_ptr, _ptr(parameters),
                       _ptr(covariance), _ptr(residuals))
     if status != 0:
         _raise(status, "hcimpact_fit_impact")
+    data = {"velocity": v}
+    data.update({name: a for (a, _), name in zip(pairs[:3], names[:3]) if a is not None})
     return FitResult({"stiffness": float(parameters[0]), "exponent": float(parameters[1]),
-                      "damping": float(parameters[2])}, covariance, residuals[:count])
+                      "damping": float(parameters[2])}, covariance, residuals[:count],
+                     data=data, kind="impact", fixed={"mass": mass_value})
 
 
 # ---------------------------------------------------------------------------
@@ -589,8 +772,12 @@ def fit_impact(velocity: Any, *, mass: float, contact_time: Any = None,
 # ---------------------------------------------------------------------------
 
 def status_message(status: int) -> str:
-    """The library's text for a status code ("unknown status code" for others)."""
-    return _lib().hcimpact_status_message(int(status)).decode()
+    """The library's text for a status code ("unknown status code" for others, also
+    for integers beyond a C int, which ctypes would otherwise wrap into a real code)."""
+    code = operator.index(status)
+    if not _INT_MIN <= code <= _INT_MAX:
+        code = _INT_MIN        # not a status: the library's text for unknown codes
+    return _lib().hcimpact_status_message(code).decode()
 
 
 def version() -> str:

@@ -7,18 +7,22 @@ The search order (first hit wins; see ``python/README.md``):
    else is tried.
 2. ``HCIMPACT_PREFIX``: a CMake install prefix; its ``lib``, ``lib64`` and
    ``lib/<multiarch>`` directories.
-3. The build trees of the source checkout this package sits in
+3. The package's own ``lib`` directory: where ``pip install ./python`` (the wheel built
+   by scikit-build-core) puts the library.
+4. The build trees of the source checkout this package sits in
    (``<repo>/build/*/libhcimpact.so``), newest first, when the package is imported
    from ``<repo>/python``.
-4. The prefix of the running Python (a virtual environment or conda prefix that
+5. The prefix of the running Python (a virtual environment or conda prefix that
    hcimpact was installed into with ``-DCMAKE_INSTALL_PREFIX=$VIRTUAL_ENV``).
-5. The dynamic loader's own search (``LD_LIBRARY_PATH``, ``ldconfig``: e.g. an install
+6. The dynamic loader's own search (``LD_LIBRARY_PATH``, ``ldconfig``: e.g. an install
    to ``/usr/local``), then ``/usr/local/lib*``.
 
-The optional components live in libraries of their own next to the core:
+When nothing loads, :class:`LibraryNotFoundError` lists every place tried and why each
+failed. The optional components live in libraries of their own next to the core:
 ``libhcimpact_cvode`` provides ``hcimpact_simulate`` and ``libhcimpact_lapack`` the fits.
 They are looked up in the directory of the core library (and, for a library that was
-linked with everything inside, in the core library itself).
+linked with everything inside, in the core library itself). A wheel records which
+components it was built with, and why one is missing, in ``hcimpact/_build.json``.
 """
 
 from __future__ import annotations
@@ -26,14 +30,15 @@ from __future__ import annotations
 import ctypes
 import ctypes.util
 import glob
+import json
 import os
 import sys
 import sysconfig
 import threading
-from ctypes import POINTER, c_char_p, c_double, c_int
+from ctypes import POINTER, c_char_p, c_double, c_int, c_size_t
 from pathlib import Path
 
-__all__ = ["LibraryNotFoundError", "load", "library_path", "component"]
+__all__ = ["LibraryNotFoundError", "load", "library_path", "component", "build_info"]
 
 
 class LibraryNotFoundError(ImportError):
@@ -60,31 +65,55 @@ def _prefix_dirs(prefix: Path) -> list[Path]:
     multiarch = sysconfig.get_config_var("MULTIARCH")
     if multiarch:
         dirs.append(prefix / "lib" / multiarch)
-    dirs.extend(Path(p) for p in sorted(glob.glob(str(prefix / "lib" / "*-linux-gnu"))))
+    dirs.extend(Path(p) for p in sorted(glob.glob(str(prefix / "lib" / "*-linux-gnu")))
+                if Path(p) not in dirs)
     return dirs
 
 
-def _candidates() -> list[tuple[str, Path]]:
-    """(where, path) of every place tried, in order."""
-    found: list[tuple[str, Path]] = []
+#: The package directory (hcimpact/), where the wheel puts lib/ and _build.json
+PACKAGE_DIR = Path(__file__).resolve().parent
+
+
+def _candidates() -> list[tuple[str, Path | None, str]]:
+    """(where, path, detail) of every place tried, in order.
+
+    ``path`` is a library file to load, or None for a place that holds none; then
+    ``detail`` says what was looked for there.
+    """
+    tried: list[tuple[str, Path | None, str]] = []
+
+    def directories(where: str, dirs: list[Path]) -> None:
+        for directory in dirs:
+            files = _library_files(directory, "hcimpact")
+            tried.extend((where, p, "") for p in files)
+            if not files:
+                tried.append((where, None, f"{directory / ('libhcimpact' + _SUFFIX)}: no such file"))
+
     prefix = os.environ.get("HCIMPACT_PREFIX")
     if prefix:
-        for directory in _prefix_dirs(Path(prefix)):
-            found += [("HCIMPACT_PREFIX", p) for p in _library_files(directory, "hcimpact")]
+        directories("HCIMPACT_PREFIX", _prefix_dirs(Path(prefix)))
+    else:
+        tried.append(("HCIMPACT_PREFIX", None, "not set"))
+    directories("the package (a wheel)", [PACKAGE_DIR / "lib"])
     # <repo>/python/hcimpact/_library.py -> <repo>/build/*/
-    repo = Path(__file__).resolve().parents[2]
+    repo = PACKAGE_DIR.parents[1]
     if (repo / "include" / "hcimpact.h").is_file():
-        builds = [Path(p) for p in glob.glob(str(repo / "build" / "*" / f"libhcimpact{_SUFFIX}"))]
+        pattern = repo / "build" / "*" / f"libhcimpact{_SUFFIX}"
+        builds = [Path(p) for p in glob.glob(str(pattern))]
         builds.sort(key=lambda p: p.stat().st_mtime, reverse=True)
-        found += [("build tree", p) for p in builds]
-    for directory in _prefix_dirs(Path(sys.prefix)):
-        found += [("sys.prefix", p) for p in _library_files(directory, "hcimpact")]
+        tried.extend(("build tree", p, "") for p in builds)
+        if not builds:
+            tried.append(("build tree", None, f"{pattern}: no match"))
+    directories("sys.prefix", _prefix_dirs(Path(sys.prefix)))
     system = ctypes.util.find_library("hcimpact")
     if system:
-        found.append(("dynamic loader", Path(system)))
-    for directory in _prefix_dirs(Path("/usr/local")):
-        found += [("/usr/local", p) for p in _library_files(directory, "hcimpact")]
-    return found
+        tried.append(("dynamic loader", Path(system), ""))
+    else:
+        tried.append(("dynamic loader", None,
+                      "ctypes.util.find_library('hcimpact') found nothing "
+                      "(LD_LIBRARY_PATH, ldconfig)"))
+    directories("/usr/local", _prefix_dirs(Path("/usr/local")))
+    return tried
 
 
 def _declare(lib: ctypes.CDLL) -> None:
@@ -127,6 +156,8 @@ def _declare_components(lib: ctypes.CDLL) -> None:
     d, i, pd = c_double, c_int, POINTER(c_double)
     signatures = {
         "hcimpact_simulate": (i, [POINTER(Contact), d, POINTER(Outcome)]),
+        "hcimpact_simulate_message": (i, [POINTER(Contact), d, POINTER(Outcome), c_char_p,
+                                          c_size_t]),
         "hcimpact_fit_damping": (i, [i, pd, pd, pd, i, pd, pd, pd]),
         "hcimpact_fit_damping_linear": (i, [i, pd, pd, pd, i, pd, pd, pd]),
         "hcimpact_fit_static": (i, [i, pd, pd, pd, i, pd, pd, pd]),
@@ -150,29 +181,48 @@ def load() -> ctypes.CDLL:
             return _core
         explicit = os.environ.get("HCIMPACT_LIBRARY")
         if explicit:
-            tried = [("HCIMPACT_LIBRARY", Path(explicit))]
+            tried: list[tuple[str, Path | None, str]] = [
+                ("HCIMPACT_LIBRARY", Path(explicit), "")]
         else:
             tried = _candidates()
         errors = []
-        for where, path in tried:
+        for where, path, detail in tried:
+            if path is None:
+                errors.append(f"  {where}: {detail}")
+                continue
             try:
                 lib = ctypes.CDLL(str(path))
             except OSError as exc:
-                errors.append(f"  {path} ({where}): {exc}")
+                errors.append(f"  {where}: {path}: {exc}")
                 continue
             if not hasattr(lib, "hcimpact_version_number"):
-                errors.append(f"  {path} ({where}): not libhcimpact (no hcimpact_version_number)")
+                errors.append(f"  {where}: {path}: not libhcimpact (no hcimpact_version_number)")
                 continue
             _declare(lib)
             _declare_components(lib)
             _core_path = str(path)
             _core = lib
             return lib
-        detail = "\n".join(errors) if errors else "  (no candidate found)"
         raise LibraryNotFoundError(
-            "cannot load the shared library libhcimpact. Build it with "
-            "-DBUILD_SHARED_LIBS=ON and set HCIMPACT_LIBRARY=/path/to/libhcimpact.so, or "
-            "HCIMPACT_PREFIX=<install prefix> (python/README.md). Tried:\n" + detail)
+            "cannot load the shared library libhcimpact. `pip install ./python` (from the "
+            "repository) builds it into the package; or build it with CMake "
+            "(-DBUILD_SHARED_LIBS=ON) and set HCIMPACT_LIBRARY=/path/to/libhcimpact.so or "
+            "HCIMPACT_PREFIX=<install prefix> (python/README.md). Tried, in order:\n"
+            + "\n".join(errors))
+
+
+def build_info() -> dict:
+    """What the wheel was built with (hcimpact/_build.json), or {} outside a wheel.
+
+    ``{"version": ..., "components": {"cvode": {"built": bool, "status": str}, ...}}``;
+    ``status`` is the configuration summary's line, e.g. "OFF (SUNDIALS not found:
+    fcvode_mod.mod (libsundials-fortran-dev))".
+    """
+    path = PACKAGE_DIR / "_build.json"
+    if not path.is_file():
+        return {}
+    with open(path, encoding="utf-8") as stream:
+        return json.load(stream)
 
 
 def library_path() -> str:

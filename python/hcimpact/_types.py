@@ -13,12 +13,17 @@ __all__ = [
 ]
 
 
+# The structures mirror include/hcimpact.h field by field, in its order and with its
+# types; python/tests/test_layout.py parses the header and fails on any difference.
+
+CONTACT_FIELDS = ("mass", "stiffness", "exponent", "damping", "velocity")
+
+
 class Contact(ctypes.Structure):
     """``hcimpact_contact``: mass (kg), stiffness (N/m^n), exponent, damping (s/m),
     velocity (m/s)."""
 
-    _fields_ = [(name, ctypes.c_double)
-                for name in ("mass", "stiffness", "exponent", "damping", "velocity")]
+    _fields_ = [(name, ctypes.c_double) for name in CONTACT_FIELDS]
 
 
 OUTCOME_FIELDS = ("restitution", "energy_loss_ratio", "rebound_velocity", "max_compression",
@@ -44,7 +49,7 @@ class ElasticLaw(ctypes.Structure):
                 ("force_derivative", LawFunction), ("data", ctypes.c_void_p)]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ImpactResult:
     """What :func:`hcimpact.impact` (and :func:`hcimpact.simulate`) computes.
 
@@ -73,6 +78,26 @@ class ImpactResult:
     def as_dict(self) -> dict[str, Any]:
         """The fields as a dictionary (in their order)."""
         return {f.name: getattr(self, f.name) for f in fields(self)}
+
+    def __repr__(self) -> str:
+        """One line: the main outputs with 6 digits, arrays by shape and range."""
+        shown = ("restitution", "max_compression", "peak_force", "contact_time")
+        units = {"restitution": "", "max_compression": " m", "peak_force": " N",
+                 "contact_time": " s"}
+        first = getattr(self, shown[0])
+        if hasattr(first, "shape") and getattr(first, "shape", ()) != ():
+            import numpy as np   # arrays exist only once NumPy is imported
+
+            def text(name: str) -> str:
+                a = np.asarray(getattr(self, name))
+                if a.size == 0:
+                    return f"{name}=[]"
+                return (f"{name}=[{np.nanmin(a):.6g} .. {np.nanmax(a):.6g}]{units[name]}"
+                        if np.any(np.isfinite(a)) else f"{name}=[nan]")
+            return (f"ImpactResult(shape={first.shape}, "
+                    + ", ".join(text(name) for name in shown) + ")")
+        return ("ImpactResult(" + ", ".join(f"{name}={float(getattr(self, name)):.6g}"
+                                            f"{units[name]}" for name in shown) + ")")
 
 
 #: Names of the status codes (the HCIMPACT_* macros of hcimpact.h)

@@ -517,6 +517,112 @@ PLOTTERS = [
 ]
 
 
+# ----------------------------------------------------------------------------------
+# Figures from Python objects: a fit's data against its model, an impact result
+# ----------------------------------------------------------------------------------
+
+#: how each series of a fit is drawn: label, unit, the ImpactResult field of the model
+_SERIES = {"contact_time": ("contact time", "s", "contact_time"),
+           "peak_force": ("peak force", "N", "peak_force"),
+           "restitution": ("restitution k", "", "restitution")}
+
+
+def _save(fig, path):
+    if path:
+        partial = f"{path}.partial{os.path.splitext(path)[1]}"
+        fig.savefig(partial, bbox_inches="tight")
+        os.replace(partial, path)
+
+
+def plot_fit(fit, path=None):
+    """The data of a calibration fit (a ``hcimpact.FitResult``) against the fitted model.
+
+    One panel per measured series: restitution against the speed for ``fit_damping``
+    (and the linear law for ``fit_damping_linear``), force against deflection (log-log)
+    for ``fit_static``, contact time, peak force and restitution against the speed for
+    ``fit_elastic`` and ``fit_impact``, the model from the closed forms at the fitted
+    parameters. Returns the Matplotlib figure; with ``path`` it is also written there.
+    Needs the library (the model is computed) and Matplotlib.
+    """
+    _load()
+    import matplotlib.pyplot as plt
+    import hcimpact
+
+    data, p = fit.data, fit.parameters
+    if not data:
+        raise ValueError("this FitResult carries no data to plot")
+    if fit.kind == "static":
+        fig, ax = plt.subplots(figsize=(5.5, 4.0))
+        x = data["deflection"]
+        grid = np.geomspace(x.min(), x.max(), 200)
+        ax.loglog(x, data["force"], "o", label="data")
+        ax.loglog(grid, p["stiffness"] * grid**p["exponent"], "-",
+                  label=f"c x^n, c = {p['stiffness']:.4g}, n = {p['exponent']:.4g}")
+        ax.set_xlabel("deflection x (m)")
+        ax.set_ylabel("force F (N)")
+        ax.legend()
+        _save(fig, path)
+        return fig
+    v = data["velocity"]
+    grid = np.linspace(v.min(), v.max(), 200) if v.max() > v.min() else v[:1]
+    names = [n for n in _SERIES if n in data]
+    if fit.kind in ("damping", "damping_linear"):
+        names = ["restitution"]
+    fig, axes = plt.subplots(len(names), 1, figsize=(5.5, 3.2 * len(names)), squeeze=False,
+                             sharex=True)
+    if fit.kind == "damping":
+        model = {"restitution": hcimpact.restitution(p["damping"] * grid)}
+        label = f"k(b V), b = {p['damping']:.4g} s/m"
+    elif fit.kind == "damping_linear":
+        model = {"restitution": 1.0 - (2.0 / 3.0) * p["damping"] * grid}
+        label = f"1 - 2 b V/3, b = {p['damping']:.4g} s/m"
+    else:
+        damping = p.get("damping", fit.fixed.get("damping", 0.0))
+        result = hcimpact.impact(mass=fit.fixed["mass"], stiffness=p["stiffness"],
+                                 exponent=p["exponent"], damping=damping, velocity=grid)
+        model = {n: getattr(result, _SERIES[n][2]) for n in names}
+        label = (f"model: c = {p['stiffness']:.4g}, n = {p['exponent']:.4g}, "
+                 f"b = {damping:.4g}")
+    for ax, name in zip(axes[:, 0], names):
+        title, unit, _ = _SERIES[name]
+        ax.plot(v, data[name], "o", label="data")
+        ax.plot(grid, model[name], "-", label=label)
+        ax.set_ylabel(f"{title} ({unit})" if unit else title)
+        ax.legend(fontsize=8)
+    axes[-1, 0].set_xlabel("approach speed V (m/s)")
+    _save(fig, path)
+    return fig
+
+
+def plot_result(result, x=None, xlabel="approach speed V (m/s)", path=None):
+    """The outputs of an impact (a ``hcimpact.ImpactResult`` of arrays, from ``impact``
+    or ``simulate`` over a 1-D array of contacts) against ``x`` (default: the element
+    index): restitution, maximum compression, peak force, contact and compression time.
+    Returns the Matplotlib figure; with ``path`` it is also written there.
+    """
+    _load()
+    import matplotlib.pyplot as plt
+
+    k = np.atleast_1d(np.asarray(result.restitution))
+    if k.ndim != 1:
+        raise ValueError(f"plot_result draws a 1-D result, not one of shape {k.shape}")
+    x = np.arange(k.size) if x is None else np.asarray(x, dtype=float)
+    if x.shape != k.shape:
+        raise ValueError(f"x has shape {x.shape}, the result {k.shape}")
+    panels = [("restitution", "restitution k", ""), ("max_compression", "x_max", "m"),
+              ("peak_force", "peak force", "N"), ("contact_time", "contact time", "s")]
+    fig, axes = plt.subplots(len(panels), 1, figsize=(5.5, 9.0), sharex=True)
+    for ax, (name, label, unit) in zip(axes, panels):
+        ax.plot(x, np.atleast_1d(getattr(result, name)), "o-", ms=3)
+        ax.set_ylabel(f"{label} ({unit})" if unit else label)
+    axes[-1].plot(x, np.atleast_1d(result.compression_time), "--",
+                  label="compression time")
+    axes[-1].legend(fontsize=8)
+    axes[-1].set_xlabel(xlabel if x is not None else "element")
+    _save(fig, path)
+    return fig
+
+
 def _have(directory, requirement):
     return any(os.path.exists(os.path.join(directory, name)) for name in requirement.split("|"))
 

@@ -7,10 +7,14 @@
 #      without name=) and no FORTRAN 77 external (src/hcimpact/f77/f77.f90) equals a
 #      module name: gfortran miscompiles a call in a unit that uses module M when
 #      the unit also defines the label M (it became an infinite loop once);
-#   2. every hcimpact_* label of src/ and components/ is declared in
-#      include/hcimpact.h, and every function the header declares is defined;
+#   2. every hcimpact_* label of src/ and components/ is declared in one of the
+#      headers include/hcimpact*.h (the core's in hcimpact.h, a component's in
+#      hcimpact_<component>.h), and every function a header declares is defined,
+#      each with the export macro HCIMPACT_API;
 #   3. the HCIMPACT_OK / HCIMPACT_ERR_* macros of the header have the values of
 #      the parameters of src/hcimpact/status.f90, and none is missing.
+
+cmake_policy(VERSION 3.18)
 
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "usage: cmake -DSOURCE_DIR=<dir> -P check_names.cmake")
@@ -74,8 +78,29 @@ foreach(name IN LISTS labels f77_names)
   endif()
 endforeach()
 
-# 2. the header against the labels
-file(READ "${SOURCE_DIR}/include/hcimpact.h" header)
+# 2. the headers against the labels: a label of components/<name>/ belongs in
+# include/hcimpact_<name>.h, any other in include/hcimpact.h
+file(GLOB header_files "${SOURCE_DIR}/include/hcimpact*.h")
+list(SORT header_files)
+set(header "")
+set(declared_where "")
+foreach(header_file IN LISTS header_files)
+  file(READ "${header_file}" text)
+  string(APPEND header "${text}")
+  get_filename_component(header_name "${header_file}" NAME)
+  string(REGEX REPLACE "/\\*([^*]|\\*+[^*/])*\\*+/" "" text_code "${text}")
+  string(REGEX MATCHALL "hcimpact_[a-z0-9_]+[ \t]*\\(" items "${text_code}")
+  foreach(item IN LISTS items)
+    string(REGEX REPLACE "[ \t]*\\($" "" item "${item}")
+    list(APPEND declared_where "${item}@${header_name}")
+  endforeach()
+  # every function declaration starts with the export macro
+  string(REGEX MATCHALL "\n(const char \\*|int |double )hcimpact_[a-z0-9_]+\\(" bare "${text_code}")
+  foreach(item IN LISTS bare)
+    string(STRIP "${item}" item)
+    string(APPEND errors "\n  ${header_name}: '${item}' lacks HCIMPACT_API")
+  endforeach()
+endforeach()
 # declarations: identifiers hcimpact_* followed by '(' outside comments
 string(REGEX REPLACE "/\\*([^*]|\\*+[^*/])*\\*+/" "" header_code "${header}")
 string(REGEX MATCHALL "hcimpact_[a-z0-9_]+[ \t]*\\(" declared "${header_code}")
@@ -101,13 +126,23 @@ foreach(label IN LISTS exported)
         set(where " (${CMAKE_MATCH_1})")
       endif()
     endforeach()
-    string(APPEND errors "\n  ${label}${where} is not declared in include/hcimpact.h")
+    string(APPEND errors "\n  ${label}${where} is not declared in include/hcimpact*.h")
+  else()
+    set(expected_header "hcimpact.h")
+    foreach(entry IN LISTS label_files)
+      if(entry MATCHES "^${label}@components/([a-z0-9_]+)/")
+        set(expected_header "hcimpact_${CMAKE_MATCH_1}.h")
+      endif()
+    endforeach()
+    if(NOT "${label}@${expected_header}" IN_LIST declared_where)
+      string(APPEND errors "\n  ${label} is not declared in include/${expected_header}")
+    endif()
   endif()
 endforeach()
 foreach(name IN LISTS declared_names)
   list(FIND exported "${name}" hit)
   if(hit EQUAL -1)
-    string(APPEND errors "\n  include/hcimpact.h declares ${name}, which no Fortran source defines")
+    string(APPEND errors "\n  include/hcimpact*.h declare ${name}, which no Fortran source defines")
   endif()
 endforeach()
 
@@ -141,5 +176,5 @@ list(LENGTH f77_names n_f77)
 if(errors)
   message(FATAL_ERROR "C / FORTRAN 77 interface check failed:${errors}")
 endif()
-message(STATUS "${n_modules} modules, ${n_exported} C functions (all declared in hcimpact.h), "
+message(STATUS "${n_modules} modules, ${n_exported} C functions (each declared in its header), "
   "${n_f77} FORTRAN 77 externals, ${n_codes} status codes: no clash, header and sources agree")

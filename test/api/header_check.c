@@ -1,6 +1,6 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * include/hcimpact.h must compile cleanly as C99 (gcc -std=c99 -Wall -Wextra
+ * include/hcimpact.h, hcimpact_cvode.h and hcimpact_lapack.h must compile cleanly as C99 (gcc -std=c99 -Wall -Wextra
  * -pedantic -Werror) and as C++ (g++ -Wall -Wextra -Werror), and its functions must
  * have C linkage in C++ (the extern "C" guards): CTest compiles this file both ways
  * and links and runs the C++ build against the library. Every declared function is
@@ -13,6 +13,12 @@
 #include <string.h>
 
 #include "hcimpact.h"
+#include "hcimpact_cvode.h"
+#include "hcimpact_lapack.h"
+/* each header twice: the include guards */
+#include "hcimpact.h"
+#include "hcimpact_cvode.h"
+#include "hcimpact_lapack.h"
 
 typedef double (*scalar_fn)(double);
 typedef int (*array_fn)(int, const double *, double *);
@@ -53,6 +59,8 @@ int main(void)
                           double *) = hcimpact_time_law_samples;
 #ifdef HCIMPACT_CHECK_COMPONENTS
   int (*simulate)(const hcimpact_contact *, double, hcimpact_outcome *) = hcimpact_simulate;
+  int (*simulate_message)(const hcimpact_contact *, double, hcimpact_outcome *, char *, size_t) =
+      hcimpact_simulate_message;
   int (*fit_damping)(int, const double *, const double *, const double *, int, double *,
                      double *, double *) = hcimpact_fit_damping;
   int (*fit_damping_linear)(int, const double *, const double *, const double *, int,
@@ -75,7 +83,7 @@ int main(void)
       (any_fn)time_law_samples
 #ifdef HCIMPACT_CHECK_COMPONENTS
       ,
-      (any_fn)simulate, (any_fn)fit_damping, (any_fn)fit_damping_linear, (any_fn)fit_static,
+      (any_fn)simulate, (any_fn)simulate_message, (any_fn)fit_damping, (any_fn)fit_damping_linear, (any_fn)fit_static,
       (any_fn)fit_elastic, (any_fn)fit_impact
 #endif
   };

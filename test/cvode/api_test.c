@@ -1,11 +1,12 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* hcimpact_simulate (libhcimpact_cvode) from C: the seed's steel ball against MODEL.md,
- * and the statuses for bad input. Exit code 0 when every check passes. */
+/* hcimpact_simulate and hcimpact_simulate_message (libhcimpact_cvode, hcimpact_cvode.h)
+ * from C: the seed's steel ball against doc/model.md, the statuses for bad input and
+ * the solver's messages. Exit code 0 when every check passes. */
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
-#include "hcimpact.h"
+#include "hcimpact_cvode.h"
 
 static int failures = 0;
 
@@ -32,7 +33,7 @@ int main(void)
   hcimpact_outcome out;
   int stat;
 
-  /* MODEL.md, V = 1 m/s */
+  /* doc/model.md, V = 1 m/s */
   stat = hcimpact_simulate(&ball, rtol, &out);
   check_status("steel ball", stat, HCIMPACT_OK);
   check_close("contact time", out.contact_time, 1.0399469349496538e-4, 100 * rtol);
@@ -77,6 +78,63 @@ int main(void)
   if (!isnan(out.peak_force)) {
     printf("FAIL rtol 1e-20: outputs not NaN\n");
     ++failures;
+  }
+
+  /* the solver's account in the caller's buffer */
+  {
+    char message[256];
+    char small[8];
+    char untouched[4] = {'x', 'x', 'x', 'x'};
+
+    memset(message, 'x', sizeof message);
+    stat = hcimpact_simulate_message(&ball, rtol, &out, message, sizeof message);
+    check_status("message: steel ball", stat, HCIMPACT_OK);
+    check_close("message: contact time", out.contact_time, 1.0399469349496538e-4, 100 * rtol);
+    if (strcmp(message, "success") != 0) {
+      printf("FAIL message on success: \"%s\"\n", message);
+      ++failures;
+    }
+    /* far below 1e-13 CVODE gives up: its flag name must reach the caller */
+    stat = hcimpact_simulate_message(&ball, 1e-20, &out, message, sizeof message);
+    check_status("message: rtol 1e-20", stat, HCIMPACT_ERR_SOLVER);
+    if (strstr(message, "CV_TOO_MUCH_ACC") == NULL) {
+      printf("FAIL message for rtol 1e-20 lacks CVODE's flag name: \"%s\"\n", message);
+      ++failures;
+    } else {
+      printf("rtol 1e-20: %s\n", message);
+    }
+    /* cut to fit, always terminated */
+    memset(small, 'x', sizeof small);
+    stat = hcimpact_simulate_message(&ball, 1e-20, &out, small, sizeof small);
+    check_status("message: small buffer", stat, HCIMPACT_ERR_SOLVER);
+    if (small[sizeof small - 1] != '\0' || strlen(small) != sizeof small - 1
+        || strncmp(small, message, sizeof small - 1) != 0) {
+      printf("FAIL small buffer: not the message cut to %u bytes\n", (unsigned)sizeof small);
+      ++failures;
+    }
+    /* size 0 and NULL: nothing written, the status all the same */
+    stat = hcimpact_simulate_message(&ball, 1e-20, &out, untouched, 0);
+    check_status("message: size 0", stat, HCIMPACT_ERR_SOLVER);
+    if (untouched[0] != 'x') {
+      printf("FAIL size 0: the buffer was written\n");
+      ++failures;
+    }
+    check_status("message: NULL buffer", hcimpact_simulate_message(&ball, rtol, &out, NULL, 64),
+                 HCIMPACT_OK);
+    check_status("message: NULL contact",
+                 hcimpact_simulate_message(NULL, rtol, &out, message, sizeof message),
+                 HCIMPACT_ERR_NULL);
+    if (strcmp(message, hcimpact_status_message(HCIMPACT_ERR_NULL)) != 0) {
+      printf("FAIL NULL contact: message \"%s\"\n", message);
+      ++failures;
+    }
+    check_status("message: rtol NaN", hcimpact_simulate_message(&ball, NAN, &out, message,
+                                                                 sizeof message),
+                 HCIMPACT_ERR_NOT_FINITE);
+    if (strstr(message, "rtol") == NULL) {
+      printf("FAIL rtol NaN: message \"%s\" does not name rtol\n", message);
+      ++failures;
+    }
   }
 
   if (failures > 0) {

@@ -1,13 +1,12 @@
 /* SPDX-License-Identifier: Apache-2.0 */
-/* The C entry points of the calibration component (include/hcimpact.h, from
- * doc/calibration-c-api.h.txt), called from plain C. Data: the seed's steel
- * ball (MODEL.md), from the core's hcimpact_restitution and from Hertz's
+/* The C entry points of the calibration component (include/hcimpact_lapack.h),
+ * called from plain C. Data: the seed's steel ball (doc/model.md), from the core's hcimpact_restitution and from Hertz's
  * closed forms (b = 0). */
 #include <math.h>
 #include <stdio.h>
 #include <stddef.h>
 
-#include "hcimpact.h"
+#include "hcimpact_lapack.h"
 
 #define NPOINTS 10
 

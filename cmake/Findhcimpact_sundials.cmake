@@ -1,18 +1,32 @@
 # SPDX-License-Identifier: Apache-2.0
 #
-# Locate SUNDIALS CVODE with its Fortran 2003 interface, for components/cvode.
+# Find module of SUNDIALS CVODE with its Fortran 2003 interface, for the CVODE
+# component (components/cvode). The build calls it as
+#
+#   find_package(hcimpact_sundials)                      # libraries and Fortran modules
+#
+# and the installed CMake package of a static hcimpact, whose libhcimpact_cvode.a
+# needs the SUNDIALS libraries at the consumer's link, as
+#
+#   find_dependency(hcimpact_sundials COMPONENTS libraries)   # the libraries only
+#
+# (it is installed next to hcimpact-config.cmake).
 #
 # SUNDIALS' own CMake package is not used: Debian's copy points at the wrong
 # places. We look for the pieces directly, under (in this order) the variables
 # SUNDIALS_ROOT and SUNDIALS_DIR (the prefix, or the directory of its
-# SUNDIALSConfig.cmake), the environment variable SUNDIALS_ROOT, then
-# CMAKE_PREFIX_PATH and the system locations. Every piece can also be given
-# directly by its cache variable: HCIMPACT_SUNDIALS_INCLUDE_DIR,
+# SUNDIALSConfig.cmake), the environment variable SUNDIALS_ROOT, the list
+# HCIMPACT_SUNDIALS_HINTS (the installed package sets it to where the build found
+# SUNDIALS), then CMAKE_PREFIX_PATH and the system locations. Every piece can also be
+# given directly by its cache variable: HCIMPACT_SUNDIALS_INCLUDE_DIR,
 # HCIMPACT_SUNDIALS_FORTRAN_MODULE_DIR and HCIMPACT_SUNDIALS_<NAME>_LIBRARY
 # (e.g. HCIMPACT_SUNDIALS_CVODE_LIBRARY; .ci/sundials7-check uses them).
 #
 # Results:
-#   HCIMPACT_SUNDIALS_FOUND                 TRUE if everything below was found
+#   hcimpact_sundials_FOUND                 TRUE if everything asked for was found
+#   hcimpact::sundials                      imported target: the libraries (in link
+#                                           order) and the include directories
+#   HCIMPACT_SUNDIALS_FOUND                 the same as hcimpact_sundials_FOUND
 #   HCIMPACT_SUNDIALS_VERSION               e.g. 6.4.1
 #   HCIMPACT_SUNDIALS_VERSION_MAJOR         e.g. 6 (SUNDIALS 7 adds sundials_core)
 #   HCIMPACT_SUNDIALS_INCLUDE_DIR           directory holding sundials/sundials_config.h
@@ -21,7 +35,8 @@
 #   HCIMPACT_SUNDIALS_MISSING               what was not found (for messages)
 
 set(_hcsun_hints "")
-foreach(_hcsun_root IN ITEMS "${SUNDIALS_ROOT}" "${SUNDIALS_DIR}" "$ENV{SUNDIALS_ROOT}")
+foreach(_hcsun_root IN ITEMS "${SUNDIALS_ROOT}" "${SUNDIALS_DIR}" "$ENV{SUNDIALS_ROOT}"
+    ${HCIMPACT_SUNDIALS_HINTS})
   if(_hcsun_root)
     list(APPEND _hcsun_hints "${_hcsun_root}")
     # SUNDIALS_DIR is usually what find_package(SUNDIALS) wants, the directory of
@@ -81,12 +96,20 @@ if(HCIMPACT_SUNDIALS_INCLUDE_DIR)
   list(APPEND _hcsun_mod_hints "${HCIMPACT_SUNDIALS_INCLUDE_DIR}/sundials"
     "${HCIMPACT_SUNDIALS_INCLUDE_DIR}")
 endif()
-find_path(HCIMPACT_SUNDIALS_FORTRAN_MODULE_DIR
-  NAMES fcvode_mod.mod
-  HINTS ${_hcsun_hints} ${_hcsun_mod_hints}
-  PATH_SUFFIXES ${_hcsun_mod_suffixes})
-if(NOT HCIMPACT_SUNDIALS_FORTRAN_MODULE_DIR)
-  list(APPEND HCIMPACT_SUNDIALS_MISSING "fcvode_mod.mod (libsundials-fortran-dev)")
+# The Fortran modules are needed to compile the component, not to link it: the
+# component "libraries" alone skips them.
+set(_hcsun_need_modules TRUE)
+if(hcimpact_sundials_FIND_COMPONENTS AND NOT "fortran" IN_LIST hcimpact_sundials_FIND_COMPONENTS)
+  set(_hcsun_need_modules FALSE)
+endif()
+if(_hcsun_need_modules)
+  find_path(HCIMPACT_SUNDIALS_FORTRAN_MODULE_DIR
+    NAMES fcvode_mod.mod
+    HINTS ${_hcsun_hints} ${_hcsun_mod_hints}
+    PATH_SUFFIXES ${_hcsun_mod_suffixes})
+  if(NOT HCIMPACT_SUNDIALS_FORTRAN_MODULE_DIR)
+    list(APPEND HCIMPACT_SUNDIALS_MISSING "fcvode_mod.mod (libsundials-fortran-dev)")
+  endif()
 endif()
 
 # Link order: Fortran wrappers before the C libraries they call.
@@ -124,8 +147,37 @@ mark_as_advanced(HCIMPACT_SUNDIALS_INCLUDE_DIR HCIMPACT_SUNDIALS_FORTRAN_MODULE_
 
 if(NOT HCIMPACT_SUNDIALS_MISSING)
   set(HCIMPACT_SUNDIALS_FOUND TRUE)
-  message(STATUS "Found SUNDIALS ${HCIMPACT_SUNDIALS_VERSION}: "
-    "modules in ${HCIMPACT_SUNDIALS_FORTRAN_MODULE_DIR}")
+  if(NOT TARGET hcimpact::sundials)
+    # GLOBAL in the build tree, so that a parent project that adds hcimpact with
+    # add_subdirectory/FetchContent can link hcimpact::cvode from its own directories.
+    if(PROJECT_NAME STREQUAL "hcimpact")
+      add_library(hcimpact::sundials INTERFACE IMPORTED GLOBAL)
+    else()
+      add_library(hcimpact::sundials INTERFACE IMPORTED)
+    endif()
+    set_target_properties(hcimpact::sundials PROPERTIES
+      INTERFACE_LINK_LIBRARIES "${HCIMPACT_SUNDIALS_LIBRARIES}"
+      INTERFACE_INCLUDE_DIRECTORIES
+        "${HCIMPACT_SUNDIALS_FORTRAN_MODULE_DIR};${HCIMPACT_SUNDIALS_INCLUDE_DIR}")
+    if(NOT _hcsun_need_modules)
+      set_target_properties(hcimpact::sundials PROPERTIES
+        INTERFACE_INCLUDE_DIRECTORIES "${HCIMPACT_SUNDIALS_INCLUDE_DIR}")
+    endif()
+  endif()
 else()
   list(JOIN HCIMPACT_SUNDIALS_MISSING ", " HCIMPACT_SUNDIALS_MISSING)
+endif()
+
+set(hcimpact_sundials_FOUND ${HCIMPACT_SUNDIALS_FOUND})
+set(hcimpact_sundials_VERSION "${HCIMPACT_SUNDIALS_VERSION}")
+if(NOT hcimpact_sundials_FOUND)
+  set(_hcsun_message "SUNDIALS CVODE not found (missing: ${HCIMPACT_SUNDIALS_MISSING}); "
+    "point SUNDIALS_ROOT at its prefix")
+  if(hcimpact_sundials_FIND_REQUIRED)
+    message(FATAL_ERROR ${_hcsun_message})
+  elseif(NOT hcimpact_sundials_FIND_QUIETLY)
+    message(STATUS ${_hcsun_message})
+  endif()
+elseif(NOT hcimpact_sundials_FIND_QUIETLY)
+  message(STATUS "Found SUNDIALS ${HCIMPACT_SUNDIALS_VERSION}: ${HCIMPACT_SUNDIALS_INCLUDE_DIR}")
 endif()
