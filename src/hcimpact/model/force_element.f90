@@ -49,13 +49,13 @@
 !> `check_parameters`: stiffness > 0, exponent >= 1e-6, damping >= 0, all finite), a
 !> NaN or infinite x or v hcimpact_err_not_finite; every field is then NaN.
 module hcimpact_force_element
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_positive_inf
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
       & hcimpact_err_elastic_law
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(*)
-   use hcimpact_power_force, only : power_product, product_of, signed_product
+   use hcimpact_power_force, only : power_product, product_of, signed_product, safe_power
    use hcimpact_contact, only : check_parameters
    use hcimpact_elastic, only : elastic_law
    implicit none
@@ -191,7 +191,7 @@ contains
          & ieee_is_finite(v2))) status = hcimpact_err_not_finite
       if (status == hcimpact_ok) then
          x = sum_of_three(distance, q1, -q2)
-         rate%hi = v1 - v2
+         rate%hi = sum_or_infinity(v1, -v2)
          if (ieee_is_finite(rate%hi)) rate = two_sum(v1, -v2)
          if (.not. x > 0.0_wp) then
             ! apart (also by more than the largest double): no contact
@@ -278,14 +278,32 @@ contains
       real(wp), intent(in) :: d, a, b
       real(wp) :: x
       type(dd_real) :: s, t
-      x = a + b
+      x = sum_or_infinity(a, b)
       if (.not. ieee_is_finite(x)) return
-      x = d + x
+      x = sum_or_infinity(d, x)
       if (.not. ieee_is_finite(x)) return
       s = two_sum(a, b)
       t = two_sum(d, s%hi)
       x = t%hi + (t%lo + s%lo)
    end function sum_of_three
+
+   !> a + b of finite doubles, or the infinity of its sign when it overflows, without
+   !> raising the overflow (the Debug build traps on it): halves are added first when
+   !> a summand is near the largest double.
+   elemental function sum_or_infinity(a, b) result(c)
+      real(wp), intent(in) :: a, b
+      real(wp) :: c
+      if (max(exponent(a), exponent(b)) < maxexponent(1.0_wp)) then
+         c = a + b
+         return
+      end if
+      c = 0.5_wp * a + 0.5_wp * b
+      if (abs(c) > 0.5_wp * huge(1.0_wp)) then
+         c = sign(ieee_value(1.0_wp, ieee_positive_inf), c)
+      else
+         c = a + b
+      end if
+   end function sum_or_infinity
 
    !> 1 + b v from the exact product b v (rate = v as hi + lo): the sum rounded once,
    !> so it keeps its relative accuracy where 1 and b v cancel. Also b v itself (its
@@ -298,6 +316,15 @@ contains
       !> b v rounded
       real(wp), intent(out) :: bv
       type(dd_real) :: p, s
+      ! b v beyond the double range: an infinity of its sign, formed without an
+      ! overflow (the Debug build traps on it)
+      if (damping /= 0.0_wp .and. rate%hi /= 0.0_wp) then
+         if (exponent(damping) + exponent(rate%hi) >= maxexponent(1.0_wp)) then
+            factor = sign(ieee_value(1.0_wp, ieee_positive_inf), rate%hi)
+            bv = factor
+            return
+         end if
+      end if
       p = two_prod(damping, rate%hi)
       bv = p%hi
       if (.not. ieee_is_finite(p%hi)) then
@@ -325,7 +352,7 @@ contains
       call damping_factor(b, rate, s, bv)
       speed = abs(rate%hi)
       np1 = two_sum(n, 1.0_wp)
-      xn = x**n
+      xn = safe_power(x, n)
       ! Pi = c x^n x/(n + 1)
       e%potential = power_product(xn, x, n, [c, x], np1%hi)
       if (s > 0.0_wp .or. .not. clamp) then

@@ -13,7 +13,7 @@ module hcimpact_power_force
    private
 
    public :: power_law_force, power_law_potential, power_law_derivative
-   public :: power_product, product_of, signed_product
+   public :: power_product, product_of, signed_product, safe_power
 
 contains
 
@@ -26,7 +26,7 @@ contains
       !> Force in N
       real(wp) :: f
       f = 0.0_wp
-      if (x > 0.0_wp) f = power_product(x**n, x, n, [c], 1.0_wp)
+      if (x > 0.0_wp) f = power_product(safe_power(x, n), x, n, [c], 1.0_wp)
    end function power_law_force
 
    !> Pi(x) = c x^(n+1)/(n+1) in J for x > 0 (0 for x <= 0); within a few ulps.
@@ -41,7 +41,7 @@ contains
       p = 0.0_wp
       if (.not. x > 0.0_wp) return
       np1 = two_sum(n, 1.0_wp)
-      p = power_product(x**n, x, n, [c, x], np1%hi)
+      p = power_product(safe_power(x, n), x, n, [c, x], np1%hi)
    end function power_law_potential
 
    !> f'(x) = n c x^(n-1) in N/m for x > 0, formed as n f(x)/x (no rounding of n - 1
@@ -56,7 +56,7 @@ contains
       !> Derivative in N/m
       real(wp) :: d
       if (x > 0.0_wp) then
-         d = power_product(x**n, x, n, [c, n], x)
+         d = power_product(safe_power(x, n), x, n, [c, n], x)
       else if (n > 1.0_wp) then
          d = 0.0_wp
       else if (n == 1.0_wp) then
@@ -67,9 +67,10 @@ contains
    end function power_law_derivative
 
    !> factors(1) * ... * factors(k) * x^p / divisor for positive finite factors (none
-   !> zero), x > 0 and a positive finite divisor, with xp = x**p already formed. Multiplied directly
-   !> when x^p and the partial products stay normal (each rounding then relative);
-   !> otherwise from double-double logarithms (`log_product`).
+   !> zero), x > 0 and a positive finite divisor, with xp = x**p already formed (0 when
+   !> it is not a normal double: safe_power). Multiplied directly when x^p and the
+   !> partial products stay normal (each rounding then relative); otherwise from
+   !> double-double logarithms (`log_product`).
    pure function power_product(xp, x, p, factors, divisor) result(y)
       real(wp), intent(in) :: xp, x, p
       real(wp), intent(in) :: factors(:)
@@ -77,19 +78,43 @@ contains
       real(wp) :: y
       integer :: i
 
+      ! each product is formed only when the exponents say it stays normal (within a
+      ! factor 2 of the estimate), so that no overflow is ever raised (the Debug build
+      ! traps on it) and no digit is lost to underflow on the way
       if (xp >= tiny(1.0_wp) .and. xp <= huge(1.0_wp)) then
          y = xp
          do i = 1, size(factors)
+            if (.not. normal_product(exponent(y) + exponent(factors(i)))) exit
             y = y * factors(i)
-            if (.not. (y >= tiny(1.0_wp) .and. y <= huge(1.0_wp))) exit
          end do
-         if (y >= tiny(1.0_wp) .and. y <= huge(1.0_wp)) then
-            y = y / divisor
-            if (y >= tiny(1.0_wp) .and. y <= huge(1.0_wp)) return
+         if (i > size(factors)) then
+            if (normal_product(exponent(y) - exponent(divisor))) then
+               y = y / divisor
+               return
+            end if
          end if
       end if
       y = log_product(x, p, factors, divisor)
    end function power_product
+
+   !> Whether a product (or quotient) whose binary exponents add up to e is surely a
+   !> normal double (the result's exponent is e or e - 1)
+   elemental logical function normal_product(e)
+      integer, intent(in) :: e
+      normal_product = e <= maxexponent(1.0_wp) - 1 .and. e >= minexponent(1.0_wp) + 1
+   end function normal_product
+
+   !> x^p for x > 0, or 0 when it would overflow or leave the normal range (then the
+   !> callers take the logarithms: power_product); no overflow is raised.
+   elemental function safe_power(x, p) result(y)
+      real(wp), intent(in) :: x, p
+      real(wp) :: y
+      real(wp) :: estimate
+      ! log2(x^p) = p log2(x), log2(x) within 1 of exponent(x)
+      estimate = p * real(exponent(x), wp)
+      y = 0.0_wp
+      if (abs(estimate) + abs(p) < real(maxexponent(1.0_wp) - 4, wp)) y = x**p
+   end function safe_power
 
    !> factors(1) * ... * factors(k) * x^p / divisor from the sum of their logarithms in
    !> double-double (each ln(2^e f) = e ln 2 + ln f to about 2^-100 relative), then one

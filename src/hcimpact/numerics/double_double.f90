@@ -397,22 +397,6 @@ contains
       err = ((ah * bh - p) + ah * bl + al * bh) + al * bl
    end function product_error
 
-   !> Veltkamp's splitting of a into two halves of 26 bits each, a = ah + al, for any
-   !> finite a (scaled down first when the splitting constant would overflow).
-   elemental subroutine split(a, ah, al)
-      real(wp), intent(in) :: a
-      real(wp), intent(out) :: ah, al
-      real(wp) :: t
-      if (abs(a) > split_max) then
-         t = splitter * (a * 2.0_wp**(-28))
-         ah = (t - (t - a * 2.0_wp**(-28))) * 2.0_wp**28
-      else
-         t = splitter * a
-         ah = t - (t - a)
-      end if
-      al = a - ah
-   end subroutine split
-
    !> Exact product: a b = p%hi + p%lo with p%hi = fl(a b) (Dekker), as long as the
    !> product neither overflows nor falls into the subnormal range; factors beyond
    !> 2^996 are split at a smaller scale. `two_prod` (dd_ops.inc) hands such products
@@ -424,7 +408,6 @@ contains
       real(wp), intent(in) :: b
       !> The product, exactly
       type(dd_real) :: p
-      real(wp) :: ah, al, bh, bl
       p%hi = a * b
       if (abs(a) <= split_max .and. abs(b) <= split_max .and. abs(p%hi) <= split_max) then
          ! the usual case, with the splitting inline
@@ -432,10 +415,13 @@ contains
       else if (abs(p%hi) > split_max) then
          ! the error term is below the precision of anything this large
          p%lo = 0.0_wp
+      else if (abs(a) > split_max) then
+         ! a beyond 2^996, so b below 1: 2^28 moved from a to b exactly, and the
+         ! factors split without overflow (the halves of a itself could round up past
+         ! the largest double)
+         p%lo = product_error(a * 2.0_wp**(-28), b * 2.0_wp**28, p%hi)
       else
-         call split(a, ah, al)
-         call split(b, bh, bl)
-         p%lo = ((ah * bh - p%hi) + ah * bl + al * bh) + al * bl
+         p%lo = product_error(a * 2.0_wp**28, b * 2.0_wp**(-28), p%hi)
       end if
    end function dd_two_prod_ext
 
