@@ -57,6 +57,7 @@ module hcimpact_cvode_solver
    use hcimpact_elastic, only : elastic_law
    use hcimpact_restitution_law, only : restitution
    use hcimpact_impact_model, only : contact_type, outcome_type
+   use hcimpact_contact, only : check_contact, check_parameters
    use hcimpact_cvode_system, only : impact_system, external_force, power_system, &
       & law_system, system_rhs, system_jacobian, system_events, system_force, &
       & largest_eigenvalue, scaled_energy, guarded_product, guarded_quotient, finite_value, &
@@ -335,8 +336,8 @@ contains
       if (present(options)) opts = options
       call check_options(opts, stat, why)
       if (stat == hcimpact_ok) then
-         call check_power_input(contact_type(mass=mass, stiffness=1.0_wp, exponent=1.0_wp, &
-            & damping=damping, velocity=velocity), stat, why)
+         stat = check_parameters(mass=mass, damping=damping, velocity=velocity)
+         why = status_message(stat)
       end if
       if (stat /= hcimpact_ok) then
          simulation%message = why
@@ -467,28 +468,15 @@ contains
       end if
    end subroutine check_options
 
-   !> Check a power-law contact (the rules of the closed forms).
+   !> Check a power-law contact (the rules of the closed forms, one validator).
    subroutine check_power_input(contact, stat, why)
       type(contact_type), intent(in) :: contact
       integer, intent(out) :: stat
       character(len=:), allocatable, intent(out) :: why
 
-      stat = hcimpact_ok
-      ! (finiteness from the bits: a signalling NaN from C must not raise invalid)
-      if (.not. all(finite_value([contact%mass, contact%stiffness, contact%exponent, &
-         & contact%damping, contact%velocity]))) then
-         stat = hcimpact_err_not_finite
-      else if (.not. contact%mass > 0.0_wp) then
-         stat = hcimpact_err_mass
-      else if (.not. contact%stiffness > 0.0_wp) then
-         stat = hcimpact_err_stiffness
-      else if (.not. contact%exponent > 0.0_wp) then
-         stat = hcimpact_err_exponent
-      else if (.not. contact%velocity > 0.0_wp) then
-         stat = hcimpact_err_velocity
-      else if (contact%damping < 0.0_wp) then
-         stat = hcimpact_err_damping
-      end if
+      ! the library's one validator (hcimpact_contact): the closed forms and this path
+      ! accept and refuse the same contacts
+      stat = check_contact(contact)
       why = status_message(stat)
    end subroutine check_power_input
 

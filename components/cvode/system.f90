@@ -41,7 +41,7 @@
 module hcimpact_cvode_system
    use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
-   use hcimpact_kinds, only : wp
+   use hcimpact_kinds, only : wp, finite_value
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_elastic, only : elastic_law
    use hcimpact_force_element, only : contact_force_type, contact_force
@@ -159,16 +159,6 @@ contains
       dg_dx = 0.0_wp
       dg_dv = 0.0_wp
    end subroutine external_force_no_derivatives
-
-   !> Whether x is finite, from its bits: no floating-point operation, so that a
-   !> signalling NaN given as input raises nothing (ieee_is_nan would raise invalid).
-   elemental function finite_value(x) result(finite)
-      !> Any double
-      real(wp), intent(in) :: x
-      !> False for NaN (quiet or signalling) and +-Inf
-      logical :: finite
-      finite = ibits(transfer(x, 0_int64), 52, 11) /= 2047_int64
-   end function finite_value
 
    !> a/b for finite a and b /= 0, or +-huge when the quotient would overflow.
    elemental function guarded_quotient(a, b) result(c)

@@ -1,11 +1,12 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> Working precision of the library, and the one quiet NaN every failed output holds.
+!> Working precision of the library, the one quiet NaN every failed output holds, and
+!> the one test of finiteness that raises no floating-point flag.
 module hcimpact_kinds
    use, intrinsic :: iso_fortran_env, only : real64, int32, int64
    implicit none
    private
 
-   public :: wp, ik, nan
+   public :: wp, ik, nan, finite_value
 
    !> Real kind of every computation and interface (IEEE binary64)
    integer, parameter :: wp = real64
@@ -15,5 +16,18 @@ module hcimpact_kinds
    !> payload bits clear but the quiet bit). A constant rather than
    !> `ieee_value(x, ieee_quiet_nan)`, which is a library call on hot paths.
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
+
+contains
+
+   !> Whether x is finite, from its bits: no floating-point operation, so that a
+   !> signalling NaN given as input raises nothing (a comparison, or ieee_is_finite,
+   !> raises invalid on it, which the Debug build traps).
+   elemental function finite_value(x) result(finite)
+      !> Any double
+      real(wp), intent(in) :: x
+      !> False for NaN (quiet or signalling) and +-Inf
+      logical :: finite
+      finite = ibits(transfer(x, 0_int64), 52, 11) /= 2047_int64
+   end function finite_value
 
 end module hcimpact_kinds

@@ -71,6 +71,12 @@ int main(void)
   ball.velocity = -1.0;
   check_status("V < 0", hcimpact_simulate(&ball, rtol, &out), HCIMPACT_ERR_VELOCITY);
   ball.velocity = 1.0;
+  /* the closed forms' rule for the exponent (one validator for every entry point) */
+  ball.exponent = 1e-20;
+  check_status("n = 1e-20", hcimpact_simulate(&ball, rtol, &out), HCIMPACT_ERR_EXPONENT);
+  ball.exponent = 1e-310;
+  check_status("n = 1e-310", hcimpact_simulate(&ball, rtol, &out), HCIMPACT_ERR_EXPONENT);
+  ball.exponent = 1.5;
   ball.damping = 1e300;
   check_status("b V = 1e300", hcimpact_simulate(&ball, rtol, &out), HCIMPACT_ERR_DOMAIN);
   ball.damping = 0.1;

@@ -107,6 +107,17 @@ contains
       c = ball; c%exponent = -1.5_wp
       call expect_status(error, c, hcimpact_err_exponent, "n < 0")
       if (allocated(error)) return
+      ! the closed forms' rule (one validator): n below 1e-6 is refused here too (issue
+      ! 13 item 10: n = 1e-20 ran, n = 1e-310 failed in CVODE)
+      c = ball; c%exponent = 1.0e-20_wp
+      call expect_status(error, c, hcimpact_err_exponent, "n = 1e-20")
+      if (allocated(error)) return
+      c = ball; c%exponent = 1.0e-310_wp
+      call expect_status(error, c, hcimpact_err_exponent, "n = 1e-310")
+      if (allocated(error)) return
+      c = ball; c%exponent = nearest(1.0e-6_wp, -1.0_wp)
+      call expect_status(error, c, hcimpact_err_exponent, "n just below 1e-6")
+      if (allocated(error)) return
       c = ball; c%velocity = 0.0_wp
       call expect_status(error, c, hcimpact_err_velocity, "V = 0")
       if (allocated(error)) return

@@ -8,7 +8,7 @@
 !> accept and refuse the same values with the same statuses.
 module hcimpact_contact
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
-   use hcimpact_kinds, only : wp, ik, nan
+   use hcimpact_kinds, only : wp, ik, nan, finite_value
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
       & hcimpact_err_damping, hcimpact_err_domain
@@ -76,8 +76,9 @@ contains
    !> (_stiffness), exponent below `min_exponent` (_exponent), approach speed not
    !> positive (_velocity), damping negative (_damping).
    !>
-   !> Finiteness is tested before any ordered comparison, so that a NaN never raises
-   !> the invalid flag (the Debug build traps on it).
+   !> Finiteness is tested from the bits (finite_value), before any ordered comparison,
+   !> so that a NaN, signalling ones included, never raises the invalid flag (the Debug
+   !> build traps on it).
    elemental function check_parameters(mass, stiffness, exponent, damping, velocity) &
          & result(stat)
       !> Mass in kg (> 0)
@@ -95,19 +96,19 @@ contains
 
       stat = hcimpact_err_not_finite
       if (present(mass)) then
-         if (.not. ieee_is_finite(mass)) return
+         if (.not. finite_value(mass)) return
       end if
       if (present(stiffness)) then
-         if (.not. ieee_is_finite(stiffness)) return
+         if (.not. finite_value(stiffness)) return
       end if
       if (present(exponent)) then
-         if (.not. ieee_is_finite(exponent)) return
+         if (.not. finite_value(exponent)) return
       end if
       if (present(damping)) then
-         if (.not. ieee_is_finite(damping)) return
+         if (.not. finite_value(damping)) return
       end if
       if (present(velocity)) then
-         if (.not. ieee_is_finite(velocity)) return
+         if (.not. finite_value(velocity)) return
       end if
       stat = hcimpact_err_mass
       if (present(mass)) then
