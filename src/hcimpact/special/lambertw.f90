@@ -273,7 +273,7 @@ contains
 
       real(wp), parameter :: sgn = -1.0_wp
       real(wp), parameter :: split_factor = 134217729.0_wp   ! 2**27 + 1
-      real(wp) :: key, d, d2, y_lo, vl, sh, sl, x, c, ah, al, s, s2, tail
+      real(wp) :: key, d, d2, y_lo, vl, sh, sl, x, c, ah, al, s, s2, tail, t_copy
       integer :: row
       integer(int64) :: tbits
 
@@ -294,7 +294,11 @@ contains
          include "lambertw_small_t.inc"
          v = -sh + (tail - sl)
       else
-         call lambert_wm1p1_dd(t, 0.0_wp, v, vl)  ! t >= 2**10: Newton's method
+         ! t >= 2**10: Newton's method. The call takes its arguments by reference: a copy
+         ! of t, so that t itself never needs an address (the fast path would otherwise
+         ! store it and load its bits back, a store-to-load round trip on every call).
+         t_copy = t
+         call lambert_wm1p1_dd(t_copy, 0.0_wp, v, vl)
       end if
    end function lambert_wm1p1
 
