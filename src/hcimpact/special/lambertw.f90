@@ -51,10 +51,9 @@ module hcimpact_lambertw
    !> argument would give every function a stack frame on its fast paths too
    real(wp), parameter :: quiet_nan = transfer(int(z'7FF8000000000000', int64), 1.0_wp)
    real(wp), parameter :: minus_inf = transfer(int(z'FFF0000000000000', int64), 1.0_wp)
-   !> 1/e as the unevaluated sum of two doubles
-   real(wp), parameter :: inv_e_hi = 0.36787944117144233_wp, inv_e_lo = -1.2428753672788363e-17_wp
-   !> e as the unevaluated sum of two doubles
-   real(wp), parameter :: e_hi = 2.718281828459045_wp, e_lo = 1.4456468917292502e-16_wp
+   !> 1/e rounded to a double: z + 1/e_hi is exact for z <= -1/4 (Sterbenz), the key of the
+   !> tables `wa` and `wb`, zero at the double nearest -1/e
+   real(wp), parameter :: inv_e_hi = 0.36787944117144233_wp
    !> All bits of a binary64 but its sign
    integer(int64), parameter :: magnitude_bits = int(z'7FFFFFFFFFFFFFFF', int64)
    !> The bits of +inf: a finite non-negative double has fewer
@@ -118,7 +117,8 @@ contains
       ! the only one on the way (arguments of one sign do not mispredict it); between the
       ! two tables of negative z an integer mask chooses, not a branch (merge_bits, bitwise
       ! operations; gfortran compiles `merge` to a jump, and with random arguments a
-      ! branch between tables is mispredicted often, each time costing more than the work): z <= -1/4: `wa` by d = z + 1/e_hi (exact there by Sterbenz; d = 0, the
+      ! branch between tables is mispredicted often, each time costing more than the
+      ! work): z <= -1/4: `wa` by d = z + 1/e_hi (exact there by Sterbenz; d = 0, the
       ! double nearest -1/e, clamps to its bottom row, -1); -1/4 < z < 0: `wc` by -z;
       ! 0 <= z < 2**10: `wd` by z. |z| < 2**-9 clamps to the bottom row of `wc`/`wd`, W0's
       ! Taylor polynomial at 0. The range tests are on integers: NaN fails them without
