@@ -186,6 +186,16 @@ def split(v):
     return hi, lo
 
 
+def write_rows(w, rows):
+    """The body of an array constructor: every row's values, three to a line, in order;
+    the last line closes the constructor."""
+    for i, row in enumerate(rows):
+        vals = [fortran_real(v) for v in row]
+        for g in range(0, len(vals), 3):
+            last = i == len(rows) - 1 and g + 3 >= len(vals)
+            w("      & " + ", ".join(vals[g:g + 3]) + ("], &" if last else ", &"))
+
+
 def fortran_real(x):
     r = repr(float(x))
     if "e" in r:
@@ -420,11 +430,7 @@ def write_geo(w):
         w("")
         w(f"   !> The rows of the tables {', '.join(names)}")
         w(f"   real(wp), parameter :: {array}(0:{width - 1}, 0:{n - 1}) = reshape([ &")
-        for i, row in enumerate(all_rows):
-            vals = [fortran_real(v) for v in row]
-            for g in range(0, len(vals), 3):
-                last = i == n - 1 and g + 3 >= len(vals)
-                w("      & " + ", ".join(vals[g:g + 3]) + ("], &" if last else ", &"))
+        write_rows(w, all_rows)
         w(f"      & [{width}, {n}])")
 
 LN_BITS = 7     # log table: m0 = 1 + (j + 1/2)/2**LN_BITS, j = first LN_BITS fraction bits
@@ -487,11 +493,7 @@ def write_taylor(w, kind):
     w(f"   integer, parameter :: {kind}_first = {i0}, {kind}_last = {i1}")
     w(f"   !> High parts of the coefficients, one row per centre")
     w(f"   real(wp), parameter :: {kind}_coef(0:{kind}_ncoef-1, {i0}:{i1}) = reshape([ &")
-    for j, row in enumerate(rows):
-        vals = [fortran_real(v) for v in row]
-        for g in range(0, len(vals), 3):
-            last = j == n - 1 and g + 3 >= len(vals)
-            w("      & " + ", ".join(vals[g:g + 3]) + ("], &" if last else ", &"))
+    write_rows(w, rows)
     w(f"      & [{kind}_ncoef, {n}])")
     w(f"   !> Low parts of c0 and c1, one row per centre")
     w(f"   real(wp), parameter :: {kind}_lo(0:1, {i0}:{i1}) = reshape([ &")

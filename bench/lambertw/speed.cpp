@@ -349,6 +349,15 @@ bool check_domain(const Region& r, bool w0, bool wm1) {
     return true;
 }
 
+void add_case(Region& r, const std::string& row, const std::string& impl, std::vector<double>* x, PassFn p) {
+    Case c;
+    c.row = row;
+    c.impl = impl;
+    c.x = x;
+    c.pass = std::move(p);
+    r.cases.push_back(std::move(c));
+}
+
 bool wanted(const Options& o, const std::string& name) {
     return o.only.empty() || std::find(o.only.begin(), o.only.end(), name) != o.only.end();
 }
@@ -391,12 +400,7 @@ bool build_regions(const Options& o, std::deque<Region>& regions) {
         Region& r = regions.back();
         if (!check_domain(r, s.w0, s.wm1)) return false;
         auto add = [&r](const std::string& row, const std::string& impl, PassFn p) {
-            Case c;
-            c.row = row;
-            c.impl = impl;
-            c.x = &r.x;
-            c.pass = std::move(p);
-            r.cases.push_back(std::move(c));
+            add_case(r, row, impl, &r.x, std::move(p));
         };
         if (s.w0) {
             add("W0", "ours", make_pass(ours_w0));
@@ -442,12 +446,7 @@ bool build_regions(const Options& o, std::deque<Region>& regions) {
         for (std::size_t i = 0; i < r.x.size(); ++i) r.z[i] = -std::exp(-1.0 - r.x[i]);
         if (!check_domain(r, true, false)) return false;
         auto add = [&r](const std::string& row, const std::string& impl, std::vector<double>* x, PassFn p) {
-            Case c;
-            c.row = row;
-            c.impl = impl;
-            c.x = x;
-            c.pass = std::move(p);
-            r.cases.push_back(std::move(c));
+            add_case(r, row, impl, x, std::move(p));
         };
         add("1+W0", "ours", &r.x, make_pass(ours_w0p1));
         add("1+W-1", "ours", &r.x, make_pass(ours_wm1p1));
