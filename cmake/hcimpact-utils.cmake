@@ -111,6 +111,27 @@ function(hcimpact_library_lto target)
   endif()
 endfunction()
 
+# Link options of a shared library of ours: -Bsymbolic-functions binds the
+# library's calls of its own functions inside the library, so that a C entry
+# point reaches the Fortran procedure it wraps by a direct jump instead of
+# through the library's own PLT (issue 17: 1.4x on the shortest Lambert W
+# path). The price: a program can no longer interpose (replace) one of the
+# library's functions for the library's own calls; nothing relies on that
+# (doc/building.md). No effect on a static library, nor on data symbols.
+function(hcimpact_shared_link_flags target)
+  get_target_property(type ${target} TYPE)
+  if(NOT type STREQUAL "SHARED_LIBRARY")
+    return()
+  endif()
+  if(NOT DEFINED CACHE{HCIMPACT_LINKER_BSYMBOLIC_FUNCTIONS})
+    include(CheckLinkerFlag)
+    check_linker_flag(Fortran "-Wl,-Bsymbolic-functions" HCIMPACT_LINKER_BSYMBOLIC_FUNCTIONS)
+  endif()
+  if(HCIMPACT_LINKER_BSYMBOLIC_FUNCTIONS)
+    target_link_options(${target} PRIVATE "-Wl,-Bsymbolic-functions")
+  endif()
+endfunction()
+
 # hcimpact_add_component(<name> [LIBRARIES ...] [DEFINITIONS ...])
 #
 # Build the library hcimpact_<name> (alias hcimpact::<name>, exported as
@@ -153,6 +174,7 @@ function(hcimpact_add_component name)
     target_compile_definitions(${target} PRIVATE ${arg_DEFINITIONS})
   endif()
   hcimpact_target_flags(${target})
+  hcimpact_shared_link_flags(${target})
   set_property(GLOBAL APPEND PROPERTY HCIMPACT_COMPONENT_TARGETS ${target})
 endfunction()
 

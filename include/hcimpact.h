@@ -116,8 +116,10 @@ HCIMPACT_API int hcimpact_version_number(void);
 HCIMPACT_API double hcimpact_lambert_w0(double z);
 
 /** Lower branch W-1(z), -1/e <= z < 0. Returns W-1 in (-inf, -1].
- *  Same treatment of the doubles just below -1/e as hcimpact_lambert_w0;
- *  z >= 0, z below the branch point, and NaN return NaN. z = -0.0 returns -inf. */
+ *  Same treatment of the doubles just below -1/e as hcimpact_lambert_w0.
+ *  z = 0, either +0.0 or -0.0, returns -inf: the limit of W-1 as z rises to 0
+ *  (as log(+0.0) = log(-0.0) = -inf; the sign of a zero is not a side of the
+ *  domain). z > 0, z below the branch point, and NaN return NaN. */
 HCIMPACT_API double hcimpact_lambert_wm1(double z);
 
 /** 1 + W0(-exp(-1 - t)) for t >= 0, computed from t (no loss near t = 0).

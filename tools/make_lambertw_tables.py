@@ -1,20 +1,22 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-"""Write src/hcimpact/special/lambertw_tables.f90: the tables of Lambert W (lambertw.f90) and of
-the restitution k(beta) (restitution_law.f90).
+"""Write the generated tables of two modules:
+src/hcimpact/special/lambertw_tables.f90 (hcimpact_lambertw_tables, used by lambertw.f90) and
+src/hcimpact/model/restitution_tables.f90 (hcimpact_restitution_tables: the Taylor tables of
+the restitution k(beta), used by restitution_law.f90).
 
 * Geometric tables (GEO below), the ones lambertw.f90 evaluates on almost every path: a
   key x >= 0 that the Fortran code forms exactly (z + 1/e_hi, |z|, z, t, ln z, -ln(-z)) is
   cut into intervals [2^k (1 + j/32), 2^k (1 + (j+1)/32)), indexed by the bits of x; on
   each the function is the polynomial (degree 8, in x - centre) that interpolates it at
   Chebyshev nodes, computed with mpmath at 50 digits and checked against mpmath on the
-  interval with its coefficients rounded to doubles (relative error below 2^-58).
-* w0_small: the same kind of fit of R(z) = (z - W0(z))/z^2 on |z| <= 2^-6.
+  interval with its coefficients rounded to doubles (relative error below 2^-57). Some
+  tables have a row below their intervals (the Taylor polynomial of W0 at 0, or the
+  constant -1 at the branch point) or above them (the constant 1), reached by clamping.
 * ln_tab: 1/m0 and ln(m0) for the table-driven logarithm of lambertw_ln.inc.
-* Row 0 of the Taylor tables s and p: the series at the branch point of
-  V(s) = 1 + W(-exp(-1 - s^2/2)) and of W(p), p = +-sqrt(2 (1 + e z)) (DLMF 4.13), by
-  series reversion in exact rational arithmetic. V solves -V - ln(1 - V) = s^2/2 and
-  Y = 1 + W solves 1 + (Y - 1) exp(Y) = p^2/2.
+* Row 0 of the Taylor table s: the series at the branch point of
+  V(s) = 1 + W(-exp(-1 - s^2/2)), s = +-sqrt(2t) (DLMF 4.13), by series reversion in
+  exact rational arithmetic; V solves -V - ln(1 - V) = s^2/2.
 * k and m: local Taylor polynomials of k(beta) on a uniform grid, by composing the
   power series of h(beta) = beta - ln(1 + beta), s = sqrt(2h) and V(s) (the ODE
   V V' = s (1 - V) gives V's Taylor coefficients by a recurrence at 60 digits).
@@ -22,7 +24,7 @@ the restitution k(beta) (restitution_law.f90).
 Each Taylor coefficient c0 and c1 is stored as a pair of doubles (hi + lo), the others
 as one double.
 
-Usage: python3 tools/make_lambertw_tables.py  (writes the module; takes ~1 minute)
+Usage: python3 tools/make_lambertw_tables.py  (writes both modules; takes a few minutes)
 """
 from fractions import Fraction
 from math import factorial
@@ -34,11 +36,11 @@ import mpmath as mp
 mp.mp.dps = 60
 
 TABLES = {
-    # name: (spacing, first centre index, last centre index, number of coefficients)
-    # Only the series at the branch point (row 0) of the s and p tables is used by
+    # name: (spacing, first centre index, last centre index, number of coefficients);
+    # s goes to the Lambert W module, k and m to the restitution module
+    # Only the series at the branch point (row 0) of the s table is used by
     # lambertw.f90 now (the geometric tables below replaced the other rows).
     "s": (Fraction(1, 8), 0, 0, 14),        # V(s) at s = 0
-    "p": (Fraction(1, 16), 0, 0, 14),       # W(p) at p = 0
     "k": (Fraction(1, 16), 0, 58, 14),      # beta in [0, 3.65625]: restitution k(beta)
     "m": (Fraction(1, 4), 14, 160, 14),     # beta in [3.375, 40.125]: k(beta), coarser
 }
@@ -104,10 +106,8 @@ def restitution_series(n):
 def origin_series(kind, n):
     if kind == "k":
         return [mp.mpf(c.numerator) / c.denominator for c in restitution_series(n)[:n]]
-    if kind == "s":      # F(V) = -V - ln(1 - V) = sum_{k>=2} V^k / k
-        coef = [Fraction(0), Fraction(0)] + [Fraction(1, k) for k in range(2, n + 3)]
-    else:                # F(Y) = 1 + (Y - 1) e^Y = sum_{k>=2} (k - 1) Y^k / k!
-        coef = [Fraction(0), Fraction(0)] + [Fraction(k - 1, factorial(k)) for k in range(2, n + 3)]
+    # s: F(V) = -V - ln(1 - V) = sum_{k>=2} V^k / k
+    coef = [Fraction(0), Fraction(0)] + [Fraction(1, k) for k in range(2, n + 3)]
     return [mp.mpf(c.numerator) / c.denominator for c in revert(coef, n)]
 
 
@@ -118,13 +118,10 @@ def restitution_value(beta):
 
 
 def value_at(kind, xc):
-    """V(s) (kind s), Y(p) (kinds p, q) or k (kind k) at a non-zero centre, 60 digits."""
+    """V(s) (kind s) or k (kind k) at a non-zero centre, 60 digits."""
     if kind == "k":
         return restitution_value(xc)
-    if kind == "s":
-        z = -mp.exp(-1 - xc * xc / 2)
-    else:
-        z = (xc * xc / 2 - 1) / mp.e
+    z = -mp.exp(-1 - xc * xc / 2)
     branch = 0 if xc > 0 else -1
     return 1 + mp.lambertw(z, branch).real
 
@@ -162,27 +159,12 @@ def taylor(kind, xc, n):
     if kind in ("k", "m"):
         return restitution_taylor(xc, n)
     a = [value_at(kind, xc)]
-    # y y' * P(delta) = (y - 1 [p only]) * Q(delta), with
-    #   s-table: P = 1, right side s (1 - V)      -> R_k = (s(1-V))_k
-    #   p-table: P = xc^2/2 - 1 + xc d + d^2/2, right side (Y - 1) (xc + d)
-    A = []      # coefficients of y y'
+    # s-table: V V' = s (1 - V), so the coefficients of V V' are those of s (1 - V)
+    A = []      # coefficients of V V'
     for k in range(0, n - 1):
-        if kind == "s":
-            one_minus = (1 - a[0]) if k == 0 else -a[k]
-            prev = 0 if k == 0 else ((1 - a[0]) if k == 1 else -a[k - 1])
-            rhs = xc * one_minus + prev
-            Ak = rhs
-        else:
-            ym1 = (a[0] - 1) if k == 0 else a[k]
-            prev = 0 if k == 0 else ((a[0] - 1) if k == 1 else a[k - 1])
-            rhs = xc * ym1 + prev
-            P0, P1, P2 = xc * xc / 2 - 1, xc, mp.mpf(1) / 2
-            Ak = rhs
-            if k >= 1:
-                Ak -= P1 * A[k - 1]
-            if k >= 2:
-                Ak -= P2 * A[k - 2]
-            Ak /= P0
+        one_minus = (1 - a[0]) if k == 0 else -a[k]
+        prev = 0 if k == 0 else ((1 - a[0]) if k == 1 else -a[k - 1])
+        Ak = xc * one_minus + prev
         A.append(Ak)
         # A_k = a0 (k+1) a_{k+1} + sum_{j=1..k} a_j (k-j+1) a_{k-j+1}
         acc = Ak - sum(a[j] * (k - j + 1) * a[k - j + 1] for j in range(1, k + 1))
@@ -193,10 +175,6 @@ def taylor(kind, xc, n):
 def exact_value(kind, x):
     if kind in ("k", "m"):
         return mp.mpf(1) if x == 0 else restitution_value(x)
-    if kind == "s":
-        if x == 0:
-            return mp.mpf(0)
-        return value_at(kind, x)
     if x == 0:
         return mp.mpf(0)
     return value_at(kind, x)
@@ -206,6 +184,16 @@ def split(v):
     hi = float(v)
     lo = float(v - mp.mpf(hi))
     return hi, lo
+
+
+def write_rows(w, rows):
+    """The body of an array constructor: every row's values, three to a line, in order;
+    the last line closes the constructor."""
+    for i, row in enumerate(rows):
+        vals = [fortran_real(v) for v in row]
+        for g in range(0, len(vals), 3):
+            last = i == len(rows) - 1 and g + 3 >= len(vals)
+            w("      & " + ", ".join(vals[g:g + 3]) + ("], &" if last else ", &"))
 
 
 def fortran_real(x):
@@ -225,13 +213,21 @@ def fortran_real(x):
 #
 # A key x >= 0 (a double the Fortran code forms exactly: |z|, z + 1/e_hi, t or ln|z|) is
 # cut into intervals [2**k (1 + j/32), 2**k (1 + (j+1)/32)), k = kmin..kmax, j = 0..31:
-# the row is (bits of x >> 47) - base, i.e. the biased exponent and the first five
+# the row is (bits of x >> 47) - base + off, i.e. the biased exponent and the first five
 # fraction bits. On each interval the function is approximated, in the offset
 # delta = x - xc from the centre xc (an exact double, so delta is exact by Sterbenz), by
 # the polynomial interpolating it at Chebyshev nodes (near-minimax). Relative to the
 # distance of the nearest singularity an interval is at most 1/65 wide, so NTERMS terms
 # reach far below an ulp. Each row is [xc, lo(c0), c0, c1, ..., c(NTERMS-1)], c0 as the
 # unevaluated sum of two doubles.
+#
+# A table may have a row below its intervals (`bottom`), which the code reaches by
+# clamping the row index from below (max(row, row0): no branch) for every key under
+# 2**kmin: "taylor" is the Taylor polynomial of the function at key 0 (centre 0), for the
+# keys |z| < 2**kmin of W0; a number is a constant row (centre 0), -1 for the keys
+# d = z + 1/e_hi < 2**kmin of W at the branch point, where only d = 0 is a double.
+# And a row above them (`top`): a constant, which the code reaches by clamping the key
+# itself from above at 2**(kmax+1) (1 + W0 = 1 in double for t >= 64).
 # ---------------------------------------------------------------------------------------
 
 GEO_J = 32                # intervals per binade (five fraction bits)
@@ -241,17 +237,19 @@ GEO_DPS = 50
 
 INV_E_HI = 0.36787944117144233   # the double nearest 1/e (as in lambertw.f90)
 
-# name: (kmin, kmax, what)   -- what documents the key and the function
+# name: (kmin, kmax, what, bottom row, top row) -- what documents the key and the function
 GEO = {
-    "wa": (-15, -4, "W0(z), key z + 1/e_hi for z <= -1/4"),
-    "wb": (-15, -4, "W-1(z), key z + 1/e_hi for z <= -1/4"),
-    "wc": (-6, -3, "W0(z), key -z for -1/4 < z <= -2**-6"),
-    "wd": (-6, 9, "W0(z), key z for 2**-6 <= z < 2**10"),
-    "we": (-20, -3, "W-1(z), key -z for -1/4 < z <= -2**-20"),
-    "ta": (-13, 4, "1 + W0(-exp(-1 - t)), key t for 2**-13 <= t < 2**5"),
-    "tb": (-13, 9, "1 + W-1(-exp(-1 - t)), key t for 2**-13 <= t < 2**10"),
-    "ya": (2, 9, "W0(exp(y)), key y = ln z for z >= 2**10"),
-    "yb": (3, 9, "W-1(-exp(-y)), key y = -ln(-z) for 0 < -z < 2**-20"),
+    # d = z + 1/e_hi is a multiple of 2**-54 for z <= -1/4: 2**-54 is its least nonzero value
+    "wa": (-54, -4, "W0(z), key d = z + 1/e_hi for -1/e_hi <= z <= -1/4", -1, None),
+    "wb": (-54, -4, "W-1(z), key d = z + 1/e_hi for -1/e_hi <= z <= -1/4", -1, None),
+    "wc": (-9, -3, "W0(z), key -z for -1/4 < z < 0", "taylor", None),
+    "wd": (-9, 9, "W0(z), key z for 0 < z < 2**10", "taylor", None),
+    "we": (-20, -3, "W-1(z), key -z for -1/4 < z <= -2**-20", None, None),
+    # t >= 2**-54: z + 1/e ~ t/e is then at least the spacing of the doubles at -1/e
+    "ta": (-54, 5, "1 + W0(-exp(-1 - t)), key min(t, 64) for t >= 2**-54", None, 1),
+    "tb": (-54, 9, "1 + W-1(-exp(-1 - t)), key t for 2**-54 <= t < 2**10", None, None),
+    "ya": (2, 9, "W0(exp(y)), key y = ln z for z >= 2**10", None, None),
+    "yb": (3, 9, "W-1(-exp(-y)), key y = -ln(-z) for 0 < -z < 2**-20", None, None),
 }
 
 
@@ -298,9 +296,54 @@ def chebyshev_fit(f, xc, r, n):
     return [b[k] / r**k for k in range(n)]
 
 
+def w0_taylor(n):
+    """Taylor coefficients of W0 at 0: (-m)**(m-1)/m! for m = 0..n-1 (exact fractions)."""
+    return [Fraction(0)] + [Fraction((-m) ** (m - 1), factorial(m)) for m in range(1, n)]
+
+
+def bottom_row(name, kind):
+    """The row below the intervals of a table, and its worst relative error on the keys
+    it serves (0 <= x < 2**kmin, checked at a spread of points)."""
+    kmin = GEO[name][0]
+    if kind == "taylor":
+        sign = -1 if name == "wc" else 1          # wc: W0(-x) = sum a_m (-x)**m
+        coef = [c * sign**m for m, c in enumerate(w0_taylor(GEO_TERMS))]
+        row = [0.0, 0.0] + [float(c) for c in coef]
+        worst = mp.mpf(0)
+        with mp.workdps(GEO_DPS):
+            top = mp.ldexp(mp.mpf(1), kmin)
+            for i in range(1, 41):
+                x = top * i / 40
+                ref = geo_value(name, x)
+                approx = sum(mp.mpf(row[2 + m]) * x**m for m in range(1, GEO_TERMS))
+                worst = max(worst, abs(approx - ref) / abs(ref))
+        return row, worst
+    # A constant: the keys d = z + 1/e_hi are multiples of 2**-54 (z <= -1/4 is a multiple
+    # of 2**-54, and so is 1/e_hi), so the only key below 2**-54 is d = 0, the double
+    # nearest -1/e, which stands for the branch point: W = -1 there by the library's
+    # convention (doc/lambertw.md), exactly.
+    if not (name in ("wa", "wb") and kind == -1 and kmin == -54):
+        raise SystemExit(f"table {name}: no constant bottom row is defined for it")
+    row = [0.0, 0.0, float(kind)] + [0.0] * (GEO_TERMS - 1)
+    return row, mp.mpf(0)
+
+
+def top_row(name, value):
+    """The constant row above the intervals, centre 2**(kmax+1), and how far the function
+    is from it at 2**(kmax+1) in units of 2**-54 (it must round to the constant there and,
+    being monotone towards it, beyond)."""
+    kmax = GEO[name][1]
+    xc = 2.0 ** (kmax + 1)
+    row = [xc, 0.0, float(value)] + [0.0] * (GEO_TERMS - 1)
+    with mp.workdps(GEO_DPS):
+        gap = abs(geo_value(name, mp.mpf(xc)) - value) / mp.ldexp(mp.mpf(1), -54)
+    return row, gap
+
+
 def geo_rows(name):
-    """Rows of one geometric table and its worst relative error (double coefficients)."""
-    kmin, kmax, _ = GEO[name]
+    """Rows of the intervals of one geometric table and their worst relative error
+    (double coefficients)."""
+    kmin, kmax = GEO[name][0], GEO[name][1]
     rows, worst = [], mp.mpf(0)
     with mp.workdps(GEO_DPS):
         for k in range(kmin, kmax + 1):
@@ -323,59 +366,72 @@ def geo_rows(name):
     return rows, worst
 
 
-def small_fit():
-    """Chebyshev fit of R(z) = (z - W0(z))/z**2 on |z| <= 2**-6, and its relative error."""
-    n = 11
-
-    def rfun(z):
-        if abs(z) < mp.mpf(10) ** -20:    # the middle Chebyshev node is ~1e-50, not 0
-            return 1 - 3 * z / 2 + 8 * z**2 / 3
-        return (z - mp.re(mp.lambertw(z, 0))) / z**2
-
-    with mp.workdps(GEO_DPS):
-        r = mp.ldexp(mp.mpf(1), -6) * (1 + GEO_MARGIN)
-        c = chebyshev_fit(rfun, mp.mpf(0), r, n)
-        worst = mp.mpf(0)
-        for i in range(-40, 41):
-            z = r * i / 40
-            approx = sum(mp.mpf(float(ck)) * z**m for m, ck in enumerate(c))
-            worst = max(worst, abs(approx - rfun(z)) / rfun(z))
-    return c, worst
+#: The tables in two arrays, one per kind of key (gfortran limits an array constructor to
+#: 65535 elements without an option): z + 1/e_hi, |z| and ln|z| in geo_z; t in geo_t. A
+#: function chooses among tables of one array only.
+GEO_ARRAYS = {"geo_z": ("wa", "wb", "wc", "wd", "we", "ya", "yb"), "geo_t": ("ta", "tb")}
+MAX_CONSTRUCTOR = 65535
 
 
 def write_geo(w):
-    """All geometric tables in one array geo_tab (one evaluation site per function);
-    table `name` holds rows name_off .. name_off + name_rows - 1."""
-    all_rows, off = [], 0
+    """The geometric tables in the arrays of GEO_ARRAYS: table `name` holds its bottom row
+    (if any) at name_row0, its intervals from name_off (name_rows of them), and its top row
+    (if any) right after them, all row indices of its array."""
     width = GEO_TERMS + 2
+    assert sorted(sum(GEO_ARRAYS.values(), ())) == sorted(GEO)
     w("")
     w(f"   !> [centre, lo(c0), c0, ..., c{GEO_TERMS - 1}] per row: number of entries")
     w(f"   integer, parameter :: geo_width = {width}")
     w(f"   !> Right shift of the bits of a key that leaves its exponent and first fraction bits")
     w(f"   integer, parameter :: geo_shift = {52 - (GEO_J.bit_length() - 1)}")
-    for name, (kmin, kmax, what) in GEO.items():
-        rows, worst = geo_rows(name)
-        print(f"table {name}: {len(rows)} rows, worst relative error {mp.nstr(worst, 3)}",
-              file=sys.stderr)
-        if worst > 2.0**-57:
-            raise SystemExit(f"table {name}: error {worst} too large; use more terms")
+    for array, names in GEO_ARRAYS.items():
+        all_rows, off = [], 0
+        for name in names:
+            kmin, kmax, what, bottom, top = GEO[name]
+            rows, worst = geo_rows(name)
+            print(f"table {name}: {len(rows)} rows, worst relative error {mp.nstr(worst, 3)}",
+                  file=sys.stderr)
+            if worst > 2.0**-57:
+                raise SystemExit(f"table {name}: error {worst} too large; use more terms")
+            w("")
+            w(f"   !> {what}: {len(rows)} rows of {array}, relative error below {mp.nstr(worst, 2)}")
+            if bottom is not None:
+                row, err = bottom_row(name, bottom)
+                print(f"table {name}: bottom row ({bottom}) relative error {mp.nstr(err, 3)}",
+                      file=sys.stderr)
+                if err > 2.0**-57:
+                    raise SystemExit(f"table {name}: bottom row error {err} too large")
+                kind = "the Taylor polynomial at 0" if bottom == "taylor" else f"the constant {bottom}"
+                w(f"   !> Its row for the keys below 2**{kmin}: {kind}")
+                w(f"   integer, parameter :: {name}_row0 = {off}")
+                all_rows.append(row)
+                off += 1
+            w(f"   integer, parameter :: {name}_off = {off}, {name}_rows = {len(rows)}")
+            w(f"   !> Bits of the key 2**{kmin} shifted right by geo_shift")
+            w(f"   integer, parameter :: {name}_base = {(1023 + kmin) * GEO_J}")
+            all_rows += rows
+            off += len(rows)
+            if top is not None:
+                row, gap = top_row(name, top)
+                print(f"table {name}: top row {top}, function - {top} at 2**{kmax + 1}: "
+                      f"{mp.nstr(gap, 3)} x 2**-54", file=sys.stderr)
+                if gap > 0.25:
+                    raise SystemExit(f"table {name}: the function is not {top} at 2**{kmax + 1}")
+                w(f"   !> Its row for the keys clamped at 2**{kmax + 1}: the constant {top}")
+                w(f"   integer, parameter :: {name}_top = {off}")
+                w(f"   !> The key at which it is clamped")
+                w(f"   real(wp), parameter :: {name}_key_max = {fortran_real(2.0 ** (kmax + 1))}")
+                all_rows.append(row)
+                off += 1
+        n = len(all_rows)
+        if n * width > MAX_CONSTRUCTOR:
+            raise SystemExit(f"{array}: {n * width} elements, more than an array constructor "
+                             f"may hold ({MAX_CONSTRUCTOR}); split it")
         w("")
-        w(f"   !> {what}: {len(rows)} rows of geo_tab, relative error below {mp.nstr(worst, 2)}")
-        w(f"   integer, parameter :: {name}_off = {off}, {name}_rows = {len(rows)}")
-        w(f"   !> Bits of the key 2**{kmin} shifted right by geo_shift")
-        w(f"   integer, parameter :: {name}_base = {(1023 + kmin) * GEO_J}")
-        all_rows += rows
-        off += len(rows)
-    n = len(all_rows)
-    w("")
-    w(f"   !> The rows of all geometric tables")
-    w(f"   real(wp), parameter :: geo_tab(0:{width - 1}, 0:{n - 1}) = reshape([ &")
-    for i, row in enumerate(all_rows):
-        vals = [fortran_real(v) for v in row]
-        for g in range(0, len(vals), 3):
-            last = i == n - 1 and g + 3 >= len(vals)
-            w("      & " + ", ".join(vals[g:g + 3]) + ("], &" if last else ", &"))
-    w(f"      & [{width}, {n}])")
+        w(f"   !> The rows of the tables {', '.join(names)}")
+        w(f"   real(wp), parameter :: {array}(0:{width - 1}, 0:{n - 1}) = reshape([ &")
+        write_rows(w, all_rows)
+        w(f"      & [{width}, {n}])")
 
 LN_BITS = 7     # log table: m0 = 1 + (j + 1/2)/2**LN_BITS, j = first LN_BITS fraction bits
 
@@ -397,110 +453,134 @@ def write_log(w):
     w(f"      & [3, {n}])")
 
 
-def main():
-    here = os.path.dirname(os.path.abspath(__file__))
-    out = os.path.join(here, "..", "src", "hcimpact", "special", "lambertw_tables.f90")
+LAMBERTW_TAYLOR = ("s",)       # Taylor tables of hcimpact_lambertw_tables
+RESTITUTION_TAYLOR = ("k", "m")    # Taylor tables of hcimpact_restitution_tables
+
+
+def write_taylor(w, kind):
+    """One Taylor table (high parts of the coefficients and low parts of c0 and c1)."""
+    h, i0, i1, nterms = TABLES[kind]
+    rows, lows = [], []
+    worst = 0
+    for i in range(i0, i1 + 1):
+        xc = mp.mpf(i * h.numerator) / h.denominator
+        c = taylor(kind, xc, nterms)
+        # check on the interval against the implicit definition
+        for frac in (-0.5, -0.37, -0.21, 0.13, 0.29, 0.5):
+            x = xc + frac * mp.mpf(h.numerator) / h.denominator
+            if x == 0 or (kind == "k" and x < 0):
+                continue      # the k table is used for beta >= 0 only
+            ref = exact_value(kind, x)
+            d = x - xc
+            approx = sum(ck * d**k for k, ck in enumerate(c))
+            err = abs(approx - ref) / abs(ref)
+            worst = max(worst, err)
+        hi0, lo0 = split(c[0])
+        hi1, lo1 = split(c[1])
+        rows.append([hi0, hi1] + [float(ck) for ck in c[2:]])
+        lows.append([lo0, lo1])
+    print(f"table {kind}: {i1 - i0 + 1} intervals, worst relative truncation {mp.nstr(worst, 3)}",
+          file=sys.stderr)
+    if worst > 2.0**-62:
+        raise SystemExit(f"table {kind}: truncation {worst} too large; use more terms")
+    n = i1 - i0 + 1
+    w("")
+    w(f"   !> Number of Taylor coefficients per interval of the {kind} table")
+    w(f"   integer, parameter :: {kind}_ncoef = {nterms}")
+    w(f"   !> 1/h for the {kind} table")
+    w(f"   real(wp), parameter :: {kind}_step_inv = {float(1 / h)}_wp")
+    w(f"   !> Index of the first and last centre of the {kind} table")
+    w(f"   integer, parameter :: {kind}_first = {i0}, {kind}_last = {i1}")
+    w(f"   !> High parts of the coefficients, one row per centre")
+    w(f"   real(wp), parameter :: {kind}_coef(0:{kind}_ncoef-1, {i0}:{i1}) = reshape([ &")
+    write_rows(w, rows)
+    w(f"      & [{kind}_ncoef, {n}])")
+    w(f"   !> Low parts of c0 and c1, one row per centre")
+    w(f"   real(wp), parameter :: {kind}_lo(0:1, {i0}:{i1}) = reshape([ &")
+    for j, row in enumerate(lows):
+        sep = ", &" if j < n - 1 else "], &"
+        w("      & " + ", ".join(fortran_real(v) for v in row) + sep)
+    w(f"      & [2, {n}])")
+
+
+def lambertw_module():
+    """Lines of src/hcimpact/special/lambertw_tables.f90."""
     lines = []
     w = lines.append
     w("! SPDX-License-Identifier: Apache-2.0")
     w("! GENERATED by tools/make_lambertw_tables.py: do not edit by hand.")
-    w("!> Tables of Lambert W (hcimpact_lambertw) and of the restitution k(beta).")
+    w("!> Tables of Lambert W (hcimpact_lambertw).")
     w("!>")
-    w("!> Row i of a table holds the Taylor coefficients c0, c1, ... at centre xc = i*h, used for")
-    w("!> |x - xc| <= h/2; c0 and c1 carry a low part (columns 0 and 1 of the `_lo` table).")
-    w("!> `s` table: V(s) = 1 + W(-exp(-1 - s**2/2)), s = +-sqrt(2t) (+: W0, -: W-1), and")
-    w("!> `p` table: W(z) with p = +-sqrt(2(1 + e z)) (DLMF 4.13.6): their row 0 only, the")
-    w("!> series at the branch point.")
+    w("!> Row i of a Taylor table holds the coefficients c0, c1, ... at centre xc = i*h, used")
+    w("!> for |x - xc| <= h/2; c0 and c1 carry a low part (columns 0 and 1 of the `_lo` table).")
+    w("!> `s` table: V(s) = 1 + W(-exp(-1 - s**2/2)), s = +-sqrt(2t) (+: W0, -: W-1): its row 0")
+    w("!> only, the series at the branch point.")
     w("!> Geometric tables (`wa` ... `yb`, see tools/make_lambertw_tables.py): one polynomial")
     w("!> per interval [2**k (1 + j/32), 2**k (1 + (j+1)/32)) of a key, indexed by the key's")
-    w("!> exponent and first five fraction bits; row = [centre, low part of c0, c0, c1, ...].")
-    w("!> `k` tables: the restitution k(beta) of the Hunt-Crossley impact, 0 <= beta < 3.66;")
-    w("!> `m` tables: the same, coarser, for 3.66 <= beta < 40.125.")
+    w("!> exponent and first five fraction bits; row = [centre, low part of c0, c0, c1, ...];")
+    w("!> some tables have a row below their intervals (`_row0`) or above them (`_top`). Two")
+    w("!> arrays (an array constructor is limited to 65535 elements): geo_z holds the tables")
+    w("!> keyed by z + 1/e_hi, |z| and ln|z|, geo_t those keyed by t.")
     w("module hcimpact_lambertw_tables")
     w("   use hcimpact_kinds, only : wp")
     w("   implicit none")
     w("   private")
     w("")
-    w("   public :: s_ncoef, s_step_inv, s_first, s_last, s_coef, s_lo")
-    w("   public :: p_ncoef, p_step_inv, p_first, p_last, p_coef, p_lo")
-    w("   public :: k_ncoef, k_step_inv, k_first, k_last, k_coef, k_lo")
-    w("   public :: m_ncoef, m_step_inv, m_first, m_last, m_coef, m_lo")
-    w("   public :: w0_small, ln_tab, ln_bits")
-    w("   public :: geo_tab, geo_width, geo_shift")
-    for name in GEO:
-        w(f"   public :: {name}_off, {name}_base, {name}_rows")
-    worst_all = {}
-    for kind, (h, i0, i1, nterms) in TABLES.items():
-        rows, lows = [], []
-        worst = 0
-        for i in range(i0, i1 + 1):
-            xc = mp.mpf(i * h.numerator) / h.denominator
-            c = taylor(kind, xc, nterms)
-            # check on the interval against the implicit definition
-            for frac in (-0.5, -0.37, -0.21, 0.13, 0.29, 0.5):
-                x = xc + frac * mp.mpf(h.numerator) / h.denominator
-                if x == 0 or (kind == "k" and x < 0):
-                    continue      # the k table is used for beta >= 0 only
-                ref = exact_value(kind, x)
-                d = x - xc
-                approx = sum(ck * d**k for k, ck in enumerate(c))
-                err = abs(approx - ref) / abs(ref)
-                worst = max(worst, err)
-            if kind in ("p", "q"):
-                c = [c[0] - 1] + list(c[1:])      # tabulate W itself: no rounding of 1 + W
-            hi0, lo0 = split(c[0])
-            hi1, lo1 = split(c[1])
-            rows.append([hi0, hi1] + [float(ck) for ck in c[2:]])
-            lows.append([lo0, lo1])
-        worst_all[kind] = worst
-        print(f"table {kind}: {i1 - i0 + 1} intervals, worst relative truncation {mp.nstr(worst, 3)}",
-              file=sys.stderr)
-        if worst > 2.0**-62:
-            raise SystemExit(f"table {kind}: truncation {worst} too large; use more terms")
-        n = i1 - i0 + 1
-        w("")
-        w(f"   !> Number of Taylor coefficients per interval of the {kind} table")
-        w(f"   integer, parameter :: {kind}_ncoef = {nterms}")
-        w(f"   !> 1/h for the {kind} table")
-        w(f"   real(wp), parameter :: {kind}_step_inv = {float(1 / h)}_wp")
-        w(f"   !> Index of the first and last centre of the {kind} table")
-        w(f"   integer, parameter :: {kind}_first = {i0}, {kind}_last = {i1}")
-        w(f"   !> High parts of the coefficients, one row per centre")
-        w(f"   real(wp), parameter :: {kind}_coef(0:{kind}_ncoef-1, {i0}:{i1}) = reshape([ &")
-        flat = [v for row in rows for v in row]
-        for j, row in enumerate(rows):
-            vals = [fortran_real(v) for v in row]
-            for g in range(0, len(vals), 3):
-                last = j == n - 1 and g + 3 >= len(vals)
-                w("      & " + ", ".join(vals[g:g + 3]) + ("], &" if last else ", &"))
-        w(f"      & [{kind}_ncoef, {n}])")
-        w(f"   !> Low parts of c0 and c1, one row per centre")
-        w(f"   real(wp), parameter :: {kind}_lo(0:1, {i0}:{i1}) = reshape([ &")
-        for j, row in enumerate(lows):
-            sep = ", &" if j < n - 1 else "], &"
-            w("      & " + ", ".join(fortran_real(v) for v in row) + sep)
-        w(f"      & [2, {n}])")
-        del flat
+    for kind in LAMBERTW_TAYLOR:
+        w(f"   public :: {kind}_ncoef, {kind}_step_inv, {kind}_first, {kind}_last, {kind}_coef, {kind}_lo")
+    w("   public :: ln_tab, ln_bits")
+    w(f"   public :: {', '.join(GEO_ARRAYS)}, geo_width, geo_shift")
+    for name, (_, _, _, bottom, top) in GEO.items():
+        extra = (f", {name}_row0" if bottom is not None else "") \
+            + (f", {name}_top, {name}_key_max" if top is not None else "")
+        w(f"   public :: {name}_off, {name}_base, {name}_rows{extra}")
+    for kind in LAMBERTW_TAYLOR:
+        write_taylor(w, kind)
     write_geo(w)
     write_log(w)
-    # R(z) = (z - W0(z))/z**2 for |z| <= 2**-6
-    rcoef, rerr = small_fit()
-    print(f"w0_small: relative error {mp.nstr(rerr, 3)}", file=sys.stderr)
-    if rerr > 2.0**-52:
-        raise SystemExit("w0_small: fit not accurate enough")
-    w("")
-    w(f"   !> Near-minimax (Chebyshev) fit of R(z) = (z - W0(z))/z**2 on |z| <= 2**-6: coefficients")
-    w(f"   !> of 1, z, z**2, ...; W0 = z - z**2 R(z) (relative error of R {mp.nstr(rerr, 2)})")
-    vals = [fortran_real(float(c)) for c in rcoef]
-    w(f"   real(wp), parameter :: w0_small(0:{len(vals) - 1}) = [ &")
-    for g in range(0, len(vals), 3):
-        last = g + 3 >= len(vals)
-        w("      & " + ", ".join(vals[g:g + 3]) + ("]" if last else ", &"))
     w("")
     w("end module hcimpact_lambertw_tables")
-    with open(out, "w") as fh:
-        fh.write("\n".join(lines) + "\n")
-    print(f"wrote {os.path.relpath(out)}", file=sys.stderr)
+    return lines
+
+
+def restitution_module():
+    """Lines of src/hcimpact/model/restitution_tables.f90."""
+    lines = []
+    w = lines.append
+    w("! SPDX-License-Identifier: Apache-2.0")
+    w("! GENERATED by tools/make_lambertw_tables.py: do not edit by hand.")
+    w("!> Taylor tables of the restitution k(beta) of the Hunt-Crossley impact")
+    w("!> (hcimpact_restitution_law).")
+    w("!>")
+    w("!> Row i of a table holds the Taylor coefficients c0, c1, ... of k at centre xc = i*h,")
+    w("!> used for |beta - xc| <= h/2; c0 and c1 carry a low part (columns 0 and 1 of the `_lo`")
+    w("!> table). `k` tables: 0 <= beta < 3.66; `m` tables: the same, coarser, for")
+    w("!> 3.66 <= beta < 40.125.")
+    w("module hcimpact_restitution_tables")
+    w("   use hcimpact_kinds, only : wp")
+    w("   implicit none")
+    w("   private")
+    w("")
+    for kind in RESTITUTION_TAYLOR:
+        w(f"   public :: {kind}_ncoef, {kind}_step_inv, {kind}_first, {kind}_last, {kind}_coef, {kind}_lo")
+    for kind in RESTITUTION_TAYLOR:
+        write_taylor(w, kind)
+    w("")
+    w("end module hcimpact_restitution_tables")
+    return lines
+
+
+def main():
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+    outputs = [
+        (os.path.join(root, "src", "hcimpact", "special", "lambertw_tables.f90"), lambertw_module),
+        (os.path.join(root, "src", "hcimpact", "model", "restitution_tables.f90"), restitution_module),
+    ]
+    for path, make in outputs:
+        lines = make()
+        with open(path, "w") as fh:
+            fh.write("\n".join(lines) + "\n")
+        print(f"wrote {os.path.relpath(path)}", file=sys.stderr)
 
 
 if __name__ == "__main__":

@@ -1,13 +1,20 @@
 #!/bin/sh
 # SPDX-License-Identifier: Apache-2.0
 #
-# Lambert W benchmark: configure a Release build with the benchmarks, build
-# bench_lambertw_speed and bench_lambertw_peers, run them (the speed program
-# twice: throughput, then --latency) and the SciPy script, and write the
-# results to doc/lambertw-bench.md.
+# Lambert W benchmark: configure a Release build of the shared library with the
+# benchmarks, build bench_lambertw_speed, bench_lambertw_peers and
+# bench_lambertw_random, run them (the speed program for throughput, latency and,
+# with --cache-pressure, throughput under cache pressure; the random-point
+# accuracy sweep) and the SciPy script, and write the results to
+# doc/lambertw-bench.md.
 #
 # Usage (from anywhere): bench/lambertw/run.sh [options]
-#   --quick          short speed run (N=1024, 5 ms, 3 repeats), for smoke tests
+#   --quick          short run (N=4096, 5 ms, 3 rounds; 20000 random points per
+#                    family), for smoke tests
+#   --cache-pressure MB  also time throughput with one new line of an MB-megabyte
+#                    buffer read per call
+#   --random N       random points per family of the accuracy sweep (default
+#                    1000000; 0 skips it)
 #   --csv PATH       reference table (default test/reference/lambertw.csv)
 #   --out PATH       output Markdown (default doc/lambertw-bench.md)
 #   --build DIR      build directory (default build/bench)
@@ -29,17 +36,21 @@ out="doc/lambertw-bench.md"
 build="build/bench"
 standalone=0
 do_build=1
+pressure=""
+random_points=1000000
 cmdline="bench/lambertw/run.sh"
 while [ $# -gt 0 ]; do
     cmdline="$cmdline $1"
     case "$1" in
-        --quick) quick="--quick" ;;
+        --quick) quick="--quick"; random_points=20000 ;;
+        --cache-pressure) shift; pressure="$1"; cmdline="$cmdline $1" ;;
+        --random) shift; random_points="$1"; cmdline="$cmdline $1" ;;
         --csv) shift; csv="$1"; cmdline="$cmdline $1" ;;
         --out) shift; out="$1"; cmdline="$cmdline $1" ;;
         --build) shift; build="$1"; cmdline="$cmdline $1" ;;
         --standalone) standalone=1 ;;
         --no-build) do_build=0 ;;
-        -h|--help) sed -n '4,20p' "$0"; exit 0 ;;
+        -h|--help) sed -n '4,27p' "$0"; exit 0 ;;
         *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
     esac
     shift
@@ -57,7 +68,8 @@ else
 fi
 
 generator=""
-extra_off="-DBUILD_TESTING=OFF -DHCIMPACT_BUILD_EXAMPLES=OFF -DHCIMPACT_WITH_CVODE=OFF -DHCIMPACT_WITH_LAPACK=OFF"
+# The protocol times the shared library through the C API, as a user gets it.
+extra_off="-DBUILD_SHARED_LIBS=ON -DBUILD_TESTING=OFF -DHCIMPACT_BUILD_EXAMPLES=OFF -DHCIMPACT_BUILD_APP=OFF -DHCIMPACT_WITH_CVODE=OFF -DHCIMPACT_WITH_LAPACK=OFF"
 if command -v ninja >/dev/null 2>&1; then
     generator="-G Ninja"
 fi
@@ -80,8 +92,13 @@ if [ "$do_build" -eq 1 ]; then
     echo "+ $configure" >&2
     # shellcheck disable=SC2086
     $configure >&2
-    echo "+ $CMAKE --build $build --target bench_lambertw_speed bench_lambertw_peers" >&2
-    "$CMAKE" --build "$build" --target bench_lambertw_speed bench_lambertw_peers >&2
+    targets="bench_lambertw_speed bench_lambertw_peers"
+    if [ "$random_points" != "0" ]; then
+        targets="$targets bench_lambertw_random"
+    fi
+    echo "+ $CMAKE --build $build --target $targets" >&2
+    # shellcheck disable=SC2086
+    "$CMAKE" --build "$build" --target $targets >&2
 fi
 
 find_exe() {
@@ -94,6 +111,13 @@ find_exe() {
 }
 speed=$(find_exe bench_lambertw_speed)
 peers=$(find_exe bench_lambertw_peers)
+random_exe=""
+if [ "$random_points" != "0" ]; then
+    random_exe=$(find_exe bench_lambertw_random)
+    if [ -z "$random_exe" ]; then
+        echo "run.sh: bench_lambertw_random not found under $build (no real128?): sweep skipped" >&2
+    fi
+fi
 if [ -z "$speed" ] || [ -z "$peers" ]; then
     echo "run.sh: benchmark programs not found under $build (Boost or GSL missing? see the configure output)" >&2
     exit 1
@@ -121,17 +145,17 @@ trap 'rm -f "$tmp"' EXIT INT TERM
         echo "Build: \`$CMAKE -S bench -B $build -DCMAKE_BUILD_TYPE=Release\` (standalone bench project, library from src/ at -O2)."
     else
         echo "Build: \`$CMAKE -S . -B $build -DCMAKE_BUILD_TYPE=Release -DHCIMPACT_BUILD_BENCH=ON $extra_off\`, then"
-        echo "\`$CMAKE --build $build --target bench_lambertw_speed bench_lambertw_peers\`."
+        echo "\`$CMAKE --build $build --target bench_lambertw_speed bench_lambertw_peers bench_lambertw_random\`."
     fi
-    echo "Programs: \`$speed${quick:+ $quick}\` (throughput), \`$speed${quick:+ $quick} --latency\`, \`$peers $csv\`,"
-    echo "\`$PYTHON bench/lambertw/scipy_accuracy.py $csv\`."
+    echo "Programs: \`$speed${quick:+ $quick}\` (throughput), \`$speed${quick:+ $quick} --latency\`${pressure:+, \`$speed${quick:+ $quick} --cache-pressure $pressure\`},"
+    echo "\`$peers $csv\`, \`$PYTHON bench/lambertw/scipy_accuracy.py $csv\`${random_exe:+, \`$random_exe $random_points\`}."
     echo "How the numbers are made, and how to read them: bench/README.md."
     echo
     echo "## Speed"
     echo
     echo "Timings on a shared machine are noisy; compare ratios within one run, never across machines."
-    echo "Two views, each with its goal table: throughput (independent calls, which the processor"
-    echo "may overlap) and latency (each call waits for the previous result)."
+    echo "Views, each with its goal table: throughput (independent calls, which the processor"
+    echo "may overlap), latency (each call waits for the previous result)${pressure:+ and throughput under cache pressure}."
     echo
 } >"$tmp"
 
@@ -141,6 +165,11 @@ echo "+ $speed${quick:+ $quick}" >&2
 echo "+ $speed${quick:+ $quick} --latency" >&2
 # shellcheck disable=SC2086
 "$speed" $quick --latency >>"$tmp"
+if [ -n "$pressure" ]; then
+    echo "+ $speed${quick:+ $quick} --cache-pressure $pressure" >&2
+    # shellcheck disable=SC2086
+    "$speed" $quick --cache-pressure "$pressure" >>"$tmp"
+fi
 
 {
     echo
@@ -160,6 +189,20 @@ if [ -f "$csv" ]; then
 else
     echo "run.sh: reference $csv not found: accuracy tables skipped" >&2
     echo "Reference table \`$csv\` not found: accuracy tables skipped." >>"$tmp"
+fi
+
+if [ -n "$random_exe" ]; then
+    {
+        echo
+        echo "### Ours on random points against quadruple precision"
+        echo
+        echo "\`$random_exe $random_points\`: the largest error in ulps over random arguments of each"
+        echo "family (splitmix64, fixed seed), against references computed in real128 by methods"
+        echo "independent of ours (bench/lambertw/random_accuracy.f90)."
+        echo
+    } >>"$tmp"
+    echo "+ $random_exe $random_points" >&2
+    "$random_exe" "$random_points" >>"$tmp"
 fi
 
 mv "$tmp" "$out"

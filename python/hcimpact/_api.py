@@ -160,7 +160,7 @@ def lambert_w0(z: Any) -> Any:
 
 
 def lambert_wm1(z: Any) -> Any:
-    """Lower branch W-1(z), -1/e <= z < 0; NaN outside, -inf for z = -0.0."""
+    """Lower branch W-1(z), -1/e <= z < 0; -inf for z = +0.0 or -0.0, NaN otherwise outside."""
     return _unary("lambert_wm1", z)
 
 

@@ -67,6 +67,10 @@ def test_against_mpmath():
 def test_domain_and_shapes():
     assert math.isnan(hcimpact.lambert_w0(-1.0))
     assert math.isnan(hcimpact.lambert_wm1(0.5))
+    # z = 0 of either sign ends the domain of W-1: -inf (include/hcimpact.h)
+    assert hcimpact.lambert_wm1(0.0) == -math.inf
+    assert hcimpact.lambert_wm1(-0.0) == -math.inf
+    assert math.isnan(hcimpact.lambert_wm1(5e-324))
     assert math.isnan(hcimpact.lambert_w0p1(-1e-300))
     assert hcimpact.lambert_w0p1(math.inf) == 1.0
     assert hcimpact.lambert_wm1p1(math.inf) == -math.inf

@@ -154,7 +154,10 @@ static void test_lambertw(void)
   check_true("lambert_w0p1(0) = 0", hcimpact_lambert_w0p1(0.0) == 0.0);
   check_true("lambert_w0p1(+inf) = 1", hcimpact_lambert_w0p1(INFINITY) == 1.0);
   check_true("lambert_wm1p1(+inf) = -inf", hcimpact_lambert_wm1p1(INFINITY) == -INFINITY);
+  /* z = 0 of either sign is the end of the domain, W-1 -> -inf (include/hcimpact.h) */
   check_true("lambert_wm1(-0.0) = -inf", hcimpact_lambert_wm1(-0.0) == -INFINITY);
+  check_true("lambert_wm1(+0.0) = -inf", hcimpact_lambert_wm1(0.0) == -INFINITY);
+  check_nan("lambert_wm1(smallest subnormal > 0)", hcimpact_lambert_wm1(4.9406564584124654e-324));
   check_true("lambert_w0(huge) finite", isfinite(hcimpact_lambert_w0(big)));
 
   check_nan("lambert_w0(-1)", hcimpact_lambert_w0(-1.0));

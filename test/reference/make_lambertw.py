@@ -307,36 +307,30 @@ def nearest_exp(y):
         return nearest_double(v)
 
 
-def branch_series_switches():
-    """z where lambertw.f90 switches from the series at the branch point to p**6 to the
-    one to p**8 (q = p**2 = 2**-16) and from that to the table `wa`/`wb` (q = 2**-12): its
-    bounds on z + 1/e_hi, 2**-k/(2 e_hi) - (1/e)_lo, as the compiler rounds them."""
-    return [(2.0**-k / (2 * 2.718281828459045) + 1.2428753672788363e-17) - INV_E_HI
-            for k in (16, 12)]
-
-
 def seam_points(func):
     """Every seam of the tables of lambertw.f90 for func, with one double either side:
     the interval boundaries of each geometric table (in its key: z + 1/e_hi, |z|, z, t,
-    ln z or -ln(-z)) and the switches between methods."""
+    ln z or -ln(-z); the ranges of tools/make_lambertw_tables.py) and the switches between
+    methods and tables: z = -1/4 (wa/wb to wc/we), |z| = 2**-9 (the Taylor row of wc/wd),
+    z = 2**10 (wd to the ln-keyed ya), z = -2**-20 (we to yb), t = 2**-54 (the series at
+    the branch point to ta/tb), t = 64 (ta's clamp to 1), t = 2**10 (tb to Newton's
+    method), and the scalings of subnormal arguments."""
     if func == "w0":
-        zs = [d - INV_E_HI for d in geo_seams(-15, -4) if d - INV_E_HI <= -0.25]
-        zs += [-s for s in geo_seams(-6, -3) if -0.25 <= -s <= -2.0**-6]
-        zs += [z for z in geo_seams(-6, 9) if z <= 1024.0]
+        zs = [d - INV_E_HI for d in geo_seams(-54, -4) if d - INV_E_HI <= -0.25]
+        zs += [-s for s in geo_seams(-9, -3) if -0.25 <= -s]
+        zs += [z for z in geo_seams(-9, 9) if z <= 1024.0]
         zs += [nearest_exp(y) for y in geo_seams(2, 9) if y < 709.7]
-        zs += [-0.25, -2.0**-6, 2.0**-6, 1024.0, 2.0**-60, -2.0**-60, HUGE]
-        zs += branch_series_switches()
+        zs += [-0.25, -2.0**-9, 2.0**-9, 1024.0, TINY_NORMAL, -TINY_NORMAL, HUGE]
         return [z for z in double_windows(zs, 1, double_below_branch()) if z <= HUGE]
     if func == "wm1":
-        zs = [d - INV_E_HI for d in geo_seams(-15, -4) if d - INV_E_HI <= -0.25]
+        zs = [d - INV_E_HI for d in geo_seams(-54, -4) if d - INV_E_HI <= -0.25]
         zs += [-s for s in geo_seams(-20, -3) if -0.25 <= -s <= -2.0**-20]
         zs += [-v for v in (nearest_exp(-y) for y in geo_seams(3, 9)) if v is not None]
         zs += [-0.25, -2.0**-20, -TINY_NORMAL]
-        zs += branch_series_switches()
         points = double_windows(zs, 1, double_below_branch())
         return [z for z in points if z < 0]
-    top = 4 if func == "w0p1" else 9
-    ts = geo_seams(-13, top) + [2.0**-13, 2.0**-600]
+    top = 5 if func == "w0p1" else 9
+    ts = geo_seams(-54, top) + [2.0**-54, 2.0**-600, 2.0**10]
     return double_windows(ts, 1, 0.0)
 
 
@@ -399,6 +393,10 @@ def regions():
                                  lambda r: log_uniform(r, 1e-300, 1e300), fixed=(0.0,))
         yield "tswitch", func, draw(region_rng(func, "tswitch"), POINTS,
                                     lambda r: log_uniform(r, 1e-3, 10.0))
+        # next to the branch point, across the switch from the series to the tables at
+        # t = 2**-54 and through the tables' lowest binades
+        yield "tnear", func, draw(region_rng(func, "tnear"), POINTS,
+                                  lambda r: log_uniform(r, 1e-18, 1e-3))
         # seams of tables in s = sqrt(2t) with spacings down to 1/32, s up to 4
         yield "sgrid", func, double_windows([(k / 32) ** 2 / 2 for k in range(1, 129)], 8, 0.0)
         yield "seams", func, seam_points(func)

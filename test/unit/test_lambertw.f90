@@ -43,14 +43,15 @@ module test_lambertw
 
    !> Every (function, region) of the reference file with an accuracy test; a test
    !> checks that the file holds no other (so a new region cannot go untested)
-   character(len=*), parameter :: accuracy_cases(2, 27) = reshape([ character(len=name_len) :: &
+   character(len=*), parameter :: accuracy_cases(2, 29) = reshape([ character(len=name_len) :: &
       & "w0", "branch300", "w0", "near16_6", "w0", "near6_2", "w0", "pgrid", "w0", "pgrid2", &
       & "w0", "seams", "w0", "neg", &
       & "w0", "negtiny", "w0", "w0mid", "w0", "w0pos", "w0", "subnormal", &
       & "wm1", "branch300", "wm1", "near16_6", "wm1", "near6_2", "wm1", "pgrid", "wm1", "seams", &
       & "wm1", "neg", "wm1", "negtiny", "wm1", "subnormal", &
-      & "w0p1", "tlog", "w0p1", "tswitch", "w0p1", "sgrid", "w0p1", "seams", &
-      & "wm1p1", "tlog", "wm1p1", "tswitch", "wm1p1", "sgrid", "wm1p1", "seams"], [2, 27])
+      & "w0p1", "tlog", "w0p1", "tswitch", "w0p1", "tnear", "w0p1", "sgrid", "w0p1", "seams", &
+      & "wm1p1", "tlog", "wm1p1", "tswitch", "wm1p1", "tnear", "wm1p1", "sgrid", "wm1p1", "seams"], &
+      & [2, 29])
 
    !> The reference file, read once on first use
    type :: reference_table
@@ -106,10 +107,12 @@ contains
          & new_unittest("wm1-subnormal", test_wm1_subnormal), &
          & new_unittest("w0p1-tlog", test_w0p1_tlog), &
          & new_unittest("w0p1-tswitch", test_w0p1_tswitch), &
+         & new_unittest("w0p1-tnear", test_w0p1_tnear), &
          & new_unittest("w0p1-sgrid", test_w0p1_sgrid), &
          & new_unittest("w0p1-seams", test_w0p1_seams), &
          & new_unittest("wm1p1-tlog", test_wm1p1_tlog), &
          & new_unittest("wm1p1-tswitch", test_wm1p1_tswitch), &
+         & new_unittest("wm1p1-tnear", test_wm1p1_tnear), &
          & new_unittest("wm1p1-sgrid", test_wm1p1_sgrid), &
          & new_unittest("wm1p1-seams", test_wm1p1_seams), &
          & new_unittest("edge", test_edge), &
@@ -586,6 +589,14 @@ contains
       call check_region(error, "w0p1", "tswitch")
    end subroutine test_w0p1_tswitch
 
+   !> 1 + W0(-exp(-1-t)) for t in [1e-18, 1e-3]: the series at the branch point below
+   !> t = 2**-54, the table `ta` above, through its lowest binades
+   subroutine test_w0p1_tnear(error)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      call check_region(error, "w0p1", "tnear")
+   end subroutine test_w0p1_tnear
+
    !> 1 + W0(-exp(-1-t)) at 8 doubles either side of t = s**2/2, s = k/32 up to 4
    subroutine test_w0p1_sgrid(error)
       !> Error handling
@@ -606,6 +617,14 @@ contains
       type(error_type), allocatable, intent(out) :: error
       call check_region(error, "wm1p1", "tswitch")
    end subroutine test_wm1p1_tswitch
+
+   !> 1 + W-1(-exp(-1-t)) for t in [1e-18, 1e-3]: the series below t = 2**-54, the table
+   !> `tb` above
+   subroutine test_wm1p1_tnear(error)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      call check_region(error, "wm1p1", "tnear")
+   end subroutine test_wm1p1_tnear
 
    !> 1 + W-1(-exp(-1-t)) at 8 doubles either side of t = s**2/2, s = k/32 up to 4
    subroutine test_wm1p1_sgrid(error)

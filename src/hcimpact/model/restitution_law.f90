@@ -26,7 +26,7 @@ module hcimpact_restitution_law
    use hcimpact_kinds, only : wp
    use hcimpact_libm, only : log1p
    use hcimpact_lambertw, only : lambert_w0p1_dd
-   use hcimpact_lambertw_tables, only : k_step_inv, k_last, k_coef, k_lo, m_step_inv, m_last, &
+   use hcimpact_restitution_tables, only : k_step_inv, k_last, k_coef, k_lo, m_step_inv, m_last, &
       & m_coef, m_lo
    implicit none
    private
