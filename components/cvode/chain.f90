@@ -34,20 +34,19 @@ module hcimpact_cvode_chain
       & advance_grow_left, advance_grow_right, advance_dissolved, advance_captured, &
       & advance_failed
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
-      & region_jacobian, region_events, slot_state, dissipation_index, upper_band, &
-      & lower_band, events_per_slot, slot_none, slot_pair, slot_left_wall, &
+      & region_jacobian, slot_state, dissipation_index, force_rate, &
+      & upper_band, lower_band, slot_none, slot_pair, slot_left_wall, &
       & slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
       & context_create, context_free, capture_errors
    use hcimpact_cvode_solver, only : cvode_flag_name
    use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSetUserData, &
-      & FCVodeSVtolerances, FCVodeSetLinearSolver, FCVodeSetJacFn, FCVodeRootInit, &
-      & FCVodeSetRootDirection, FCVodeSetMaxNumSteps, FCVodeSetMaxHnilWarns, &
-      & FCVodeSetInitStep, FCVodeSetNoInactiveRootWarn, FCVode, FCVodeGetRootInfo, &
+      & FCVodeWFtolerances, FCVodeSetLinearSolver, FCVodeSetJacFn, &
+      & FCVodeSetMaxNumSteps, FCVodeSetMaxHnilWarns, FCVodeSetInitStep, FCVode, &
       & FCVodeFree, FCVodeSetStopTime, FCVodeGetDky, FCVodeGetNumRhsEvals, &
       & FCVodeGetNumJacEvals, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS, &
-      & CV_TSTOP_RETURN, CV_ROOT_RETURN
+      & CV_TSTOP_RETURN
    use fnvector_serial_mod, only : FN_VMake_Serial
    use fsunmatrix_band_mod, only : FSUNBandMatrix, FSUNBandMatrix_Data, &
       & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
@@ -64,9 +63,19 @@ module hcimpact_cvode_chain
    !> A contact of the region in progress
    type :: open_contact
       logical :: open = .false.
+      !> Start, approach speed, dissipated energy at the start (the state's e), and
+      !> what the record holds so far (largest force, deformation; energy dissipated
+      !> before this region)
       real(wp) :: t_start = nan, approach = nan, e_base = 0.0_wp, peak = 0.0_wp, &
          & deformation = 0.0_wp, earlier = 0.0_wp
    end type open_contact
+
+   !> A slot at the end of the last step: time, deformation, its rate, force, the
+   !> force's rate and the energy dissipated in it so far
+   type :: slot_history
+      real(wp) :: t = 0.0_wp, x = 0.0_wp, w = 0.0_wp, f = 0.0_wp, df = 0.0_wp, &
+         & e = 0.0_wp
+   end type slot_history
 
    !> CVODE on a region of a chain
    type, extends(cluster_integrator) :: cvode_chain_integrator
@@ -77,6 +86,7 @@ module hcimpact_cvode_chain
       type(SUNMatrix), pointer :: jac_mat => null()
       type(SUNLinearSolver), pointer :: lin_sol => null()
       type(open_contact), allocatable :: contact(:)
+      type(slot_history), allocatable :: history(:)
       logical :: captured = .false.
       integer(int64) :: rhs_base = 0, jac_base = 0
    contains
@@ -121,9 +131,8 @@ contains
       class(cvode_chain_integrator), intent(inout) :: self
       type(chain_engine), intent(inout) :: engine
       integer, intent(out) :: stat
-      integer :: m, k, i, j, s, n_state, n_roots, smu
+      integer :: m, k, i, j, s, n_state, smu
       integer(c_int) :: ierr
-      integer(c_int), allocatable :: rootdir(:)
       real(wp) :: x, w, v_ref, x_ref, x_max, mu, e_ref, total
       type(contact_force_type) :: e
       type(contact_law) :: law
@@ -221,14 +230,19 @@ contains
          self%atol(3 * k) = engine%options%rtol * e_ref
       end do
       self%atol(n_state) = engine%options%rtol * e_ref
+      self%region%rtol = engine%options%rtol
+      self%region%scale = [x_ref, v_ref, e_ref]
 
-      ! the contacts in progress: handed over by the closed forms or an earlier region
-      allocate(self%contact(0:m))
+      ! the contacts in progress: handed over by the closed forms or an earlier region;
+      ! and every slot's state now, the start of the first step's interpolants
+      allocate(self%contact(0:m), self%history(0:m))
       do j = 0, m
          s = engine%first - 1 + j
-         if (self%region%kind(j) == slot_none .or. self%region%kind(j) == &
-            & slot_boundary_left .or. self%region%kind(j) == slot_boundary_right) cycle
+         if (self%region%kind(j) == slot_none) cycle
          call slot_state(self%region, j, engine%time, self%y, x, w, e)
+         self%history(j) = slot_history(engine%time, x, w, e%force, 0.0_wp, 0.0_wp)
+         if (self%region%kind(j) == slot_boundary_left .or. self%region%kind(j) == &
+            & slot_boundary_right) cycle
          if (engine%exact(s)%handed) then
             self%contact(j) = open_contact(open=.true., t_start=engine%exact(s)%t_start, &
                & approach=engine%exact(s)%contact%velocity, e_base=0.0_wp, &
@@ -237,11 +251,9 @@ contains
                & earlier=engine%exact(s)%so_far_dissipated)
             engine%exact(s)%handed = .false.
          else if (x >= 0.0_wp) then
-            ! in contact, or touching (a root at the start of an integration is not
-            ! reported: a touching pair that is pushed must be open already)
-            self%contact(j) = open_contact(open=.true., t_start=engine%time, &
-               & approach=max(w, 0.0_wp), e_base=0.0_wp, peak=e%force, &
-               & deformation=max(x, 0.0_wp), earlier=0.0_wp)
+            ! in contact, or touching: a touching pair that is pushed is in contact
+            ! from now
+            call open_at(self, j, engine%time, max(w, 0.0_wp), 0.0_wp)
          end if
       end do
       self%captured = .false.
@@ -255,7 +267,6 @@ contains
          call ieee_set_halting_mode(trapped, .false.)
       end if
 
-      n_roots = events_per_slot * (m + 1)
       setup: block
          where = "SUNContext_Create"
          ierr = context_create(self%ctx)
@@ -282,9 +293,8 @@ contains
          where = "CVodeSetUserData"
          ierr = FCVodeSetUserData(self%mem, c_loc(self%region))
          if (ierr /= CV_SUCCESS) exit setup
-         where = "CVodeSVtolerances"
-         ierr = FCVodeSVtolerances(self%mem, real(engine%options%rtol, c_double), &
-            & self%atol_vec)
+         where = "CVodeWFtolerances"
+         ierr = FCVodeWFtolerances(self%mem, c_funloc(chain_error_weights))
          if (ierr /= CV_SUCCESS) exit setup
          where = "SUNBandMatrix"
          ierr = -1
@@ -301,19 +311,6 @@ contains
          where = "CVodeSetJacFn"
          ierr = FCVodeSetJacFn(self%mem, c_funloc(chain_jacobian_callback))
          if (ierr /= CV_SUCCESS) exit setup
-         where = "CVodeRootInit"
-         ierr = FCVodeRootInit(self%mem, int(n_roots, c_int), c_funloc(chain_events_callback))
-         if (ierr /= CV_SUCCESS) exit setup
-         allocate(rootdir(n_roots))
-         rootdir = -1_c_int
-         do j = 0, m
-            ! a contact's start and end both count, a boundary only closing
-            if (self%region%kind(j) /= slot_boundary_left .and. self%region%kind(j) /= &
-               & slot_boundary_right) rootdir(events_per_slot * j + 1) = 0_c_int
-         end do
-         where = "CVodeSetRootDirection"
-         ierr = FCVodeSetRootDirection(self%mem, rootdir)
-         if (ierr /= CV_SUCCESS) exit setup
          where = "CVodeSetInitStep"
          ierr = FCVodeSetInitStep(self%mem, real(0.01_wp * sqrt(engine%options%rtol) &
             & * x_ref / v_ref, c_double))
@@ -324,8 +321,6 @@ contains
          where = "CVodeSetMaxHnilWarns"
          ierr = FCVodeSetMaxHnilWarns(self%mem, -1_c_int)
          if (ierr /= CV_SUCCESS) exit setup
-         where = "CVodeSetNoInactiveRootWarn"
-         ierr = FCVodeSetNoInactiveRootWarn(self%mem)
       end block setup
       if (ierr /= 0) then
          stat = hcimpact_err_solver
@@ -347,10 +342,8 @@ contains
       integer, intent(out) :: what, stat
       integer(c_int) :: ierr
       real(c_double) :: tret(1)
-      integer(c_int), allocatable :: found(:)
-      integer :: j, m, s
-      real(wp) :: x, w, u(self%region%m), v(self%region%m)
-      type(contact_force_type) :: e
+      integer :: m
+      real(wp) :: u(self%region%m), v(self%region%m)
       logical :: ended
 
       stat = hcimpact_ok
@@ -360,7 +353,6 @@ contains
          if (.not. t_stop > engine%time) return
          ierr = FCVodeSetStopTime(self%mem, real(t_stop, c_double))
       end if
-      allocate(found(events_per_slot * (m + 1)))
       do
          if (engine%counters%steps >= engine%options%max_steps) then
             stat = hcimpact_err_solver
@@ -380,82 +372,18 @@ contains
             return
          end if
          engine%time = tret(1)
-         if (ierr == CV_SUCCESS .or. ierr == CV_TSTOP_RETURN) &
-            & engine%counters%steps = engine%counters%steps + 1
-         ! the largest force and deformation of the open contacts, step by step (and a
-         ! contact whose start was not reported as a root)
-         do j = 0, m
-            if (.not. self%contact(j)%open) then
-               ! a boundary closed without its root being reported: grow
-               if (self%region%kind(j) == slot_boundary_left .or. self%region%kind(j) == &
-                  & slot_boundary_right) then
-                  call slot_state(self%region, j, engine%time, self%y, x, w, e)
-                  if (x > 0.0_wp) then
-                     what = advance_grow_left
-                     if (self%region%kind(j) == slot_boundary_right) what = advance_grow_right
-                     return
-                  end if
-                  cycle
-               end if
-               if (self%region%kind(j) /= slot_pair .and. self%region%kind(j) /= &
-                  & slot_left_wall .and. self%region%kind(j) /= slot_right_wall) cycle
-               call slot_state(self%region, j, engine%time, self%y, x, w, e)
-               if (.not. x > 0.0_wp) cycle
-               self%contact(j) = open_contact(open=.true., t_start=engine%time, &
-                  & approach=max(w, 0.0_wp), e_base=self%y(dissipation_index(m, j)), &
-                  & peak=0.0_wp, deformation=0.0_wp, earlier=0.0_wp)
-            end if
-            call slot_state(self%region, j, engine%time, self%y, x, w, e)
-            self%contact(j)%peak = max(self%contact(j)%peak, e%force)
-            self%contact(j)%deformation = max(self%contact(j)%deformation, x)
-         end do
-         if (ierr == CV_ROOT_RETURN) then
-            engine%counters%roots = engine%counters%roots + 1
-            ierr = FCVodeGetRootInfo(self%mem, found)
-            ended = .false.
-            do j = 0, m
-               if (all(found(events_per_slot * j + 1:events_per_slot * j + 3) == 0)) cycle
-               s = engine%first - 1 + j
-               call slot_state(self%region, j, engine%time, self%y, x, w, e)
-               select case (self%region%kind(j))
-               case (slot_boundary_left)
-                  if (found(events_per_slot * j + 1) /= 0) then
-                     what = advance_grow_left
-                     return
-                  end if
-               case (slot_boundary_right)
-                  if (found(events_per_slot * j + 1) /= 0) then
-                     what = advance_grow_right
-                     return
-                  end if
-               case default
-                  if (found(events_per_slot * j + 1) < 0) then
-                     ! the gap closes: a contact starts
-                     if (.not. self%contact(j)%open) then
-                        self%contact(j) = open_contact(open=.true., t_start=engine%time, &
-                           & approach=w, e_base=self%y(dissipation_index(m, j)), peak=0.0_wp, &
-                           & deformation=0.0_wp, earlier=0.0_wp)
-                     end if
-                  else if (found(events_per_slot * j + 1) > 0) then
-                     ! the gap opens: the contact ends
-                     if (self%contact(j)%open) call close_contact(self, engine, j, s, w)
-                     ended = .true.
-                  end if
-                  if (found(events_per_slot * j + 2) /= 0 .and. self%contact(j)%open) &
-                     & self%contact(j)%deformation = max(self%contact(j)%deformation, x)
-                  if (found(events_per_slot * j + 3) /= 0 .and. self%contact(j)%open) &
-                     & self%contact(j)%peak = max(self%contact(j)%peak, e%force)
-               end select
-            end do
-            ! apart: back to the closed forms; with the integrated method only once
-            ! no contact can ever happen again (the rest is free flight)
-            if (ended) then
-               if (separated(self, engine)) then
-                  if (engine%options%method /= method_integrated .or. &
-                     & never_again(self, engine)) then
-                     what = advance_dissolved
-                     return
-                  end if
+         engine%counters%steps = engine%counters%steps + 1
+         ! the contacts over the step: extrema, starts, ends, a boundary that closed
+         call follow_contacts(self, engine, what, ended)
+         if (what /= advance_reached) return
+         ! apart: back to the closed forms; with the integrated method only once no
+         ! contact can ever happen again (the rest is free flight)
+         if (ended) then
+            if (separated(self, engine)) then
+               if (engine%options%method /= method_integrated .or. &
+                  & never_again(self, engine)) then
+                  what = advance_dissolved
+                  return
                end if
             end if
          end if
@@ -473,12 +401,190 @@ contains
       end do
    end subroutine region_advance
 
+   !> After a step, slot by slot, from the cubic Hermite interpolant of each slot's
+   !> deformation x (with its rate w = x') between the step's ends:
+   !> - a contact starts where x rises through 0, ends where it falls through 0 (both
+   !>   times from the interpolant), and a contact that started and ended within the
+   !>   step is recorded too;
+   !> - the largest deformation and force of an open contact (the force's interpolant
+   !>   with dF/dt);
+   !> - a boundary gap that closed: the region goes back to that instant (CVODE's own
+   !>   interpolant of the whole state) and asks to grow (what).
+   !> CVODE's root finding is not used: functions that vanish at the start and end of
+   !> every contact, thousands of times in a chain, made it stall at noise level.
+   subroutine follow_contacts(self, engine, what, ended)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(out) :: what
+      !> A contact ended
+      logical, intent(out) :: ended
+      real(wp), allocatable :: dy(:)
+      real(wp) :: x, w, df, h, t0, tc, wc
+      type(contact_force_type) :: e
+      type(slot_history) :: last
+      integer :: j, m
+      logical :: ok
+
+      what = advance_reached
+      ended = .false.
+      m = self%region%m
+      allocate(dy(size(self%y)))
+      call region_rhs(self%region, engine%time, self%y, dy, ok)
+      do j = 0, m
+         if (self%region%kind(j) == slot_none) cycle
+         call slot_state(self%region, j, engine%time, self%y, x, w, e)
+         last = self%history(j)
+         t0 = last%t
+         h = engine%time - t0
+         select case (self%region%kind(j))
+         case (slot_boundary_left, slot_boundary_right)
+            if (x > 0.0_wp) then
+               ! back to where the gap closed, then grow
+               call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
+               call rewind(self, engine, t0 + tc)
+               what = advance_grow_left
+               if (self%region%kind(j) == slot_boundary_right) what = advance_grow_right
+               return
+            end if
+            self%history(j) = slot_history(engine%time, x, w, 0.0_wp, 0.0_wp)
+            cycle
+         end select
+         df = force_rate(self%region, j, dy, w, e)
+         if (.not. self%contact(j)%open) then
+            if (x > 0.0_wp .and. h > 0.0_wp) then
+               ! started in the step
+               call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
+               call open_at(self, j, t0 + tc, max(wc, 0.0_wp), last%e)
+            else if (x > 0.0_wp) then
+               call open_at(self, j, engine%time, max(w, 0.0_wp), self%y(dissipation_index(m, j)))
+            else if (h > 0.0_wp .and. last%x <= 0.0_wp .and. &
+               & hermite_max(last%x, last%w, x, w, h) > 0.0_wp) then
+               ! started and ended within the step
+               call open_at(self, j, t0 + h * 0.5_wp, max(last%w, 0.0_wp), last%e)
+               self%contact(j)%deformation = hermite_max(last%x, last%w, x, w, h)
+            end if
+         end if
+         if (self%contact(j)%open) then
+            if (h > 0.0_wp) then
+               self%contact(j)%deformation = max(self%contact(j)%deformation, &
+                  & hermite_max(last%x, last%w, x, w, h))
+               self%contact(j)%peak = max(self%contact(j)%peak, &
+                  & hermite_max(last%f, last%df, e%force, df, h))
+            end if
+            self%contact(j)%peak = max(self%contact(j)%peak, e%force)
+            self%contact(j)%deformation = max(self%contact(j)%deformation, x)
+            ! the gap has opened: the contact ended in the step
+            if (x < 0.0_wp .or. (x == 0.0_wp .and. w < 0.0_wp)) then
+               tc = h
+               wc = w
+               if (h > 0.0_wp .and. last%x > 0.0_wp) &
+                  & call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
+               call close_contact(self, engine, j, engine%first - 1 + j, t0 + tc, wc)
+               ended = .true.
+            end if
+         end if
+         self%history(j) = slot_history(engine%time, x, w, e%force, df, &
+            & self%y(dissipation_index(m, j)))
+      end do
+   end subroutine follow_contacts
+
+   !> The time (from the step's start, in [0, h]) where the cubic Hermite interpolant
+   !> with values x0, x1 and slopes w0, w1 at the ends of the step crosses 0, and its
+   !> slope there (bisection, x0 and x1 of opposite signs or one zero).
+   pure subroutine hermite_crossing(x0, w0, x1, w1, h, tc, wc)
+      real(wp), intent(in) :: x0, w0, x1, w1, h
+      real(wp), intent(out) :: tc, wc
+      real(wp) :: lo, hi, mid, b, c, p
+      integer :: it
+      ! p(t) = x0 + h w0 t + b t^2 + c t^3, t in [0, 1]
+      b = 3.0_wp * (x1 - x0) - h * (2.0_wp * w0 + w1)
+      c = 2.0_wp * (x0 - x1) + h * (w0 + w1)
+      lo = 0.0_wp
+      hi = 1.0_wp
+      do it = 1, 60
+         mid = 0.5_wp * (lo + hi)
+         p = x0 + mid * (h * w0 + mid * (b + mid * c))
+         if ((p > 0.0_wp) .eqv. (x0 > 0.0_wp)) then
+            lo = mid
+         else
+            hi = mid
+         end if
+      end do
+      mid = 0.5_wp * (lo + hi)
+      tc = h * mid
+      wc = 0.0_wp
+      if (h > 0.0_wp) wc = (h * w0 + mid * (2.0_wp * b + 3.0_wp * c * mid)) / h
+   end subroutine hermite_crossing
+
+   !> Put the region's state back to the time t within the last step (CVODE's
+   !> interpolant) and stop there.
+   subroutine rewind(self, engine, t)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      real(wp), intent(in) :: t
+      real(c_double), pointer :: dky(:)
+      type(N_Vector), pointer :: dky_vec
+      integer(c_int) :: ierr
+      allocate(dky(size(self%y)))
+      dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
+      ierr = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec)
+      if (ierr == CV_SUCCESS) then
+         self%y = dky
+         engine%time = t
+      end if
+      call FN_VDestroy(dky_vec)
+      deallocate(dky)
+   end subroutine rewind
+
+   !> Open the record of a contact of slot j that started at t_start with the
+   !> approach speed given, the slot's dissipated energy then being e_base.
+   subroutine open_at(self, j, t_start, approach, e_base)
+      type(cvode_chain_integrator), intent(inout) :: self
+      integer, intent(in) :: j
+      real(wp), intent(in) :: t_start, approach, e_base
+      self%contact(j) = open_contact(open=.true., t_start=t_start, approach=approach, &
+         & e_base=e_base, peak=0.0_wp, deformation=0.0_wp, earlier=0.0_wp)
+   end subroutine open_at
+
+   !> The largest value on [0, h] of the cubic with values p0, p1 and slopes d0, d1 at
+   !> its ends (both ends and an interior maximum where the slope turns negative).
+   pure real(wp) function hermite_max(p0, d0, p1, d1, h)
+      real(wp), intent(in) :: p0, d0, p1, d1, h
+      real(wp) :: b, c, a2, disc, t, roots(2)
+      integer :: k
+      hermite_max = max(p0, p1)
+      if (.not. (d0 > 0.0_wp .and. d1 <= 0.0_wp)) return
+      ! p(t) = p0 + h d0 t + b t^2 + c t^3 on t in [0, 1]
+      b = 3.0_wp * (p1 - p0) - h * (2.0_wp * d0 + d1)
+      c = 2.0_wp * (p0 - p1) + h * (d0 + d1)
+      ! p'(t) = h d0 + 2 b t + 3 c t^2
+      a2 = 3.0_wp * c
+      if (abs(a2) <= epsilon(1.0_wp) * abs(b)) then
+         if (b /= 0.0_wp) then
+            t = -h * d0 / (2.0_wp * b)
+            if (t > 0.0_wp .and. t < 1.0_wp) hermite_max = max(hermite_max, &
+               & p0 + t * (h * d0 + t * (b + t * c)))
+         end if
+         return
+      end if
+      disc = b * b - a2 * h * d0
+      if (disc < 0.0_wp) return
+      roots(1) = (-b + sqrt(disc)) / a2
+      roots(2) = (-b - sqrt(disc)) / a2
+      do k = 1, 2
+         t = roots(k)
+         if (t > 0.0_wp .and. t < 1.0_wp) hermite_max = max(hermite_max, &
+            & p0 + t * (h * d0 + t * (b + t * c)))
+      end do
+   end function hermite_max
+
    !> Record the contact of slot j that ends now (w: the deformation rate, < 0).
-   subroutine close_contact(self, engine, j, s, w)
+   subroutine close_contact(self, engine, j, s, t_end, w)
       type(cvode_chain_integrator), intent(inout) :: self
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: j, s
-      real(wp), intent(in) :: w
+      !> End time and the deformation rate then (< 0)
+      real(wp), intent(in) :: t_end, w
       type(contact_record) :: r
       self%contact(j)%open = .false.
       ! a touching pair that never pressed was no contact
@@ -486,7 +592,7 @@ contains
       engine%counters%integrated_contacts = engine%counters%integrated_contacts + 1
       r%pair = s
       r%t_start = self%contact(j)%t_start
-      r%t_end = engine%time
+      r%t_end = t_end
       r%approach_speed = self%contact(j)%approach
       r%separation_speed = max(-w, 0.0_wp)
       r%peak_force = self%contact(j)%peak
@@ -643,6 +749,7 @@ contains
       if (associated(self%y)) deallocate(self%y)
       if (associated(self%atol)) deallocate(self%atol)
       if (allocated(self%contact)) deallocate(self%contact)
+      if (allocated(self%history)) deallocate(self%history)
       if (associated(self%region)) then
          halting = self%region%halting
          deallocate(self%region)
@@ -677,6 +784,31 @@ contains
       if (.not. ok) ierr = 1
    end function chain_rhs_callback
 
+   !> CVEwtFn: the error weights. A displacement's error is measured against
+   !> rtol x_ref, not against rtol |u|: the deformations, differences of displacements
+   !> that grow as the bodies move, must keep their accuracy however far the bodies
+   !> have gone. A velocity's against rtol (|v| + v_ref), a dissipated energy's
+   !> against rtol e_ref (region%scale).
+   function chain_error_weights(y, ewt, user_data) result(ierr) bind(C)
+      type(N_Vector) :: y, ewt
+      type(c_ptr), value :: user_data
+      integer(c_int) :: ierr
+      type(chain_region), pointer :: region
+      real(c_double), pointer :: yv(:), wv(:)
+      integer :: k, m
+      call c_f_pointer(user_data, region)
+      yv => FN_VGetArrayPointer(y)
+      wv => FN_VGetArrayPointer(ewt)
+      m = region%m
+      do k = 1, m
+         wv(3 * k - 2) = 1.0_c_double / (region%rtol * region%scale(1))
+         wv(3 * k - 1) = 1.0_c_double / (region%rtol * (abs(yv(3 * k - 1)) + region%scale(2)))
+         wv(3 * k) = 1.0_c_double / (region%rtol * region%scale(3))
+      end do
+      wv(3 * m + 1) = 1.0_c_double / (region%rtol * region%scale(3))
+      ierr = 0
+   end function chain_error_weights
+
    !> CVLsJacFn: the band Jacobian
    function chain_jacobian_callback(t, y, fy, jac_mat, user_data, tmp1, tmp2, tmp3) &
          & result(ierr) bind(C)
@@ -702,24 +834,6 @@ contains
       if (any(region%halting)) call traps_off(flags)
       ierr = 0
    end function chain_jacobian_callback
-
-   !> CVRootFn
-   function chain_events_callback(t, y, gout, user_data) result(ierr) bind(C)
-      real(c_double), value :: t
-      type(N_Vector) :: y
-      real(c_double) :: gout(*)
-      type(c_ptr), value :: user_data
-      integer(c_int) :: ierr
-      type(chain_region), pointer :: region
-      real(c_double), pointer :: yv(:)
-      logical :: flags(3)
-      call c_f_pointer(user_data, region)
-      if (any(region%halting)) call traps_on(region, flags)
-      yv => FN_VGetArrayPointer(y)
-      call region_events(region, real(t, wp), yv, gout(1:events_per_slot * (region%m + 1)))
-      if (any(region%halting)) call traps_off(flags)
-      ierr = 0
-   end function chain_events_callback
 
    !> In a callback: the caller's halting modes back on, with the flags CVODE may have
    !> raised set aside.

@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> A region of a system of bodies on a line as a first-order system for CVODE: the
-!> right-hand side, its banded Jacobian and the event functions. Nothing here knows
-!> about SUNDIALS (hcimpact_cvode_chain calls these procedures from its callbacks).
+!> right-hand side and its banded Jacobian, the state of each contact. Nothing here
+!> knows about SUNDIALS (hcimpact_cvode_chain calls these procedures from its
+!> callbacks).
 !>
 !> The region holds the bodies k = 1 .. m (global first .. first + m - 1) and the slots
 !> j = 0 .. m around and between them: slot j is between local bodies j and j + 1; slot
@@ -20,10 +21,8 @@
 !> depends on e, so Newton's iteration converges for them one iteration behind u and
 !> v.
 !>
-!> Events, three per slot (3 (m + 1) functions): the gap (both ways: a contact starts
-!> or ends; on a boundary slot only closing counts), the deformation rate while in
-!> contact (+1 out of contact; crossing downwards: the largest deformation) and dF/dt
-!> while the force is positive (-1 otherwise; crossing downwards: a peak of the force).
+!> The starts and ends of contacts, and their extrema, are found by the driver from each
+!> step's cubic Hermite interpolant of every slot's deformation (hcimpact_cvode_chain).
 module hcimpact_cvode_chain_system
    use hcimpact_kinds, only : wp
    use hcimpact_force_element, only : contact_force_type, contact_force_pair
@@ -31,15 +30,13 @@ module hcimpact_cvode_chain_system
    implicit none
    private
 
-   public :: chain_region, region_size, region_rhs, region_jacobian, region_events
-   public :: slot_state, dissipation_index, upper_band, lower_band, events_per_slot
+   public :: chain_region, region_size, region_rhs, region_jacobian
+   public :: slot_state, dissipation_index, force_rate, upper_band, lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
       & slot_boundary_right
 
    !> Bandwidths of the Jacobian in the order of the state (module header)
    integer, parameter :: upper_band = 3, lower_band = 4
-   !> Event functions per slot
-   integer, parameter :: events_per_slot = 3
 
    !> Kinds of slot
    integer, parameter :: slot_none = 0, slot_pair = 1, slot_left_wall = 2, &
@@ -60,6 +57,9 @@ module hcimpact_cvode_chain_system
       real(wp) :: out_t0(2) = 0.0_wp, out_u0(2) = 0.0_wp, out_v0(2) = 0.0_wp
       !> The caller's halting modes (the driver turns halting off while CVODE runs)
       logical :: halting(3) = .false.
+      !> The relative tolerance and the scales of the errors: deformation (m), speed
+      !> (m/s) and energy (J) (the driver's error weights)
+      real(wp) :: rtol = 1.0e-10_wp, scale(3) = 1.0_wp
    end type chain_region
 
 contains
@@ -236,49 +236,24 @@ contains
       band(smu + row - col + 1, col) = band(smu + row - col + 1, col) + value
    end subroutine band_add
 
-   !> The event functions (module header), 3 (m + 1) of them.
-   pure subroutine region_events(region, t, y, g)
+   !> dF/dt of slot j: F_x w + F_v w', w' from the accelerations dy (region_rhs)
+   pure real(wp) function force_rate(region, j, dy, w, element)
       type(chain_region), intent(in) :: region
-      real(wp), intent(in) :: t, y(:)
-      real(wp), intent(out) :: g(:)
-      real(wp), allocatable :: dy(:)
-      type(contact_force_type) :: e
-      real(wp) :: x, w, wdot
-      integer :: j, m
-      logical :: ok
-
-      m = region%m
-      allocate(dy(size(y)))
-      call region_rhs(region, t, y, dy, ok)
-      do j = 0, m
-         call slot_state(region, j, t, y, x, w, e)
-         g(3 * j + 1) = 1.0_wp
-         g(3 * j + 2) = 1.0_wp
-         g(3 * j + 3) = -1.0_wp
-         select case (region%kind(j))
-         case (slot_none)
-            cycle
-         end select
-         ! the gap, shifted by the smallest normal number: a pair that touches at rest
-         ! has a gap of exactly 0, and a function that stays 0 is refused by CVODE's
-         ! root finding ("root found at and very near t")
-         g(3 * j + 1) = -(x + tiny(1.0_wp))
-         if (region%kind(j) == slot_boundary_left .or. region%kind(j) == &
-            & slot_boundary_right) cycle
-         if (x > 0.0_wp) g(3 * j + 2) = w
-         if (e%force > 0.0_wp) then
-            ! dF/dt = F_x w + F_v w', w' the difference of the two accelerations
-            select case (region%kind(j))
-            case (slot_pair)
-               wdot = dy(3 * j - 1) - dy(3 * j + 2)
-            case (slot_left_wall)
-               wdot = -dy(2)
-            case default
-               wdot = dy(3 * m - 1)
-            end select
-            g(3 * j + 3) = e%dforce_dx * w + e%dforce_dv * wdot
-         end if
-      end do
-   end subroutine region_events
+      integer, intent(in) :: j
+      real(wp), intent(in) :: dy(:), w
+      type(contact_force_type), intent(in) :: element
+      real(wp) :: wdot
+      select case (region%kind(j))
+      case (slot_pair)
+         wdot = dy(3 * j - 1) - dy(3 * j + 2)
+      case (slot_left_wall)
+         wdot = -dy(2)
+      case (slot_right_wall)
+         wdot = dy(3 * region%m - 1)
+      case default
+         wdot = 0.0_wp
+      end select
+      force_rate = element%dforce_dx * w + element%dforce_dv * wdot
+   end function force_rate
 
 end module hcimpact_cvode_chain_system

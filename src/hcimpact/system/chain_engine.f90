@@ -590,47 +590,67 @@ contains
       if (r2 > 0.0_wp .and. g * r2 + rate < 0.0_wp) tau = min(tau, r2)
    end function first_zero
 
-   !> The first time in [ta, tb] at which the bound cannot exclude that the gap of
-   !> slot s is closed (huge when the gap provably stays open on [ta, tb]).
-   recursive function first_possible_touch(engine, s, ta, tb, depth) result(t_touch)
+   !> The first time in [t_from, t_to] at which the bound cannot exclude that the gap
+   !> of slot s is closed (huge when the gap provably stays open on the interval).
+   !> Subintervals are examined from the left, each halved where its bound is not
+   !> conclusive, down to max_depth halvings and within max_bounds evaluations of the
+   !> bound in all (each needs the states at two times, from the time law); where the
+   !> budget runs out the answer is the start of the subinterval that was not settled,
+   !> which can only make a contact go to the integrator, never the reverse.
+   function first_possible_touch(engine, s, t_from, t_to) result(t_touch)
       type(chain_engine), intent(in) :: engine
       integer, intent(in) :: s
-      real(wp), intent(in) :: ta, tb
-      integer, intent(in), optional :: depth
+      real(wp), intent(in) :: t_from, t_to
       real(wp) :: t_touch
+      integer, parameter :: max_bounds = 64
+      real(wp) :: ta(max_depth + 1), tb(max_depth + 1)
+      integer :: depth(max_depth + 1)
       real(wp) :: gap_a, rate_a, gap_b, rate_b, rate_low, tm
-      integer :: level
+      integer :: top, evaluations, level
 
-      level = 0
-      if (present(depth)) level = depth
       t_touch = huge(1.0_wp)
-      if (.not. tb > ta) return
-      call slot_gap_at(engine, s, ta, gap_a, rate_a)
-      if (gap_a <= 0.0_wp) then
-         t_touch = ta
+      if (.not. t_to > t_from) return
+      if (t_to >= huge(1.0_wp)) then
+         t_touch = t_from
          return
       end if
-      if (tb >= huge(1.0_wp)) then
-         t_touch = ta
-         return
-      end if
-      call slot_gap_at(engine, s, tb, gap_b, rate_b)
-      rate_low = rate_b
-      ! a wall's gap also feels gravity, either way
-      if (s == 0 .or. s == engine%n) rate_low = rate_low - abs(engine%gravity) * (tb - ta)
-      if (gap_a + min(0.0_wp, rate_low) * (tb - ta) > 0.0_wp) return
-      if (level >= max_depth) then
-         t_touch = ta
-         return
-      end if
-      tm = 0.5_wp * (ta + tb)
-      if (.not. (tm > ta .and. tm < tb)) then
-         t_touch = ta
-         return
-      end if
-      t_touch = first_possible_touch(engine, s, ta, tm, level + 1)
-      if (t_touch < huge(1.0_wp)) return
-      t_touch = first_possible_touch(engine, s, tm, tb, level + 1)
+      ! a stack of the subintervals still to settle, the leftmost on top
+      top = 1
+      ta(1) = t_from
+      tb(1) = t_to
+      depth(1) = 0
+      evaluations = 0
+      do while (top > 0)
+         evaluations = evaluations + 1
+         call slot_gap_at(engine, s, ta(top), gap_a, rate_a)
+         if (.not. gap_a > 0.0_wp .or. evaluations > max_bounds) then
+            t_touch = ta(top)
+            return
+         end if
+         call slot_gap_at(engine, s, tb(top), gap_b, rate_b)
+         rate_low = rate_b
+         ! a wall's gap also feels gravity, either way
+         if (s == 0 .or. s == engine%n) rate_low = rate_low - abs(engine%gravity) &
+            & * (tb(top) - ta(top))
+         if (gap_a + min(0.0_wp, rate_low) * (tb(top) - ta(top)) > 0.0_wp) then
+            ! settled: open throughout
+            top = top - 1
+            cycle
+         end if
+         level = depth(top)
+         tm = 0.5_wp * (ta(top) + tb(top))
+         if (level >= max_depth .or. .not. (tm > ta(top) .and. tm < tb(top))) then
+            t_touch = ta(top)
+            return
+         end if
+         ! replace by its halves, the left one on top
+         tb(top + 1) = tm
+         ta(top + 1) = ta(top)
+         ta(top) = tm
+         depth(top) = level + 1
+         depth(top + 1) = level + 1
+         top = top + 1
+      end do
    end function first_possible_touch
 
    ! =================================================================================
