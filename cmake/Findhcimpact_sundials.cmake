@@ -113,14 +113,16 @@ if(_hcsun_need_modules)
 endif()
 
 # Link order: Fortran wrappers before the C libraries they call.
+# Dense matrices and solvers for one impact, band ones for the systems of bodies.
 set(_hcsun_names
   sundials_fcvode_mod sundials_fnvecserial_mod sundials_fsunmatrixdense_mod
-  sundials_fsunlinsoldense_mod
-  sundials_cvode sundials_nvecserial sundials_sunmatrixdense sundials_sunlinsoldense)
+  sundials_fsunlinsoldense_mod sundials_fsunmatrixband_mod sundials_fsunlinsolband_mod
+  sundials_cvode sundials_nvecserial sundials_sunmatrixdense sundials_sunlinsoldense
+  sundials_sunmatrixband sundials_sunlinsolband)
 set(_hcsun_optional "")
 if(HCIMPACT_SUNDIALS_VERSION_MAJOR AND NOT HCIMPACT_SUNDIALS_VERSION_MAJOR LESS 7)
   # SUNDIALS 7 moved SUNContext and friends into sundials_core.
-  list(INSERT _hcsun_names 4 sundials_fcore_mod)
+  list(INSERT _hcsun_names 6 sundials_fcore_mod)
   list(APPEND _hcsun_names sundials_core)
 else()
   # SUNDIALS 6 keeps them in sundials_generic, which the shared libraries pull

@@ -5,21 +5,22 @@
 # The floors of the core library (README "Architecture"): a module of
 # src/hcimpact/<floor>/ may use modules of its own floor and of the floors below
 # it, never of a floor above. The floors, from the bottom: base (the files directly
-# in src/hcimpact/), numerics, special, model, impact, then capi and f77 (the
+# in src/hcimpact/), numerics, special, model, impact, system, then capi and f77 (the
 # bindings, which may use each other's floor only through the ones below).
 
 if(NOT SOURCE_DIR)
   message(FATAL_ERROR "usage: cmake -DSOURCE_DIR=<dir> -P check_floors.cmake")
 endif()
 
-set(floor_names base numerics special model impact capi f77)
+set(floor_names base numerics special model impact system capi f77)
 set(level_base 0)
 set(level_numerics 1)
 set(level_special 2)
 set(level_model 3)
 set(level_impact 4)
-set(level_capi 5)
-set(level_f77 5)
+set(level_system 5)
+set(level_capi 6)
+set(level_f77 6)
 
 # module name -> floor, from the file that defines it
 file(GLOB_RECURSE sources "${SOURCE_DIR}/src/hcimpact/*.f90")

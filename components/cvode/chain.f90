@@ -1,0 +1,855 @@
+! SPDX-License-Identifier: Apache-2.0
+!> Systems of bodies on a line with CVODE for their clusters: `chain_simulate`.
+!>
+!> The event-driven engine of the core (hcimpact_chain_engine) computes every isolated
+!> contact by the closed forms and hands each cluster of overlapping contacts to the
+!> integrator of this module: SUNDIALS CVODE (BDF or Adams) with the band linear solver
+!> on the region's banded Jacobian (hcimpact_cvode_chain_system, from the contact-force
+!> element's derivatives), root finding on every contact's start and end, largest
+!> deformation and force peak, and the dissipated energy of every contact integrated
+!> with the motion. One step costs O(m) for a region of m bodies.
+!>
+!> Tolerances: CVODE's relative tolerance is options%rtol; the absolute tolerances are
+!> rtol times the natural scales of the region (the smallest maximum compression of
+!> its contacts at its largest relative speed, or the static compression under
+!> gravity; that speed; the kinetic energy of that speed).
+!>
+!> The state reaches the callbacks only through CVODE's user data (a region owned by
+!> the integrator of one call): simulations in different threads share nothing.
+module hcimpact_cvode_chain
+   use, intrinsic :: iso_c_binding, only : c_int, c_long, c_double, c_ptr, c_int64_t, &
+      & c_null_ptr, c_loc, c_funloc, c_f_pointer, c_associated
+   use, intrinsic :: iso_fortran_env, only : int64
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use, intrinsic :: ieee_exceptions, only : ieee_flag_type, ieee_overflow, ieee_invalid, &
+      & ieee_divide_by_zero, ieee_get_halting_mode, ieee_set_halting_mode, ieee_get_flag, &
+      & ieee_set_flag, ieee_support_halting
+   use hcimpact_kinds, only : wp, nan
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_solver
+   use hcimpact_force_element, only : contact_force_type
+   use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
+      & contact_record, by_integration, integrator_adams, method_integrated
+   use hcimpact_chain_engine, only : chain_engine, cluster_integrator, run_engine, &
+      & slot_gap0, slot_law, slot_exists, engine_record, capture_margin, advance_reached, &
+      & advance_grow_left, advance_grow_right, advance_dissolved, advance_captured, &
+      & advance_failed
+   use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
+      & region_jacobian, slot_state, dissipation_index, force_rate, &
+      & upper_band, lower_band, slot_none, slot_pair, slot_left_wall, &
+      & slot_right_wall, slot_boundary_left, slot_boundary_right
+   use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
+      & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
+      & context_create, context_free, capture_errors
+   use hcimpact_cvode_solver, only : cvode_flag_name
+   use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSetUserData, &
+      & FCVodeWFtolerances, FCVodeSetLinearSolver, FCVodeSetJacFn, &
+      & FCVodeSetMaxNumSteps, FCVodeSetMaxHnilWarns, FCVodeSetInitStep, FCVode, &
+      & FCVodeFree, FCVodeSetStopTime, FCVodeGetDky, FCVodeGetNumRhsEvals, &
+      & FCVodeGetNumJacEvals, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS, &
+      & CV_TSTOP_RETURN
+   use fnvector_serial_mod, only : FN_VMake_Serial
+   use fsunmatrix_band_mod, only : FSUNBandMatrix, FSUNBandMatrix_Data, &
+      & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
+   use fsunlinsol_band_mod, only : FSUNLinSol_Band
+   implicit none
+   private
+
+   public :: chain_simulate, cvode_chain_integrator
+
+   !> The exceptions a caller may trap (-ffpe-trap=invalid,zero,overflow)
+   type(ieee_flag_type), parameter :: trapped(3) = [ieee_overflow, ieee_invalid, &
+      & ieee_divide_by_zero]
+
+   !> A contact of the region in progress
+   type :: open_contact
+      logical :: open = .false.
+      !> Start, approach speed, dissipated energy at the start (the state's e), and
+      !> what the record holds so far (largest force, deformation; energy dissipated
+      !> before this region)
+      real(wp) :: t_start = nan, approach = nan, e_base = 0.0_wp, peak = 0.0_wp, &
+         & deformation = 0.0_wp, earlier = 0.0_wp
+   end type open_contact
+
+   !> A slot at the end of the last step: time, deformation, its rate, force, the
+   !> force's rate and the energy dissipated in it so far
+   type :: slot_history
+      real(wp) :: t = 0.0_wp, x = 0.0_wp, w = 0.0_wp, f = 0.0_wp, df = 0.0_wp, &
+         & e = 0.0_wp
+   end type slot_history
+
+   !> CVODE on a region of a chain
+   type, extends(cluster_integrator) :: cvode_chain_integrator
+      type(chain_region), pointer :: region => null()
+      real(c_double), pointer :: y(:) => null(), atol(:) => null()
+      type(c_ptr) :: ctx = c_null_ptr, mem = c_null_ptr
+      type(N_Vector), pointer :: y_vec => null(), atol_vec => null()
+      type(SUNMatrix), pointer :: jac_mat => null()
+      type(SUNLinearSolver), pointer :: lin_sol => null()
+      type(open_contact), allocatable :: contact(:)
+      type(slot_history), allocatable :: history(:)
+      logical :: captured = .false.
+      integer(int64) :: rhs_base = 0, jac_base = 0
+   contains
+      procedure :: begin => region_begin
+      procedure :: advance => region_advance
+      procedure :: state_at => region_state_at
+      procedure :: finish => region_finish
+   end type cvode_chain_integrator
+
+contains
+
+   !> A system of bodies on a line: the closed forms where contacts are isolated,
+   !> CVODE for clusters (options%method: auto, exact or integrated). The result as in
+   !> hcimpact_chain_types; doc/chains.md.
+   !>
+   !> Errors: those of `check_chain` (size, not finite, mass, the laws, domain);
+   !> hcimpact_err_unavailable for a cluster with method exact; hcimpact_err_solver
+   !> when CVODE fails (the message names its flag); hcimpact_err_no_convergence for
+   !> more than options%max_events contacts (give t_end) or max_steps steps.
+   subroutine chain_simulate(chain, result, stat, options)
+      !> The system
+      type(chain_type), intent(in) :: chain
+      !> What is computed
+      type(chain_result), intent(out) :: result
+      !> Status: hcimpact_ok or an error code of hcimpact_status
+      integer, intent(out) :: stat
+      !> How (defaults: auto, until no contact can happen, rtol 1e-10, BDF)
+      type(chain_options), intent(in), optional :: options
+      type(cvode_chain_integrator) :: integrator
+      type(chain_options) :: opts
+      if (present(options)) opts = options
+      call run_engine(chain, opts, result, stat, integrator)
+      call release_all(integrator)
+   end subroutine chain_simulate
+
+   ! =================================================================================
+   ! The integrator
+   ! =================================================================================
+
+   !> Start CVODE on the engine's region at engine%time.
+   subroutine region_begin(self, engine, stat)
+      class(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(out) :: stat
+      integer :: m, k, i, j, s, n_state, smu
+      integer(c_int) :: ierr
+      real(wp) :: x, w, v_ref, x_ref, x_max, mu, e_ref, total
+      type(contact_force_type) :: e
+      type(contact_law) :: law
+      character(len=40) :: where
+
+      stat = hcimpact_ok
+      call release_all(self)
+      m = engine%last - engine%first + 1
+      allocate(self%region)
+      self%region%m = m
+      self%region%gravity = engine%gravity
+      allocate(self%region%mass(m), self%region%kind(0:m), self%region%law(0:m), &
+         & self%region%gap0(0:m))
+      self%region%mass = engine%chain%mass(engine%first:engine%last)
+      do j = 0, m
+         s = engine%first - 1 + j
+         self%region%kind(j) = slot_none
+         self%region%gap0(j) = 0.0_wp
+         if (s < 0 .or. s > engine%n) cycle
+         if (.not. slot_exists(engine, s)) cycle
+         self%region%law(j) = slot_law(engine, s)
+         self%region%gap0(j) = slot_gap0(engine, s)
+         if (j == 0) then
+            if (s == 0) then
+               self%region%kind(j) = slot_left_wall
+            else
+               self%region%kind(j) = slot_boundary_left
+               self%region%out_t0(1) = engine%body(s)%t0
+               self%region%out_u0(1) = engine%body(s)%u0
+               self%region%out_v0(1) = engine%body(s)%v0
+            end if
+         else if (j == m) then
+            if (s == engine%n) then
+               self%region%kind(j) = slot_right_wall
+            else
+               self%region%kind(j) = slot_boundary_right
+               self%region%out_t0(2) = engine%body(s + 1)%t0
+               self%region%out_u0(2) = engine%body(s + 1)%u0
+               self%region%out_v0(2) = engine%body(s + 1)%v0
+            end if
+         else
+            self%region%kind(j) = slot_pair
+         end if
+      end do
+      n_state = region_size(m)
+      allocate(self%y(n_state), self%atol(n_state))
+      do k = 1, m
+         i = engine%first + k - 1
+         ! the engine's states are at engine%time (t0 = engine%time)
+         self%y(3 * k - 2) = engine%body(i)%u0 + (engine%body(i)%v0 + 0.5_wp * &
+            & engine%gravity * (engine%time - engine%body(i)%t0)) &
+            & * (engine%time - engine%body(i)%t0)
+         self%y(3 * k - 1) = engine%body(i)%v0 + engine%gravity &
+            & * (engine%time - engine%body(i)%t0)
+      end do
+      self%y(3::3) = 0.0_wp
+      self%y(n_state) = 0.0_wp
+
+      ! scales: the largest relative speed, the smallest maximum compression at it
+      v_ref = 0.0_wp
+      do k = 1, m
+         v_ref = max(v_ref, abs(self%y(3 * k - 1)))
+      end do
+      v_ref = 2.0_wp * v_ref
+      total = sum(self%region%mass)
+      x_ref = huge(1.0_wp)
+      e_ref = 0.0_wp
+      do j = 0, m
+         if (self%region%kind(j) == slot_none .or. self%region%kind(j) == slot_boundary_left &
+            & .or. self%region%kind(j) == slot_boundary_right) cycle
+         law = self%region%law(j)
+         if (self%region%kind(j) == slot_pair) then
+            mu = self%region%mass(j) * (self%region%mass(j + 1) / (self%region%mass(j) &
+               & + self%region%mass(j + 1)))
+         else if (self%region%kind(j) == slot_left_wall) then
+            mu = self%region%mass(1)
+         else
+            mu = self%region%mass(m)
+         end if
+         x_max = 0.0_wp
+         if (v_ref > 0.0_wp) x_max = ((law%exponent + 1.0_wp) * mu * v_ref**2 &
+            & / (2.0_wp * law%stiffness))**(1.0_wp / (law%exponent + 1.0_wp))
+         if (engine%gravity /= 0.0_wp) x_max = max(x_max, (total * abs(engine%gravity) &
+            & / law%stiffness)**(1.0_wp / law%exponent))
+         if (x_max > 0.0_wp) x_ref = min(x_ref, x_max)
+         e_ref = max(e_ref, 0.5_wp * mu * v_ref**2)
+      end do
+      if (.not. (x_ref > 0.0_wp .and. x_ref < huge(1.0_wp))) x_ref = 1.0e-6_wp
+      if (.not. v_ref > 0.0_wp) v_ref = sqrt(abs(engine%gravity) * x_ref)
+      if (.not. v_ref > 0.0_wp) v_ref = 1.0_wp
+      if (.not. e_ref > 0.0_wp) e_ref = 0.5_wp * total * v_ref**2
+      do k = 1, m
+         self%atol(3 * k - 2) = engine%options%rtol * x_ref
+         self%atol(3 * k - 1) = engine%options%rtol * v_ref
+         self%atol(3 * k) = engine%options%rtol * e_ref
+      end do
+      self%atol(n_state) = engine%options%rtol * e_ref
+      self%region%rtol = engine%options%rtol
+      self%region%scale = [x_ref, v_ref, e_ref]
+
+      ! the contacts in progress: handed over by the closed forms or an earlier region;
+      ! and every slot's state now, the start of the first step's interpolants
+      allocate(self%contact(0:m), self%history(0:m))
+      do j = 0, m
+         s = engine%first - 1 + j
+         if (self%region%kind(j) == slot_none) cycle
+         call slot_state(self%region, j, engine%time, self%y, x, w, e)
+         self%history(j) = slot_history(engine%time, x, w, e%force, 0.0_wp, 0.0_wp)
+         if (self%region%kind(j) == slot_boundary_left .or. self%region%kind(j) == &
+            & slot_boundary_right) cycle
+         if (engine%exact(s)%handed) then
+            self%contact(j) = open_contact(open=.true., t_start=engine%exact(s)%t_start, &
+               & approach=engine%exact(s)%contact%velocity, e_base=0.0_wp, &
+               & peak=engine%exact(s)%so_far_peak, &
+               & deformation=engine%exact(s)%so_far_deformation, &
+               & earlier=engine%exact(s)%so_far_dissipated)
+            engine%exact(s)%handed = .false.
+         else if (x >= 0.0_wp) then
+            ! in contact, or touching: a touching pair that is pushed is in contact
+            ! from now
+            call open_at(self, j, engine%time, max(w, 0.0_wp), 0.0_wp)
+         end if
+      end do
+      self%captured = .false.
+
+      ! CVODE is not written for trapping floating-point exceptions (module header of
+      ! hcimpact_cvode_solver): halting off while it runs, back on in the callbacks
+      self%region%halting = .false.
+      if (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_invalid) &
+         & .and. ieee_support_halting(ieee_divide_by_zero)) then
+         call ieee_get_halting_mode(trapped, self%region%halting)
+         call ieee_set_halting_mode(trapped, .false.)
+      end if
+
+      setup: block
+         where = "SUNContext_Create"
+         ierr = context_create(self%ctx)
+         if (ierr /= 0) exit setup
+         where = "N_VMake_Serial"
+         ierr = -1
+         self%y_vec => FN_VMake_Serial(int(n_state, c_int64_t), self%y, self%ctx)
+         self%atol_vec => FN_VMake_Serial(int(n_state, c_int64_t), self%atol, self%ctx)
+         if (.not. (associated(self%y_vec) .and. associated(self%atol_vec))) exit setup
+         where = "CVodeCreate"
+         if (engine%options%integrator == integrator_adams) then
+            self%mem = FCVodeCreate(CV_ADAMS, self%ctx)
+         else
+            self%mem = FCVodeCreate(CV_BDF, self%ctx)
+         end if
+         if (.not. c_associated(self%mem)) exit setup
+         where = "CVodeSetErrHandler"
+         ierr = capture_errors(self%ctx, self%mem, c_null_ptr)
+         if (ierr /= 0) exit setup
+         where = "CVodeInit"
+         ierr = FCVodeInit(self%mem, c_funloc(chain_rhs_callback), real(engine%time, c_double), &
+            & self%y_vec)
+         if (ierr /= CV_SUCCESS) exit setup
+         where = "CVodeSetUserData"
+         ierr = FCVodeSetUserData(self%mem, c_loc(self%region))
+         if (ierr /= CV_SUCCESS) exit setup
+         where = "CVodeWFtolerances"
+         ierr = FCVodeWFtolerances(self%mem, c_funloc(chain_error_weights))
+         if (ierr /= CV_SUCCESS) exit setup
+         where = "SUNBandMatrix"
+         ierr = -1
+         self%jac_mat => FSUNBandMatrix(int(n_state, c_int64_t), &
+            & int(min(upper_band, n_state - 1), c_int64_t), &
+            & int(min(lower_band, n_state - 1), c_int64_t), self%ctx)
+         if (.not. associated(self%jac_mat)) exit setup
+         where = "SUNLinSol_Band"
+         self%lin_sol => FSUNLinSol_Band(self%y_vec, self%jac_mat, self%ctx)
+         if (.not. associated(self%lin_sol)) exit setup
+         where = "CVodeSetLinearSolver"
+         ierr = FCVodeSetLinearSolver(self%mem, self%lin_sol, self%jac_mat)
+         if (ierr /= CV_SUCCESS) exit setup
+         where = "CVodeSetJacFn"
+         ierr = FCVodeSetJacFn(self%mem, c_funloc(chain_jacobian_callback))
+         if (ierr /= CV_SUCCESS) exit setup
+         where = "CVodeSetInitStep"
+         ierr = FCVodeSetInitStep(self%mem, real(0.01_wp * sqrt(engine%options%rtol) &
+            & * x_ref / v_ref, c_double))
+         if (ierr /= CV_SUCCESS) exit setup
+         where = "CVodeSetMaxNumSteps"
+         ierr = FCVodeSetMaxNumSteps(self%mem, int(huge(1_c_int), c_long))
+         if (ierr /= CV_SUCCESS) exit setup
+         where = "CVodeSetMaxHnilWarns"
+         ierr = FCVodeSetMaxHnilWarns(self%mem, -1_c_int)
+         if (ierr /= CV_SUCCESS) exit setup
+      end block setup
+      if (ierr /= 0) then
+         stat = hcimpact_err_solver
+         engine%message = "CVODE setup failed in " // trim(where) // ": " &
+            & // cvode_flag_name(ierr)
+         call release_all(self)
+         return
+      end if
+      smu = 0
+      self%rhs_base = 0
+      self%jac_base = 0
+   end subroutine region_begin
+
+   !> Integrate until t_stop or an event that the engine must handle.
+   subroutine region_advance(self, engine, t_stop, what, stat)
+      class(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      real(wp), intent(in) :: t_stop
+      integer, intent(out) :: what, stat
+      integer(c_int) :: ierr
+      real(c_double) :: tret(1)
+      integer :: m
+      real(wp) :: u(self%region%m), v(self%region%m)
+      logical :: ended
+
+      stat = hcimpact_ok
+      what = advance_reached
+      m = self%region%m
+      if (t_stop < huge(1.0_wp)) then
+         if (.not. t_stop > engine%time) return
+         ierr = FCVodeSetStopTime(self%mem, real(t_stop, c_double))
+      end if
+      do
+         if (engine%counters%steps >= engine%options%max_steps) then
+            stat = hcimpact_err_solver
+            write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", engine%time, &
+               & " s: more than options%max_steps = ", engine%options%max_steps, " steps"
+            what = advance_failed
+            return
+         end if
+         ! (one step: tout gives only the direction; a huge one upsets CVODE's first step)
+         ierr = FCVode(self%mem, real(min(t_stop, engine%time + 1.0_wp), c_double), &
+            & self%y_vec, tret, CV_ONE_STEP)
+         if (ierr < 0) then
+            stat = hcimpact_err_solver
+            write(engine%message, '(a, es10.3, a)') "CVODE failed at t = ", tret(1), &
+               & " s: " // cvode_flag_name(ierr)
+            what = advance_failed
+            return
+         end if
+         engine%time = tret(1)
+         engine%counters%steps = engine%counters%steps + 1
+         ! the contacts over the step: extrema, starts, ends, a boundary that closed
+         call follow_contacts(self, engine, what, ended)
+         if (what /= advance_reached) return
+         ! apart: back to the closed forms; with the integrated method only once no
+         ! contact can ever happen again (the rest is free flight)
+         if (ended) then
+            if (separated(self, engine)) then
+               if (engine%options%method /= method_integrated .or. &
+                  & never_again(self, engine)) then
+                  what = advance_dissolved
+                  return
+               end if
+            end if
+         end if
+         ! at rest on a wall under gravity, for good (reported once per region)
+         if (engine%gravity /= 0.0_wp .and. .not. self%captured) then
+            u = self%y(1:3 * m:3)
+            v = self%y(2:3 * m:3)
+            if (capture_margin(engine, u, v) < 0.0_wp) then
+               self%captured = .true.
+               what = advance_captured
+               return
+            end if
+         end if
+         if (ierr == CV_TSTOP_RETURN .or. tret(1) >= t_stop) return
+      end do
+   end subroutine region_advance
+
+   !> After a step, slot by slot, from the cubic Hermite interpolant of each slot's
+   !> deformation x (with its rate w = x') between the step's ends:
+   !> - a contact starts where x rises through 0, ends where it falls through 0 (both
+   !>   times from the interpolant), and a contact that started and ended within the
+   !>   step is recorded too;
+   !> - the largest deformation and force of an open contact (the force's interpolant
+   !>   with dF/dt);
+   !> - a boundary gap that closed: the region goes back to that instant (CVODE's own
+   !>   interpolant of the whole state) and asks to grow (what).
+   !> CVODE's root finding is not used: functions that vanish at the start and end of
+   !> every contact, thousands of times in a chain, made it stall at noise level.
+   subroutine follow_contacts(self, engine, what, ended)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(out) :: what
+      !> A contact ended
+      logical, intent(out) :: ended
+      real(wp), allocatable :: dy(:)
+      real(wp) :: x, w, df, h, t0, tc, wc
+      type(contact_force_type) :: e
+      type(slot_history) :: last
+      integer :: j, m
+      logical :: ok
+
+      what = advance_reached
+      ended = .false.
+      m = self%region%m
+      allocate(dy(size(self%y)))
+      call region_rhs(self%region, engine%time, self%y, dy, ok)
+      do j = 0, m
+         if (self%region%kind(j) == slot_none) cycle
+         call slot_state(self%region, j, engine%time, self%y, x, w, e)
+         last = self%history(j)
+         t0 = last%t
+         h = engine%time - t0
+         select case (self%region%kind(j))
+         case (slot_boundary_left, slot_boundary_right)
+            if (x > 0.0_wp) then
+               ! back to where the gap closed, then grow
+               call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
+               call rewind(self, engine, t0 + tc)
+               what = advance_grow_left
+               if (self%region%kind(j) == slot_boundary_right) what = advance_grow_right
+               return
+            end if
+            self%history(j) = slot_history(engine%time, x, w, 0.0_wp, 0.0_wp)
+            cycle
+         end select
+         df = force_rate(self%region, j, dy, w, e)
+         if (.not. self%contact(j)%open) then
+            if (x > 0.0_wp .and. h > 0.0_wp) then
+               ! started in the step
+               call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
+               call open_at(self, j, t0 + tc, max(wc, 0.0_wp), last%e)
+            else if (x > 0.0_wp) then
+               call open_at(self, j, engine%time, max(w, 0.0_wp), self%y(dissipation_index(m, j)))
+            else if (h > 0.0_wp .and. last%x <= 0.0_wp .and. &
+               & hermite_max(last%x, last%w, x, w, h) > 0.0_wp) then
+               ! started and ended within the step
+               call open_at(self, j, t0 + h * 0.5_wp, max(last%w, 0.0_wp), last%e)
+               self%contact(j)%deformation = hermite_max(last%x, last%w, x, w, h)
+            end if
+         end if
+         if (self%contact(j)%open) then
+            if (h > 0.0_wp) then
+               self%contact(j)%deformation = max(self%contact(j)%deformation, &
+                  & hermite_max(last%x, last%w, x, w, h))
+               self%contact(j)%peak = max(self%contact(j)%peak, &
+                  & hermite_max(last%f, last%df, e%force, df, h))
+            end if
+            self%contact(j)%peak = max(self%contact(j)%peak, e%force)
+            self%contact(j)%deformation = max(self%contact(j)%deformation, x)
+            ! the gap has opened: the contact ended in the step
+            if (x < 0.0_wp .or. (x == 0.0_wp .and. w < 0.0_wp)) then
+               tc = h
+               wc = w
+               if (h > 0.0_wp .and. last%x > 0.0_wp) &
+                  & call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
+               call close_contact(self, engine, j, engine%first - 1 + j, t0 + tc, wc)
+               ended = .true.
+            end if
+         end if
+         self%history(j) = slot_history(engine%time, x, w, e%force, df, &
+            & self%y(dissipation_index(m, j)))
+      end do
+   end subroutine follow_contacts
+
+   !> The time (from the step's start, in [0, h]) where the cubic Hermite interpolant
+   !> with values x0, x1 and slopes w0, w1 at the ends of the step crosses 0, and its
+   !> slope there (bisection, x0 and x1 of opposite signs or one zero).
+   pure subroutine hermite_crossing(x0, w0, x1, w1, h, tc, wc)
+      real(wp), intent(in) :: x0, w0, x1, w1, h
+      real(wp), intent(out) :: tc, wc
+      real(wp) :: lo, hi, mid, b, c, p
+      integer :: it
+      ! p(t) = x0 + h w0 t + b t^2 + c t^3, t in [0, 1]
+      b = 3.0_wp * (x1 - x0) - h * (2.0_wp * w0 + w1)
+      c = 2.0_wp * (x0 - x1) + h * (w0 + w1)
+      lo = 0.0_wp
+      hi = 1.0_wp
+      do it = 1, 60
+         mid = 0.5_wp * (lo + hi)
+         p = x0 + mid * (h * w0 + mid * (b + mid * c))
+         if ((p > 0.0_wp) .eqv. (x0 > 0.0_wp)) then
+            lo = mid
+         else
+            hi = mid
+         end if
+      end do
+      mid = 0.5_wp * (lo + hi)
+      tc = h * mid
+      wc = 0.0_wp
+      if (h > 0.0_wp) wc = (h * w0 + mid * (2.0_wp * b + 3.0_wp * c * mid)) / h
+   end subroutine hermite_crossing
+
+   !> Put the region's state back to the time t within the last step (CVODE's
+   !> interpolant) and stop there.
+   subroutine rewind(self, engine, t)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      real(wp), intent(in) :: t
+      real(c_double), pointer :: dky(:)
+      type(N_Vector), pointer :: dky_vec
+      integer(c_int) :: ierr
+      allocate(dky(size(self%y)))
+      dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
+      ierr = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec)
+      if (ierr == CV_SUCCESS) then
+         self%y = dky
+         engine%time = t
+      end if
+      call FN_VDestroy(dky_vec)
+      deallocate(dky)
+   end subroutine rewind
+
+   !> Open the record of a contact of slot j that started at t_start with the
+   !> approach speed given, the slot's dissipated energy then being e_base.
+   subroutine open_at(self, j, t_start, approach, e_base)
+      type(cvode_chain_integrator), intent(inout) :: self
+      integer, intent(in) :: j
+      real(wp), intent(in) :: t_start, approach, e_base
+      self%contact(j) = open_contact(open=.true., t_start=t_start, approach=approach, &
+         & e_base=e_base, peak=0.0_wp, deformation=0.0_wp, earlier=0.0_wp)
+   end subroutine open_at
+
+   !> The largest value on [0, h] of the cubic with values p0, p1 and slopes d0, d1 at
+   !> its ends (both ends and an interior maximum where the slope turns negative).
+   pure real(wp) function hermite_max(p0, d0, p1, d1, h)
+      real(wp), intent(in) :: p0, d0, p1, d1, h
+      real(wp) :: b, c, a2, disc, t, roots(2)
+      integer :: k
+      hermite_max = max(p0, p1)
+      if (.not. (d0 > 0.0_wp .and. d1 <= 0.0_wp)) return
+      ! p(t) = p0 + h d0 t + b t^2 + c t^3 on t in [0, 1]
+      b = 3.0_wp * (p1 - p0) - h * (2.0_wp * d0 + d1)
+      c = 2.0_wp * (p0 - p1) + h * (d0 + d1)
+      ! p'(t) = h d0 + 2 b t + 3 c t^2
+      a2 = 3.0_wp * c
+      if (abs(a2) <= epsilon(1.0_wp) * abs(b)) then
+         if (b /= 0.0_wp) then
+            t = -h * d0 / (2.0_wp * b)
+            if (t > 0.0_wp .and. t < 1.0_wp) hermite_max = max(hermite_max, &
+               & p0 + t * (h * d0 + t * (b + t * c)))
+         end if
+         return
+      end if
+      disc = b * b - a2 * h * d0
+      if (disc < 0.0_wp) return
+      roots(1) = (-b + sqrt(disc)) / a2
+      roots(2) = (-b - sqrt(disc)) / a2
+      do k = 1, 2
+         t = roots(k)
+         if (t > 0.0_wp .and. t < 1.0_wp) hermite_max = max(hermite_max, &
+            & p0 + t * (h * d0 + t * (b + t * c)))
+      end do
+   end function hermite_max
+
+   !> Record the contact of slot j that ends now (w: the deformation rate, < 0).
+   subroutine close_contact(self, engine, j, s, t_end, w)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: j, s
+      !> End time and the deformation rate then (< 0)
+      real(wp), intent(in) :: t_end, w
+      type(contact_record) :: r
+      self%contact(j)%open = .false.
+      ! a touching pair that never pressed was no contact
+      if (.not. (self%contact(j)%peak > 0.0_wp)) return
+      engine%counters%integrated_contacts = engine%counters%integrated_contacts + 1
+      r%pair = s
+      r%t_start = self%contact(j)%t_start
+      r%t_end = t_end
+      r%approach_speed = self%contact(j)%approach
+      r%separation_speed = max(-w, 0.0_wp)
+      r%peak_force = self%contact(j)%peak
+      r%max_deformation = self%contact(j)%deformation
+      r%dissipated = self%contact(j)%earlier + (self%y(dissipation_index(self%region%m, j)) &
+         & - self%contact(j)%e_base)
+      r%method = by_integration
+      call engine_record(engine, r)
+   end subroutine close_contact
+
+   !> Whether no contact of the region is active or closing (it can be dissolved).
+   function separated(self, engine) result(apart)
+      type(cvode_chain_integrator), intent(in) :: self
+      type(chain_engine), intent(in) :: engine
+      logical :: apart
+      integer :: j
+      real(wp) :: x, w
+      type(contact_force_type) :: e
+      apart = .true.
+      do j = 0, self%region%m
+         select case (self%region%kind(j))
+         case (slot_pair, slot_left_wall, slot_right_wall)
+            call slot_state(self%region, j, engine%time, self%y, x, w, e)
+            ! (a touching pair that has never pressed and does not approach is apart)
+            if (self%contact(j)%open .and. (self%contact(j)%peak > 0.0_wp .or. x > 0.0_wp &
+               & .or. w > 0.0_wp)) then
+               apart = .false.
+               return
+            end if
+            if (x > 0.0_wp .or. (x >= 0.0_wp .and. w > 0.0_wp)) then
+               apart = .false.
+               return
+            end if
+         end select
+      end do
+   end function separated
+
+   !> Whether no gap of the region can close again in free flight (every pair
+   !> separating or keeping its distance, no wall ahead).
+   function never_again(self, engine) result(never)
+      type(cvode_chain_integrator), intent(in) :: self
+      type(chain_engine), intent(in) :: engine
+      logical :: never
+      integer :: j
+      real(wp) :: x, w, g
+      type(contact_force_type) :: e
+      never = .true.
+      do j = 0, self%region%m
+         call slot_state(self%region, j, engine%time, self%y, x, w, e)
+         select case (self%region%kind(j))
+         case (slot_pair, slot_boundary_left, slot_boundary_right)
+            ! the common acceleration cancels: the rate stays w
+            if (w > 0.0_wp) never = .false.
+         case (slot_left_wall, slot_right_wall)
+            g = -engine%gravity
+            if (self%region%kind(j) == slot_right_wall) g = engine%gravity
+            ! the deformation -gap evolves as x + w tau + g tau^2/2
+            if (w > 0.0_wp .or. g > 0.0_wp) never = .false.
+         end select
+         if (.not. never) return
+      end do
+   end function never_again
+
+   !> Displacements and velocities of the region's bodies at the time t (within the
+   !> last step).
+   subroutine region_state_at(self, engine, t, u, v)
+      class(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(in) :: engine
+      real(wp), intent(in) :: t
+      real(wp), intent(out) :: u(:), v(:)
+      real(c_double), pointer :: dky(:)
+      type(N_Vector), pointer :: dky_vec
+      integer(c_int) :: ierr
+      integer :: m
+      m = self%region%m
+      if (t == engine%time) then
+         u = self%y(1:3 * m:3)
+         v = self%y(2:3 * m:3)
+         return
+      end if
+      allocate(dky(region_size(m)))
+      dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
+      ierr = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec)
+      if (ierr == CV_SUCCESS) then
+         u = dky(1:3 * m:3)
+         v = dky(2:3 * m:3)
+      else
+         u = self%y(1:3 * m:3)
+         v = self%y(2:3 * m:3)
+      end if
+      call FN_VDestroy(dky_vec)
+      deallocate(dky)
+   end subroutine region_state_at
+
+   !> Write the region's states at engine%time back into the engine and free CVODE;
+   !> a contact still in progress is left in its slot for the next region.
+   subroutine region_finish(self, engine)
+      class(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      integer :: k, i, j, s, m
+      if (.not. associated(self%region)) return
+      m = self%region%m
+      do k = 1, m
+         i = engine%first + k - 1
+         engine%body(i)%t0 = engine%time
+         engine%body(i)%u0 = self%y(3 * k - 2)
+         engine%body(i)%v0 = self%y(3 * k - 1)
+      end do
+      do j = 0, m
+         if (.not. allocated(self%contact)) exit
+         if (.not. self%contact(j)%open) cycle
+         s = engine%first - 1 + j
+         engine%exact(s)%handed = .true.
+         engine%exact(s)%active = .false.
+         engine%exact(s)%t_start = self%contact(j)%t_start
+         engine%exact(s)%contact%velocity = self%contact(j)%approach
+         engine%exact(s)%so_far_peak = self%contact(j)%peak
+         engine%exact(s)%so_far_deformation = self%contact(j)%deformation
+         engine%exact(s)%so_far_dissipated = self%contact(j)%earlier &
+            & + (self%y(dissipation_index(m, j)) - self%contact(j)%e_base)
+      end do
+      call add_counters(self, engine)
+      call release_all(self)
+   end subroutine region_finish
+
+   !> CVODE's right-hand side and Jacobian evaluations into the engine's counters.
+   subroutine add_counters(self, engine)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      integer(c_long) :: count(1)
+      integer(c_int) :: ierr
+      if (.not. c_associated(self%mem)) return
+      ierr = FCVodeGetNumRhsEvals(self%mem, count)
+      if (ierr == CV_SUCCESS) engine%counters%rhs_evals = engine%counters%rhs_evals + count(1)
+      ierr = FCVodeGetNumJacEvals(self%mem, count)
+      if (ierr == CV_SUCCESS) engine%counters%jacobian_evals = &
+         & engine%counters%jacobian_evals + count(1)
+   end subroutine add_counters
+
+   !> Free everything of the integrator (idempotent), and give the caller's halting
+   !> modes back.
+   subroutine release_all(self)
+      class(cvode_chain_integrator), intent(inout) :: self
+      integer(c_int) :: ierr
+      logical :: halting(3)
+      if (c_associated(self%mem)) call FCVodeFree(self%mem)
+      self%mem = c_null_ptr
+      if (associated(self%lin_sol)) ierr = FSUNLinSolFree(self%lin_sol)
+      if (associated(self%jac_mat)) call FSUNMatDestroy(self%jac_mat)
+      if (associated(self%atol_vec)) call FN_VDestroy(self%atol_vec)
+      if (associated(self%y_vec)) call FN_VDestroy(self%y_vec)
+      nullify(self%lin_sol, self%jac_mat, self%atol_vec, self%y_vec)
+      call context_free(self%ctx)
+      if (associated(self%y)) deallocate(self%y)
+      if (associated(self%atol)) deallocate(self%atol)
+      if (allocated(self%contact)) deallocate(self%contact)
+      if (allocated(self%history)) deallocate(self%history)
+      if (associated(self%region)) then
+         halting = self%region%halting
+         deallocate(self%region)
+         if (any(halting)) then
+            call ieee_set_flag(trapped, .false.)
+            call ieee_set_halting_mode(trapped, halting)
+         end if
+      end if
+   end subroutine release_all
+
+   ! =================================================================================
+   ! CVODE's callbacks
+   ! =================================================================================
+
+   !> CVRhsFn
+   function chain_rhs_callback(t, y, ydot, user_data) result(ierr) bind(C)
+      real(c_double), value :: t
+      type(N_Vector) :: y, ydot
+      type(c_ptr), value :: user_data
+      integer(c_int) :: ierr
+      type(chain_region), pointer :: region
+      real(c_double), pointer :: yv(:), dv(:)
+      logical :: ok, flags(3)
+      call c_f_pointer(user_data, region)
+      if (any(region%halting)) call traps_on(region, flags)
+      yv => FN_VGetArrayPointer(y)
+      dv => FN_VGetArrayPointer(ydot)
+      call region_rhs(region, real(t, wp), yv, dv, ok)
+      if (any(region%halting)) call traps_off(flags)
+      ierr = 0
+      ! a force beyond the double range: CVODE retries with a smaller step
+      if (.not. ok) ierr = 1
+   end function chain_rhs_callback
+
+   !> CVEwtFn: the error weights. A displacement's error is measured against
+   !> rtol x_ref, not against rtol |u|: the deformations, differences of displacements
+   !> that grow as the bodies move, must keep their accuracy however far the bodies
+   !> have gone. A velocity's against rtol (|v| + v_ref), a dissipated energy's
+   !> against rtol e_ref (region%scale).
+   function chain_error_weights(y, ewt, user_data) result(ierr) bind(C)
+      type(N_Vector) :: y, ewt
+      type(c_ptr), value :: user_data
+      integer(c_int) :: ierr
+      type(chain_region), pointer :: region
+      real(c_double), pointer :: yv(:), wv(:)
+      integer :: k, m
+      call c_f_pointer(user_data, region)
+      yv => FN_VGetArrayPointer(y)
+      wv => FN_VGetArrayPointer(ewt)
+      m = region%m
+      do k = 1, m
+         wv(3 * k - 2) = 1.0_c_double / (region%rtol * region%scale(1))
+         wv(3 * k - 1) = 1.0_c_double / (region%rtol * (abs(yv(3 * k - 1)) + region%scale(2)))
+         wv(3 * k) = 1.0_c_double / (region%rtol * region%scale(3))
+      end do
+      wv(3 * m + 1) = 1.0_c_double / (region%rtol * region%scale(3))
+      ierr = 0
+   end function chain_error_weights
+
+   !> CVLsJacFn: the band Jacobian
+   function chain_jacobian_callback(t, y, fy, jac_mat, user_data, tmp1, tmp2, tmp3) &
+         & result(ierr) bind(C)
+      real(c_double), value :: t
+      type(N_Vector) :: y, fy, tmp1, tmp2, tmp3
+      type(SUNMatrix) :: jac_mat
+      type(c_ptr), value :: user_data
+      integer(c_int) :: ierr
+      type(chain_region), pointer :: region
+      real(c_double), pointer :: yv(:), data(:), band(:, :)
+      integer :: ldim, smu, n
+      logical :: flags(3)
+      call c_f_pointer(user_data, region)
+      if (any(region%halting)) call traps_on(region, flags)
+      yv => FN_VGetArrayPointer(y)
+      n = region_size(region%m)
+      ldim = int(FSUNBandMatrix_LDim(jac_mat))
+      smu = int(FSUNBandMatrix_StoredUpperBandwidth(jac_mat))
+      data => FSUNBandMatrix_Data(jac_mat)
+      call c_f_pointer(c_loc(data(1)), band, [ldim, n])
+      band = 0.0_c_double
+      call region_jacobian(region, real(t, wp), yv, smu, band)
+      if (any(region%halting)) call traps_off(flags)
+      ierr = 0
+   end function chain_jacobian_callback
+
+   !> In a callback: the caller's halting modes back on, with the flags CVODE may have
+   !> raised set aside.
+   subroutine traps_on(region, flags)
+      type(chain_region), intent(in) :: region
+      logical, intent(out) :: flags(3)
+      call ieee_get_flag(trapped, flags)
+      call ieee_set_flag(trapped, .false.)
+      call ieee_set_halting_mode(trapped, region%halting)
+   end subroutine traps_on
+
+   !> Leaving a callback: halting off again for CVODE, its flags restored.
+   subroutine traps_off(flags)
+      logical, intent(in) :: flags(3)
+      call ieee_set_halting_mode(trapped, .false.)
+      call ieee_set_flag(trapped, flags)
+   end subroutine traps_off
+
+end module hcimpact_cvode_chain

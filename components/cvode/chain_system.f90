@@ -1,0 +1,259 @@
+! SPDX-License-Identifier: Apache-2.0
+!> A region of a system of bodies on a line as a first-order system for CVODE: the
+!> right-hand side and its banded Jacobian, the state of each contact. Nothing here
+!> knows about SUNDIALS (hcimpact_cvode_chain calls these procedures from its
+!> callbacks).
+!>
+!> The region holds the bodies k = 1 .. m (global first .. first + m - 1) and the slots
+!> j = 0 .. m around and between them: slot j is between local bodies j and j + 1; slot
+!> 0 is the left wall or the pair with the body outside on the left (a boundary, only
+!> watched), slot m likewise on the right. The state, per body k, is its displacement
+!> u_k, its velocity v_k and e_k, the energy dissipated so far in slot k - 1; the last
+!> component is that of slot m: y = (u_1, v_1, e_1, ..., u_m, v_m, e_m, e_(m+1)),
+!> 3 m + 1 values. Every force is the contact-force element's, clamped (no contact
+!> pulls), from the exact deformation and rate of the slot's two ends
+!> (contact_force_pair with the initial gap as the distance).
+!>
+!> Jacobian: v_k' depends on u and v of bodies k - 1, k, k + 1; u_k' = v_k. In the
+!> order above that is a band with 3 diagonals above the main one and 4 below
+!> (`upper_band`, `lower_band`): one step costs O(m). The e rows are left out of the
+!> Jacobian (zero): e_k' depends on u, v of bodies k - 1 and k only, and nothing
+!> depends on e, so Newton's iteration converges for them one iteration behind u and
+!> v.
+!>
+!> The starts and ends of contacts, and their extrema, are found by the driver from each
+!> step's cubic Hermite interpolant of every slot's deformation (hcimpact_cvode_chain).
+module hcimpact_cvode_chain_system
+   use hcimpact_kinds, only : wp
+   use hcimpact_force_element, only : contact_force_type, contact_force_pair
+   use hcimpact_chain_types, only : contact_law
+   implicit none
+   private
+
+   public :: chain_region, region_size, region_rhs, region_jacobian
+   public :: slot_state, dissipation_index, force_rate, upper_band, lower_band
+   public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
+      & slot_boundary_right
+
+   !> Bandwidths of the Jacobian in the order of the state (module header)
+   integer, parameter :: upper_band = 3, lower_band = 4
+
+   !> Kinds of slot
+   integer, parameter :: slot_none = 0, slot_pair = 1, slot_left_wall = 2, &
+      & slot_right_wall = 3, slot_boundary_left = 4, slot_boundary_right = 5
+
+   !> What the callbacks need of a region
+   type :: chain_region
+      !> Bodies in the region and the common acceleration (m/s^2)
+      integer :: m = 0
+      real(wp) :: gravity = 0.0_wp
+      !> Masses (m)
+      real(wp), allocatable :: mass(:)
+      !> Per slot 0 .. m: kind, law and gap at zero displacements
+      integer, allocatable :: kind(:)
+      type(contact_law), allocatable :: law(:)
+      real(wp), allocatable :: gap0(:)
+      !> The outside bodies of boundary slots (1 left, 2 right): free flight from t0
+      real(wp) :: out_t0(2) = 0.0_wp, out_u0(2) = 0.0_wp, out_v0(2) = 0.0_wp
+      !> The caller's halting modes (the driver turns halting off while CVODE runs)
+      logical :: halting(3) = .false.
+      !> The relative tolerance and the scales of the errors: deformation (m), speed
+      !> (m/s) and energy (J) (the driver's error weights)
+      real(wp) :: rtol = 1.0e-10_wp, scale(3) = 1.0_wp
+   end type chain_region
+
+contains
+
+   !> Index in the state of the energy dissipated in slot j (e_(j+1), the last value
+   !> for slot m)
+   pure integer function dissipation_index(m, j)
+      integer, intent(in) :: m, j
+      dissipation_index = 3 * j + 3
+      if (j == m) dissipation_index = 3 * m + 1
+   end function dissipation_index
+
+   !> Number of state values of a region of m bodies
+   pure integer function region_size(m)
+      integer, intent(in) :: m
+      region_size = 3 * m + 1
+   end function region_size
+
+   !> The two ends of slot j at the time t: positions (m) and velocities (m/s) of its
+   !> left and right side, and the distance of `contact_force_pair` (x = d - (qr - ql)).
+   pure subroutine slot_ends(region, j, t, y, ql, vl, qr, vr, d)
+      type(chain_region), intent(in) :: region
+      integer, intent(in) :: j
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: ql, vl, qr, vr, d
+      real(wp) :: tau
+      d = -region%gap0(j)
+      select case (region%kind(j))
+      case (slot_pair)
+         ql = y(3 * j - 2)
+         vl = y(3 * j - 1)
+         qr = y(3 * j + 1)
+         vr = y(3 * j + 2)
+      case (slot_left_wall)
+         ! the wall as a fixed left body at -gap0, distance 0
+         d = 0.0_wp
+         ql = -region%gap0(j)
+         vl = 0.0_wp
+         qr = y(1)
+         vr = y(2)
+      case (slot_right_wall)
+         d = 0.0_wp
+         ql = y(3 * region%m - 2)
+         vl = y(3 * region%m - 1)
+         qr = region%gap0(j)
+         vr = 0.0_wp
+      case (slot_boundary_left)
+         tau = t - region%out_t0(1)
+         ql = region%out_u0(1) + (region%out_v0(1) + 0.5_wp * region%gravity * tau) * tau
+         vl = region%out_v0(1) + region%gravity * tau
+         qr = y(1)
+         vr = y(2)
+      case (slot_boundary_right)
+         tau = t - region%out_t0(2)
+         ql = y(3 * region%m - 2)
+         vl = y(3 * region%m - 1)
+         qr = region%out_u0(2) + (region%out_v0(2) + 0.5_wp * region%gravity * tau) * tau
+         vr = region%out_v0(2) + region%gravity * tau
+      case default
+         ql = 0.0_wp
+         vl = 0.0_wp
+         qr = 0.0_wp
+         vr = 0.0_wp
+         d = -huge(1.0_wp)
+      end select
+   end subroutine slot_ends
+
+   !> Deformation x (m), its rate w (m/s) and the element of slot j at the time t
+   !> (a slot that exerts no force: boundary or none, has zero force).
+   pure subroutine slot_state(region, j, t, y, x, w, element)
+      type(chain_region), intent(in) :: region
+      integer, intent(in) :: j
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: x, w
+      type(contact_force_type), intent(out) :: element
+      real(wp) :: ql, vl, qr, vr, d
+      call slot_ends(region, j, t, y, ql, vl, qr, vr, d)
+      if (region%kind(j) == slot_none) then
+         x = -huge(1.0_wp)
+         w = 0.0_wp
+         element = contact_force_type(0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp)
+         return
+      end if
+      x = (d + ql) - qr
+      w = vl - vr
+      if (region%kind(j) == slot_boundary_left .or. region%kind(j) == slot_boundary_right) then
+         element = contact_force_type(0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp)
+         return
+      end if
+      call contact_force_pair(region%law(j)%stiffness, region%law(j)%exponent, &
+         & region%law(j)%damping, d, ql, vl, qr, vr, element)
+   end subroutine slot_state
+
+   !> Right-hand side dy/dt at the time t; ok false if a force is not finite.
+   pure subroutine region_rhs(region, t, y, dy, ok)
+      type(chain_region), intent(in) :: region
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: dy(:)
+      logical, intent(out) :: ok
+      type(contact_force_type) :: e
+      real(wp) :: x, w
+      integer :: k, j, m
+
+      m = region%m
+      ok = .true.
+      do k = 1, m
+         dy(3 * k - 2) = y(3 * k - 1)
+         dy(3 * k - 1) = region%gravity
+      end do
+      do j = 0, m
+         call slot_state(region, j, t, y, x, w, e)
+         if (.not. (abs(e%force) <= huge(1.0_wp) .and. abs(e%dissipation) <= huge(1.0_wp))) &
+            & ok = .false.
+         ! +F on the right body of the slot, -F on the left one
+         if (j >= 1) dy(3 * j - 1) = dy(3 * j - 1) - e%force / region%mass(j)
+         if (j < m) dy(3 * j + 2) = dy(3 * j + 2) + e%force / region%mass(j + 1)
+         dy(dissipation_index(m, j)) = e%dissipation
+      end do
+   end subroutine region_rhs
+
+   !> The Jacobian into band storage (SUNDIALS' band matrix seen as a Fortran array):
+   !> J(row, col) is band(smu + row - col + 1, col), smu the stored upper bandwidth.
+   !> Only the nonzero entries are added to (band zeroed by the caller).
+   pure subroutine region_jacobian(region, t, y, smu, band)
+      type(chain_region), intent(in) :: region
+      real(wp), intent(in) :: t, y(:)
+      integer, intent(in) :: smu
+      real(wp), intent(inout) :: band(:, :)
+      type(contact_force_type) :: e
+      real(wp) :: x, w, fx, fv, ml, mr
+      integer :: k, j, m, l, r
+
+      m = region%m
+      do k = 1, m
+         call band_add(band, smu, 3 * k - 2, 3 * k - 1, 1.0_wp)
+      end do
+      do j = 0, m
+         call slot_state(region, j, t, y, x, w, e)
+         fx = max(-huge(1.0_wp), min(e%dforce_dx, huge(1.0_wp)))
+         fv = max(-huge(1.0_wp), min(e%dforce_dv, huge(1.0_wp)))
+         if (fx == 0.0_wp .and. fv == 0.0_wp) cycle
+         select case (region%kind(j))
+         case (slot_pair)
+            l = j
+            r = j + 1
+            ml = region%mass(l)
+            mr = region%mass(r)
+            ! x = ... + u_l - u_r, w = v_l - v_r
+            call band_add(band, smu, 3 * l - 1, 3 * l - 2, -fx / ml)
+            call band_add(band, smu, 3 * l - 1, 3 * r - 2, fx / ml)
+            call band_add(band, smu, 3 * l - 1, 3 * l - 1, -fv / ml)
+            call band_add(band, smu, 3 * l - 1, 3 * r - 1, fv / ml)
+            call band_add(band, smu, 3 * r - 1, 3 * l - 2, fx / mr)
+            call band_add(band, smu, 3 * r - 1, 3 * r - 2, -fx / mr)
+            call band_add(band, smu, 3 * r - 1, 3 * l - 1, fv / mr)
+            call band_add(band, smu, 3 * r - 1, 3 * r - 1, -fv / mr)
+         case (slot_left_wall)
+            ! x = -(gap + u_1), w = -v_1; +F on body 1
+            call band_add(band, smu, 2, 1, -fx / region%mass(1))
+            call band_add(band, smu, 2, 2, -fv / region%mass(1))
+         case (slot_right_wall)
+            ! x = u_m - gap, w = v_m; -F on body m
+            call band_add(band, smu, 3 * m - 1, 3 * m - 2, -fx / region%mass(m))
+            call band_add(band, smu, 3 * m - 1, 3 * m - 1, -fv / region%mass(m))
+         end select
+      end do
+   end subroutine region_jacobian
+
+   !> J(row, col) += value in band storage (region_jacobian)
+   pure subroutine band_add(band, smu, row, col, value)
+      real(wp), intent(inout) :: band(:, :)
+      integer, intent(in) :: smu, row, col
+      real(wp), intent(in) :: value
+      band(smu + row - col + 1, col) = band(smu + row - col + 1, col) + value
+   end subroutine band_add
+
+   !> dF/dt of slot j: F_x w + F_v w', w' from the accelerations dy (region_rhs)
+   pure real(wp) function force_rate(region, j, dy, w, element)
+      type(chain_region), intent(in) :: region
+      integer, intent(in) :: j
+      real(wp), intent(in) :: dy(:), w
+      type(contact_force_type), intent(in) :: element
+      real(wp) :: wdot
+      select case (region%kind(j))
+      case (slot_pair)
+         wdot = dy(3 * j - 1) - dy(3 * j + 2)
+      case (slot_left_wall)
+         wdot = -dy(2)
+      case (slot_right_wall)
+         wdot = dy(3 * region%m - 1)
+      case default
+         wdot = 0.0_wp
+      end select
+      force_rate = element%dforce_dx * w + element%dforce_dv * wdot
+   end function force_rate
+
+end module hcimpact_cvode_chain_system

@@ -1,0 +1,1527 @@
+! SPDX-License-Identifier: Apache-2.0
+!> The event-driven engine of a system of bodies on a line: exact where contacts are
+!> isolated, an integrator (the CVODE component) for clusters, the switch decided with
+!> bounds that cannot be wrong.
+!>
+!> Between contacts every body flies freely with the common acceleration g. A contact
+!> of two bodies is a Hunt-Crossley impact of their relative motion (g cancels there),
+!> with the effective mass and the approach speed: its closed forms (hcimpact_impact_model)
+!> give its duration, the outgoing velocities and, through the time law, the state at
+!> any instant. A contact with a wall is one too when g = 0 (with g /= 0 the force of
+!> gravity acts inside the contact and no closed form exists: it is integrated).
+!>
+!> The decision. A contact of the pair (L, R) that starts at t_s is computed by the
+!> closed forms only if no other contact can start involving L or R before it ends at
+!> t_s + T. Inside a contact the velocity of each body is monotone (a contact only
+!> pushes: the left body slows down, the right one speeds up), so on any interval
+!> [ta, tb] the rate of a neighbouring gap is bounded below by its value at tb, and
+!> gap(t) >= gap(ta) + min(0, rate(tb)) (tb - ta) (minus |g| (tb - ta) for a wall, whose
+!> gap also feels gravity). The engine evaluates this bound on the whole contact and,
+!> where it cannot prove the gap positive, on halves of it (to 30 levels), with the
+!> exact states from the time law. A contact is called isolated only when the bound
+!> proves every neighbouring gap positive throughout: the decision may send an isolated
+!> contact to the integrator (when the bound is not sharp enough), never the reverse.
+!> The same bound watches every gap next to a contact in progress.
+!>
+!> Clusters. When a contact is not isolated, its bodies, every body in contact with
+!> them and every neighbour in a contact of its own form a contiguous region that an
+!> integrator (`cluster_integrator`, implemented by the CVODE component) integrates
+!> from that instant, with the states of the closed forms as initial values. The region
+!> grows when a body outside touches it, and dissolves, back to the closed forms, when
+!> no contact inside it is active or closing. Without an integrator (the core alone,
+!> or method_exact) a cluster is hcimpact_err_unavailable.
+!>
+!> Coordinates: every body's displacement u from its initial position (q_i(0) of
+!> hcimpact_chain_types) and its velocity; a gap is its initial value plus a difference
+!> of displacements, which keeps the deformation's relative accuracy far from the
+!> origin.
+module hcimpact_chain_engine
+   use, intrinsic :: iso_fortran_env, only : int64
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_positive_inf
+   use hcimpact_kinds, only : wp, nan
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_unavailable, &
+      & hcimpact_err_no_convergence, hcimpact_err_domain
+   use hcimpact_contact, only : contact_type, outcome_type
+   use hcimpact_impact_model, only : impact, time_law
+   use hcimpact_force_element, only : contact_force_type, contact_force_pair, &
+      & contact_force_wall
+   use hcimpact_power_force, only : power_law_potential
+   use hcimpact_chain_types, only : contact_law, chain_type, chain_options, contact_record, &
+      & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
+      & method_integrated, by_closed_forms, by_integration, max_message
+   implicit none
+   private
+
+   public :: chain_engine, cluster_integrator, run_engine
+   public :: slot_gap0, slot_law, slot_exists, body_state_at, engine_record
+   public :: capture_margin, rest_state
+   public :: advance_reached, advance_grow_left, advance_grow_right, advance_dissolved, &
+      & advance_captured, advance_failed
+
+   !> What `advance` of an integrator ended with
+   integer, parameter :: advance_reached = 0, advance_grow_left = 1, &
+      & advance_grow_right = 2, advance_dissolved = 3, advance_captured = 4, &
+      & advance_failed = 5
+
+   !> Kinds of the event of a slot
+   integer, parameter :: event_none = 0, event_start = 1, event_end = 2, event_cluster = 3
+
+   !> Levels of halving in the bound of a gap
+   integer, parameter :: max_depth = 30
+
+   !> A body as the closed forms see it
+   type :: body_state
+      !> Free flight: displacement and velocity at the time t0
+      real(wp) :: t0 = 0.0_wp, u0 = 0.0_wp, v0 = 0.0_wp
+      !> The slot of the contact the body is in (closed forms), -1 if none
+      integer :: busy = -1
+      !> In the integrated region
+      logical :: in_region = .false.
+   end type body_state
+
+   !> A contact computed by the closed forms (the slot of its pair)
+   type :: exact_contact
+      logical :: active = .false.
+      real(wp) :: t_start = nan, t_end = nan
+      !> The impact: effective mass, law, approach speed; and its outcome
+      type(contact_type) :: contact
+      type(outcome_type) :: outcome
+      !> Centre of mass of a pair at t_start: displacement and velocity
+      real(wp) :: ucm0 = nan, vcm0 = nan
+      !> Handed over to the integrator in the middle: what the closed forms had
+      !> computed of its record so far (dissipated energy, peak force, deformation)
+      logical :: handed = .false.
+      real(wp) :: so_far_dissipated = 0.0_wp, so_far_peak = 0.0_wp, so_far_deformation = 0.0_wp
+   end type exact_contact
+
+   !> The state of a whole computation
+   type :: chain_engine
+      !> Number of bodies and the common acceleration
+      integer :: n = 0
+      real(wp) :: gravity = 0.0_wp
+      type(chain_type) :: chain
+      type(chain_options) :: options
+      !> Current time
+      real(wp) :: time = 0.0_wp
+      type(body_state), allocatable :: body(:)
+      !> Contacts by slot 0 .. n, and the event of each slot
+      type(exact_contact), allocatable :: exact(:)
+      real(wp), allocatable :: event_time(:)
+      integer, allocatable :: event_kind(:)
+      !> Indexed binary heap of the slots by event time
+      integer, allocatable :: heap(:), heap_pos(:)
+      integer :: heap_size = 0
+      !> The integrated region: its bodies first .. last (0 0: none); whether the
+      !> integrator has begun it, and whether it has come to rest
+      integer :: first = 0, last = 0
+      logical :: region_begun = .false., region_rested = .false.
+      !> Records of the contacts that ended
+      type(contact_record), allocatable :: records(:)
+      integer :: n_records = 0
+      integer(int64) :: n_contacts = 0
+      !> Energy dissipated so far (J) and the counters
+      real(wp) :: dissipated = 0.0_wp
+      type(chain_counters) :: counters
+      type(chain_switch), allocatable :: switches(:)
+      integer :: n_switches = 0
+      !> Events processed (bounded by options%max_events)
+      integer(int64) :: events = 0
+      !> Rest on a wall under gravity
+      logical :: rested = .false.
+      real(wp) :: rest_time = nan
+      !> Samples done so far
+      integer :: next_sample = 1
+      real(wp), allocatable :: sample_u(:, :), sample_v(:, :), sample_f(:, :)
+      !> Initial positions q_i(0) and the failure message
+      real(wp), allocatable :: q_initial(:)
+      character(len=max_message) :: message = "success"
+   end type chain_engine
+
+   !> An integrator of a region of bodies (the CVODE component implements it). The
+   !> engine calls `begin` when a cluster forms (the region's bodies' states at
+   !> engine%time are in engine%body, u0 and v0 at t0 = engine%time), then `advance`
+   !> until it returns something else than advance_reached at the stop time, and
+   !> `finish`, which writes the states at engine%time back into engine%body (t0, u0,
+   !> v0). `state_at` gives the region's displacements and velocities at a time of the
+   !> last step. While a region exists its bodies' contacts are the integrator's: it
+   !> records them with `engine_record`.
+   type, abstract :: cluster_integrator
+   contains
+      procedure(integrator_begin), deferred :: begin
+      procedure(integrator_advance), deferred :: advance
+      procedure(integrator_state), deferred :: state_at
+      procedure(integrator_finish), deferred :: finish
+   end type cluster_integrator
+
+   abstract interface
+      !> Start integrating the region engine%first .. engine%last at engine%time
+      subroutine integrator_begin(self, engine, stat)
+         import :: cluster_integrator, chain_engine
+         class(cluster_integrator), intent(inout) :: self
+         type(chain_engine), intent(inout) :: engine
+         integer, intent(out) :: stat
+      end subroutine integrator_begin
+      !> Integrate until t_stop or an event; engine%time is set to where it stopped
+      subroutine integrator_advance(self, engine, t_stop, what, stat)
+         import :: cluster_integrator, chain_engine, wp
+         class(cluster_integrator), intent(inout) :: self
+         type(chain_engine), intent(inout) :: engine
+         real(wp), intent(in) :: t_stop
+         integer, intent(out) :: what, stat
+      end subroutine integrator_advance
+      !> Displacements and velocities of the region's bodies at the time t
+      subroutine integrator_state(self, engine, t, u, v)
+         import :: cluster_integrator, chain_engine, wp
+         class(cluster_integrator), intent(inout) :: self
+         type(chain_engine), intent(in) :: engine
+         real(wp), intent(in) :: t
+         real(wp), intent(out) :: u(:), v(:)
+      end subroutine integrator_state
+      !> Write the region's states at engine%time into engine%body and stop
+      subroutine integrator_finish(self, engine)
+         import :: cluster_integrator, chain_engine
+         class(cluster_integrator), intent(inout) :: self
+         type(chain_engine), intent(inout) :: engine
+      end subroutine integrator_finish
+   end interface
+
+contains
+
+   ! =================================================================================
+   ! The run
+   ! =================================================================================
+
+   !> Compute a system with the closed forms and, for clusters, the integrator given
+   !> (none: clusters are hcimpact_err_unavailable). The result as documented in
+   !> hcimpact_chain_types.
+   subroutine run_engine(chain, options, result, stat, integrator)
+      type(chain_type), intent(in) :: chain
+      type(chain_options), intent(in) :: options
+      type(chain_result), intent(out) :: result
+      integer, intent(out) :: stat
+      class(cluster_integrator), intent(inout), optional :: integrator
+      type(chain_engine) :: engine
+      real(wp) :: t_stop, t_event, t_end
+      integer :: what, slot
+      logical :: until_rest
+
+      call check_chain(chain, options, stat, result%message)
+      if (stat /= hcimpact_ok) return
+      if (options%method == method_integrated .and. .not. present(integrator)) then
+         stat = hcimpact_err_unavailable
+         result%message = "the integrated method needs the CVODE component"
+         return
+      end if
+      call setup(engine, chain, options)
+      until_rest = .not. options%t_end > 0.0_wp
+      t_end = huge(1.0_wp)
+      if (.not. until_rest) t_end = options%t_end
+
+      if (options%method == method_integrated) then
+         call form_region(engine, 1, engine%n, "the integrated method: the whole system")
+      else
+         call schedule_all(engine)
+      end if
+
+      main: do
+         if (engine%first > 0 .and. .not. engine%region_begun) then
+            call integrator%begin(engine, stat)
+            if (stat /= hcimpact_ok) exit main
+            engine%region_begun = .true.
+         end if
+         ! at rest for good, and nothing else can happen
+         if (until_rest .and. engine%region_rested .and. engine%heap_size == 0) then
+            call integrator%finish(engine)
+            call settle_at_rest(engine)
+            exit main
+         end if
+         if (engine%events >= options%max_events) then
+            stat = hcimpact_err_no_convergence
+            write(engine%message, '(a, i0, a)') "more than options%max_events = ", &
+               & options%max_events, " contacts and switches: give t_end (a system " // &
+               & "that never stops, e.g. bouncing without loss between walls)"
+            exit main
+         end if
+         t_event = huge(1.0_wp)
+         if (engine%heap_size > 0) t_event = engine%event_time(engine%heap(1))
+         t_stop = min(t_event, t_end, next_sample_time(engine))
+         if (engine%first > 0) then
+            call integrator%advance(engine, t_stop, what, stat)
+            if (stat /= hcimpact_ok) exit main
+            select case (what)
+            case (advance_reached)
+               continue
+            case (advance_grow_left, advance_grow_right)
+               call integrator%finish(engine)
+               call grow_region(engine, what == advance_grow_left)
+               cycle main
+            case (advance_dissolved)
+               call integrator%finish(engine)
+               call dissolve_region(engine)
+               cycle main
+            case (advance_captured)
+               engine%region_rested = .true.
+               if (.not. engine%rested) then
+                  engine%rested = .true.
+                  engine%rest_time = engine%time
+               end if
+               cycle main
+            case default
+               stat = hcimpact_err_no_convergence
+               exit main
+            end select
+         else
+            if (t_stop >= huge(1.0_wp)) exit main
+            engine%time = max(engine%time, t_stop)
+         end if
+         call take_samples(engine, integrator)
+         if (engine%time >= t_end) exit main
+         if (engine%heap_size == 0) cycle main
+         slot = engine%heap(1)
+         if (engine%event_time(slot) > engine%time) cycle main
+         engine%events = engine%events + 1
+         call process_event(engine, slot, present(integrator), stat)
+         if (stat /= hcimpact_ok) exit main
+      end do main
+
+      if (stat /= hcimpact_ok) then
+         if (engine%first > 0 .and. engine%region_begun) call integrator%finish(engine)
+         call fail(engine, result, stat)
+         return
+      end if
+      ! the end: a region still open is written back at the final time
+      if (engine%first > 0) then
+         call integrator%finish(engine)
+         call region_release(engine)
+      end if
+      if (.not. until_rest) engine%time = max(engine%time, t_end)
+      ! samples after the end: nothing more happens (until_rest), or none (t_end)
+      if (until_rest) call take_samples(engine, integrator, all=.true.)
+      call fill_result(engine, result)
+   end subroutine run_engine
+
+   !> Initial state: bodies at rest in their initial positions, the slots' events.
+   subroutine setup(engine, chain, options)
+      type(chain_engine), intent(out) :: engine
+      type(chain_type), intent(in) :: chain
+      type(chain_options), intent(in) :: options
+      integer :: n, i, nsamples
+
+      n = size(chain%mass)
+      engine%n = n
+      engine%chain = chain
+      engine%options = options
+      engine%gravity = chain%gravity
+      engine%time = 0.0_wp
+      allocate(engine%body(n), engine%exact(0:n), engine%event_time(0:n), &
+         & engine%event_kind(0:n), engine%heap(n + 1), engine%heap_pos(0:n), &
+         & engine%q_initial(n))
+      engine%q_initial(1) = 0.0_wp
+      do i = 2, n
+         engine%q_initial(i) = engine%q_initial(i - 1) + chain%gap(i - 1)
+      end do
+      do i = 1, n
+         engine%body(i) = body_state(t0=0.0_wp, u0=0.0_wp, v0=chain%velocity(i))
+      end do
+      engine%event_time = huge(1.0_wp)
+      engine%event_kind = event_none
+      engine%heap_pos = 0
+      engine%heap_size = 0
+      allocate(engine%records(min(max(options%max_contacts, 0), 1024)))
+      allocate(engine%switches(16))
+      nsamples = 0
+      if (allocated(options%sample_times)) nsamples = size(options%sample_times)
+      allocate(engine%sample_u(n, nsamples), engine%sample_v(n, nsamples), &
+         & engine%sample_f(0:n, nsamples))
+      engine%next_sample = 1
+   end subroutine setup
+
+   ! =================================================================================
+   ! Slots: their gaps, laws and events
+   ! =================================================================================
+
+   !> Whether slot s has a contact partner on both sides (walls may be absent)
+   pure logical function slot_exists(engine, s)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      if (s == 0) then
+         slot_exists = engine%chain%left_wall
+      else if (s == engine%n) then
+         slot_exists = engine%chain%right_wall
+      else
+         slot_exists = s > 0 .and. s < engine%n
+      end if
+   end function slot_exists
+
+   !> The gap of slot s at zero displacements (the initial gap)
+   pure real(wp) function slot_gap0(engine, s)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      if (s == 0) then
+         slot_gap0 = engine%chain%left_gap
+      else if (s == engine%n) then
+         slot_gap0 = engine%chain%right_gap
+      else
+         slot_gap0 = engine%chain%gap(s)
+      end if
+   end function slot_gap0
+
+   !> The contact law of slot s
+   pure function slot_law(engine, s) result(law)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      type(contact_law) :: law
+      if (s == 0) then
+         law = engine%chain%left_law
+      else if (s == engine%n) then
+         law = engine%chain%right_law
+      else
+         law = engine%chain%law(s)
+      end if
+   end function slot_law
+
+   !> Displacement and velocity of body i at the time t, from the closed forms (free
+   !> flight or its contact's time law). Not for bodies of the region.
+   subroutine body_state_at(engine, i, t, u, v)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: i
+      real(wp), intent(in) :: t
+      real(wp), intent(out) :: u, v
+      real(wp) :: tau, x, xd, f, mass_l, mass_r, total, ucm, vcm
+      integer :: s
+      s = engine%body(i)%busy
+      if (s < 0) then
+         tau = t - engine%body(i)%t0
+         u = engine%body(i)%u0 + (engine%body(i)%v0 + 0.5_wp * engine%gravity * tau) * tau
+         v = engine%body(i)%v0 + engine%gravity * tau
+         return
+      end if
+      call contact_state(engine, s, t, x, xd, f)
+      tau = t - engine%exact(s)%t_start
+      if (s == 0) then
+         ! left wall: x = -(gap_left + u_1)
+         u = -(engine%chain%left_gap + x)
+         v = -xd
+      else if (s == engine%n) then
+         u = engine%chain%right_gap + x
+         v = xd
+      else
+         mass_l = engine%chain%mass(s)
+         mass_r = engine%chain%mass(s + 1)
+         total = mass_l + mass_r
+         ucm = engine%exact(s)%ucm0 + (engine%exact(s)%vcm0 + 0.5_wp * engine%gravity * tau) &
+            & * tau
+         vcm = engine%exact(s)%vcm0 + engine%gravity * tau
+         ! u_L - u_R = x + gap0
+         if (i == s) then
+            u = ucm + (mass_r / total) * (x + engine%chain%gap(s))
+            v = vcm + (mass_r / total) * xd
+         else
+            u = ucm - (mass_l / total) * (x + engine%chain%gap(s))
+            v = vcm - (mass_l / total) * xd
+         end if
+      end if
+   end subroutine body_state_at
+
+   !> Deformation, its rate and the force of the exact contact of slot s at the time t
+   !> (from the time law; after its end x = 0, x' = -k V, F = 0)
+   subroutine contact_state(engine, s, t, x, xd, f)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      real(wp), intent(in) :: t
+      real(wp), intent(out) :: x, xd, f
+      real(wp) :: tt(1), xx(1), vv(1), ff(1)
+      integer :: stat
+      tt(1) = t - engine%exact(s)%t_start
+      if (tt(1) >= engine%exact(s)%outcome%contact_time) then
+         x = 0.0_wp
+         xd = engine%exact(s)%outcome%rebound_velocity
+         f = 0.0_wp
+         return
+      end if
+      call time_law(engine%exact(s)%contact, tt, xx, vv, ff, stat)
+      x = max(xx(1), 0.0_wp)
+      xd = vv(1)
+      f = ff(1)
+      if (stat /= hcimpact_ok) then
+         x = 0.0_wp
+         xd = engine%exact(s)%contact%velocity
+         f = 0.0_wp
+      end if
+   end subroutine contact_state
+
+   !> The gap of slot s and its rate of change at the time t (both bodies known to the
+   !> closed forms); huge for a missing wall.
+   subroutine slot_gap_at(engine, s, t, gap, rate)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      real(wp), intent(in) :: t
+      real(wp), intent(out) :: gap, rate
+      real(wp) :: ul, vl, ur, vr
+      if (s == 0) then
+         call body_state_at(engine, 1, t, ur, vr)
+         gap = engine%chain%left_gap + ur
+         rate = vr
+      else if (s == engine%n) then
+         call body_state_at(engine, engine%n, t, ul, vl)
+         gap = engine%chain%right_gap - ul
+         rate = -vl
+      else
+         call body_state_at(engine, s, t, ul, vl)
+         call body_state_at(engine, s + 1, t, ur, vr)
+         gap = engine%chain%gap(s) + (ur - ul)
+         rate = vr - vl
+      end if
+   end subroutine slot_gap_at
+
+   !> The bodies of slot s (0 for a wall)
+   pure subroutine slot_bodies(engine, s, left, right)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      integer, intent(out) :: left, right
+      left = s
+      right = s + 1
+      if (s == engine%n) right = 0
+   end subroutine slot_bodies
+
+   !> Schedule every slot (at the start).
+   subroutine schedule_all(engine)
+      type(chain_engine), intent(inout) :: engine
+      integer :: s
+      do s = 0, engine%n
+         call schedule(engine, s)
+      end do
+   end subroutine schedule_all
+
+   !> Compute the next event of slot s from the current state.
+   subroutine schedule(engine, s)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: s
+      integer :: left, right
+      real(wp) :: t_next, limit
+      logical :: left_busy, right_busy
+
+      if (s < 0 .or. s > engine%n) return
+      t_next = huge(1.0_wp)
+      engine%event_kind(s) = event_none
+      call slot_bodies(engine, s, left, right)
+      if (.not. slot_exists(engine, s)) then
+         call heap_update(engine, s, t_next)
+         return
+      end if
+      ! the region's slots and its boundary are watched by the integrator
+      if (engine%first > 0) then
+         if (s >= engine%first - 1 .and. s <= engine%last) then
+            call heap_update(engine, s, t_next)
+            return
+         end if
+      end if
+      if (engine%exact(s)%active) then
+         engine%event_kind(s) = event_end
+         call heap_update(engine, s, engine%exact(s)%t_end)
+         return
+      end if
+      left_busy = .false.
+      right_busy = .false.
+      limit = huge(1.0_wp)
+      if (left > 0) then
+         if (engine%body(left)%busy >= 0) then
+            left_busy = .true.
+            limit = min(limit, engine%exact(engine%body(left)%busy)%t_end)
+         end if
+      end if
+      if (right > 0) then
+         if (engine%body(right)%busy >= 0) then
+            right_busy = .true.
+            limit = min(limit, engine%exact(engine%body(right)%busy)%t_end)
+         end if
+      end if
+      if (.not. (left_busy .or. right_busy)) then
+         t_next = free_contact_time(engine, s)
+         if (t_next < huge(1.0_wp)) engine%event_kind(s) = event_start
+      else
+         ! a body in a contact of its own: can this gap close before that contact ends?
+         t_next = first_possible_touch(engine, s, engine%time, limit)
+         if (t_next < huge(1.0_wp)) engine%event_kind(s) = event_cluster
+      end if
+      call heap_update(engine, s, t_next)
+   end subroutine schedule
+
+   !> When the gap of slot s closes, both bodies flying freely (huge if never).
+   function free_contact_time(engine, s) result(t_next)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      real(wp) :: t_next
+      real(wp) :: gap, rate, g, tau
+      t_next = huge(1.0_wp)
+      call slot_gap_at(engine, s, engine%time, gap, rate)
+      ! the gap's acceleration: 0 between bodies, +-g against a wall
+      g = 0.0_wp
+      if (s == 0) g = engine%gravity
+      if (s == engine%n) g = -engine%gravity
+      tau = first_zero(gap, rate, g)
+      if (tau < huge(1.0_wp)) t_next = engine%time + tau
+   end function free_contact_time
+
+   !> The first tau >= 0 at which gap + rate tau + g tau^2/2 reaches 0 while
+   !> decreasing (huge if never); a gap already closed and closing gives 0.
+   pure function first_zero(gap, rate, g) result(tau)
+      real(wp), intent(in) :: gap, rate, g
+      real(wp) :: tau
+      real(wp) :: disc, q, r1, r2
+      tau = huge(1.0_wp)
+      if (gap <= 0.0_wp .and. (rate < 0.0_wp .or. (rate == 0.0_wp .and. g < 0.0_wp))) then
+         tau = 0.0_wp
+         return
+      end if
+      if (g == 0.0_wp) then
+         if (rate < 0.0_wp .and. gap > 0.0_wp) tau = -gap / rate
+         return
+      end if
+      ! g tau^2/2 + rate tau + gap = 0 in the stable form: roots q/g and 2 gap/q
+      disc = rate * rate - 2.0_wp * g * gap
+      if (disc < 0.0_wp) return
+      q = -(rate + sign(sqrt(disc), rate))
+      if (q == 0.0_wp) return
+      r1 = q / g
+      r2 = 2.0_wp * gap / q
+      ! the smallest positive root where the gap decreases (g tau + rate < 0)
+      if (r1 > 0.0_wp .and. g * r1 + rate < 0.0_wp) tau = min(tau, r1)
+      if (r2 > 0.0_wp .and. g * r2 + rate < 0.0_wp) tau = min(tau, r2)
+   end function first_zero
+
+   !> The first time in [t_from, t_to] at which the bound cannot exclude that the gap
+   !> of slot s is closed (huge when the gap provably stays open on the interval).
+   !> Subintervals are examined from the left, each halved where its bound is not
+   !> conclusive, down to max_depth halvings and within max_bounds evaluations of the
+   !> bound in all (each needs the states at two times, from the time law); where the
+   !> budget runs out the answer is the start of the subinterval that was not settled,
+   !> which can only make a contact go to the integrator, never the reverse.
+   function first_possible_touch(engine, s, t_from, t_to) result(t_touch)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      real(wp), intent(in) :: t_from, t_to
+      real(wp) :: t_touch
+      integer, parameter :: max_bounds = 64
+      real(wp) :: ta(max_depth + 1), tb(max_depth + 1)
+      integer :: depth(max_depth + 1)
+      real(wp) :: gap_a, rate_a, gap_b, rate_b, rate_low, tm
+      integer :: top, evaluations, level
+
+      t_touch = huge(1.0_wp)
+      if (.not. t_to > t_from) return
+      if (t_to >= huge(1.0_wp)) then
+         t_touch = t_from
+         return
+      end if
+      ! a stack of the subintervals still to settle, the leftmost on top
+      top = 1
+      ta(1) = t_from
+      tb(1) = t_to
+      depth(1) = 0
+      evaluations = 0
+      do while (top > 0)
+         evaluations = evaluations + 1
+         call slot_gap_at(engine, s, ta(top), gap_a, rate_a)
+         if (.not. gap_a > 0.0_wp .or. evaluations > max_bounds) then
+            t_touch = ta(top)
+            return
+         end if
+         call slot_gap_at(engine, s, tb(top), gap_b, rate_b)
+         rate_low = rate_b
+         ! a wall's gap also feels gravity, either way
+         if (s == 0 .or. s == engine%n) rate_low = rate_low - abs(engine%gravity) &
+            & * (tb(top) - ta(top))
+         if (gap_a + min(0.0_wp, rate_low) * (tb(top) - ta(top)) > 0.0_wp) then
+            ! settled: open throughout
+            top = top - 1
+            cycle
+         end if
+         level = depth(top)
+         tm = 0.5_wp * (ta(top) + tb(top))
+         if (level >= max_depth .or. .not. (tm > ta(top) .and. tm < tb(top))) then
+            t_touch = ta(top)
+            return
+         end if
+         ! replace by its halves, the left one on top
+         tb(top + 1) = tm
+         ta(top + 1) = ta(top)
+         ta(top) = tm
+         depth(top) = level + 1
+         depth(top + 1) = level + 1
+         top = top + 1
+      end do
+   end function first_possible_touch
+
+   ! =================================================================================
+   ! Events
+   ! =================================================================================
+
+   !> Process the event of slot s at its time.
+   subroutine process_event(engine, s, have_integrator, stat)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: s
+      logical, intent(in) :: have_integrator
+      integer, intent(out) :: stat
+      character(len=max_message) :: why
+      integer :: neighbour
+
+      stat = hcimpact_ok
+      engine%time = max(engine%time, engine%event_time(s))
+      select case (engine%event_kind(s))
+      case (event_end)
+         call end_exact(engine, s)
+      case (event_start)
+         call start_contact(engine, s, why, neighbour)
+         if (len_trim(why) > 0) then
+            if (.not. have_integrator .or. engine%options%method == method_exact) then
+               stat = hcimpact_err_unavailable
+               engine%message = "a cluster forms (" // trim(why) // &
+                  & "): it needs the CVODE component (method auto or integrated)"
+               return
+            end if
+            call form_cluster(engine, s, why, neighbour)
+         end if
+      case (event_cluster)
+         write(why, '(a, i0, a)') "the gap of pair ", s, &
+            & " may close while a neighbouring contact goes on"
+         if (.not. have_integrator .or. engine%options%method == method_exact) then
+            stat = hcimpact_err_unavailable
+            engine%message = "a cluster forms (" // trim(why) // &
+               & "): it needs the CVODE component (method auto or integrated)"
+            return
+         end if
+         call form_cluster(engine, s, why, -1)
+      case default
+         call heap_update(engine, s, huge(1.0_wp))
+      end select
+   end subroutine process_event
+
+   !> A contact of slot s starts now: by the closed forms if it is isolated (why
+   !> empty), else why says what prevents it.
+   subroutine start_contact(engine, s, why, neighbour)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: s
+      character(len=max_message), intent(out) :: why
+      !> The neighbouring slot that may close during the contact (-1: none)
+      integer, intent(out) :: neighbour
+      integer :: left, right, stat, side
+      real(wp) :: gap, rate, mass, ul, vl, ur, vr, total
+      type(contact_law) :: law
+      type(exact_contact) :: c
+
+      why = ""
+      neighbour = -1
+      call slot_bodies(engine, s, left, right)
+      call slot_gap_at(engine, s, engine%time, gap, rate)
+      if (.not. rate < 0.0_wp) then
+         ! grazing: nothing happens
+         call schedule(engine, s)
+         return
+      end if
+      law = slot_law(engine, s)
+      if ((s == 0 .or. s == engine%n) .and. engine%gravity /= 0.0_wp) then
+         write(why, '(a, i0, a)') "a wall contact (pair ", s, &
+            & ") under gravity has no closed form"
+         return
+      end if
+      if (s == 0) then
+         mass = engine%chain%mass(1)
+      else if (s == engine%n) then
+         mass = engine%chain%mass(engine%n)
+      else
+         mass = engine%chain%mass(left) * (engine%chain%mass(right) &
+            & / (engine%chain%mass(left) + engine%chain%mass(right)))
+      end if
+      ! a neighbour in the region: the contact joins it
+      do side = -1, 1, 2
+         if (s + side >= 0 .and. s + side <= engine%n) then
+            if (touches_region(engine, s + side)) then
+               write(why, '(a, i0, a)') "pair ", s, " starts next to an integrated cluster"
+               return
+            end if
+         end if
+      end do
+      c%active = .true.
+      c%t_start = engine%time
+      c%contact = contact_type(mass=mass, stiffness=law%stiffness, exponent=law%exponent, &
+         & damping=law%damping, velocity=-rate)
+      call impact(c%contact, c%outcome, stat)
+      if (stat /= hcimpact_ok) then
+         write(why, '(a, i0, a)') "the closed forms cannot compute pair ", s, &
+            & " (status of the one impact)"
+         return
+      end if
+      c%t_end = c%t_start + c%outcome%contact_time
+      if (s > 0 .and. s < engine%n) then
+         call body_state_at(engine, left, engine%time, ul, vl)
+         call body_state_at(engine, right, engine%time, ur, vr)
+         total = engine%chain%mass(left) + engine%chain%mass(right)
+         c%ucm0 = (engine%chain%mass(left) * ul + engine%chain%mass(right) * ur) / total
+         c%vcm0 = (engine%chain%mass(left) * vl + engine%chain%mass(right) * vr) / total
+      end if
+      ! tentatively in contact, then the neighbouring gaps over its duration
+      call occupy(engine, s, c)
+      if (.not. isolated(engine, s, why, neighbour)) then
+         call release(engine, s)
+         return
+      end if
+      engine%counters%closed_form_contacts = engine%counters%closed_form_contacts + 1
+      call schedule(engine, s)
+      call schedule(engine, s - 1)
+      call schedule(engine, s + 1)
+   end subroutine start_contact
+
+   !> Whether slot s is the region's or at its boundary
+   pure logical function touches_region(engine, s)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      touches_region = .false.
+      if (engine%first > 0) touches_region = s >= engine%first - 1 .and. s <= engine%last
+   end function touches_region
+
+   !> Put the bodies of slot s into the exact contact c.
+   subroutine occupy(engine, s, c)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: s
+      type(exact_contact), intent(in) :: c
+      integer :: left, right
+      real(wp) :: u, v
+      call slot_bodies(engine, s, left, right)
+      ! free bodies are re-referenced at the start (their flight so far)
+      if (left > 0) then
+         call body_state_at(engine, left, c%t_start, u, v)
+         engine%body(left) = body_state(t0=c%t_start, u0=u, v0=v, busy=-1)
+      end if
+      if (right > 0) then
+         call body_state_at(engine, right, c%t_start, u, v)
+         engine%body(right) = body_state(t0=c%t_start, u0=u, v0=v, busy=-1)
+      end if
+      engine%exact(s) = c
+      if (left > 0) engine%body(left)%busy = s
+      if (right > 0) engine%body(right)%busy = s
+   end subroutine occupy
+
+   !> Undo `occupy` (the bodies fly freely from the start of the contact).
+   subroutine release(engine, s)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: s
+      integer :: left, right
+      call slot_bodies(engine, s, left, right)
+      if (left > 0) engine%body(left)%busy = -1
+      if (right > 0) engine%body(right)%busy = -1
+      engine%exact(s)%active = .false.
+   end subroutine release
+
+   !> Whether the exact contact of slot s (occupied) is isolated: every neighbouring
+   !> gap provably open until it ends.
+   function isolated(engine, s, why, neighbour) result(ok)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      character(len=max_message), intent(out) :: why
+      integer, intent(out) :: neighbour
+      logical :: ok
+      integer :: side, other
+      real(wp) :: t_touch
+      ok = .true.
+      why = ""
+      neighbour = -1
+      do side = -1, 1, 2
+         other = s + side
+         if (other < 0 .or. other > engine%n) cycle
+         if (.not. slot_exists(engine, other)) cycle
+         t_touch = first_possible_touch(engine, other, engine%time, engine%exact(s)%t_end)
+         if (t_touch < huge(1.0_wp)) then
+            ok = .false.
+            neighbour = other
+            write(why, '(a, i0, a, i0, a)') "pair ", other, " may touch while pair ", s, &
+               & " is in contact"
+            return
+         end if
+      end do
+   end function isolated
+
+   !> The exact contact of slot s ends now.
+   subroutine end_exact(engine, s)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: s
+      integer :: left, right
+      real(wp) :: t_end, u, v, tau, ucm, vcm, total, xd
+      type(contact_record) :: r
+
+      t_end = engine%exact(s)%t_end
+      call slot_bodies(engine, s, left, right)
+      xd = engine%exact(s)%outcome%rebound_velocity
+      tau = t_end - engine%exact(s)%t_start
+      if (s == 0) then
+         engine%body(1) = body_state(t0=t_end, u0=-engine%chain%left_gap, v0=-xd)
+      else if (s == engine%n) then
+         engine%body(engine%n) = body_state(t0=t_end, u0=engine%chain%right_gap, v0=xd)
+      else
+         total = engine%chain%mass(left) + engine%chain%mass(right)
+         ucm = engine%exact(s)%ucm0 + (engine%exact(s)%vcm0 + 0.5_wp * engine%gravity * tau) &
+            & * tau
+         vcm = engine%exact(s)%vcm0 + engine%gravity * tau
+         u = ucm + (engine%chain%mass(right) / total) * engine%chain%gap(s)
+         v = vcm + (engine%chain%mass(right) / total) * xd
+         engine%body(left) = body_state(t0=t_end, u0=u, v0=v)
+         u = ucm - (engine%chain%mass(left) / total) * engine%chain%gap(s)
+         v = vcm - (engine%chain%mass(left) / total) * xd
+         engine%body(right) = body_state(t0=t_end, u0=u, v0=v)
+      end if
+      r%pair = s
+      r%t_start = engine%exact(s)%t_start
+      r%t_end = t_end
+      r%approach_speed = engine%exact(s)%contact%velocity
+      r%separation_speed = -xd
+      r%peak_force = engine%exact(s)%outcome%peak_force
+      r%max_deformation = engine%exact(s)%outcome%max_compression
+      r%dissipated = 0.5_wp * engine%exact(s)%contact%mass &
+         & * engine%exact(s)%contact%velocity**2 * engine%exact(s)%outcome%energy_loss_ratio
+      r%method = by_closed_forms
+      call engine_record(engine, r)
+      engine%exact(s)%active = .false.
+      engine%time = max(engine%time, t_end)
+      call schedule(engine, s)
+      call schedule(engine, s - 1)
+      call schedule(engine, s + 1)
+   end subroutine end_exact
+
+   !> Keep a finished contact (counted always, recorded up to options%max_contacts)
+   !> and its dissipated energy.
+   subroutine engine_record(engine, r)
+      type(chain_engine), intent(inout) :: engine
+      type(contact_record), intent(in) :: r
+      type(contact_record), allocatable :: grown(:)
+      engine%n_contacts = engine%n_contacts + 1
+      if (ieee_is_finite(r%dissipated)) engine%dissipated = engine%dissipated + r%dissipated
+      if (engine%n_records >= engine%options%max_contacts) return
+      if (engine%n_records == size(engine%records)) then
+         allocate(grown(min(2 * max(size(engine%records), 8), engine%options%max_contacts)))
+         grown(:engine%n_records) = engine%records(:engine%n_records)
+         call move_alloc(grown, engine%records)
+      end if
+      engine%n_records = engine%n_records + 1
+      engine%records(engine%n_records) = r
+   end subroutine engine_record
+
+   ! =================================================================================
+   ! The integrated region
+   ! =================================================================================
+
+   !> A cluster forms at slot s now: a region around it (or the existing one grown).
+   subroutine form_cluster(engine, s, why, neighbour)
+      type(chain_engine), intent(inout) :: engine
+      !> The slot whose contact cannot be computed alone
+      integer, intent(in) :: s
+      character(len=*), intent(in) :: why
+      !> A neighbouring slot that may close during it (-1: none)
+      integer, intent(in) :: neighbour
+      integer :: left, right, first, last
+      call slot_bodies(engine, s, left, right)
+      first = left
+      last = right
+      if (first == 0) first = 1
+      if (last == 0) last = engine%n
+      if (neighbour >= 0) then
+         call slot_bodies(engine, neighbour, left, right)
+         if (left > 0) first = min(first, left)
+         if (right > 0) last = max(last, right)
+      end if
+      if (engine%first > 0) then
+         first = min(first, engine%first)
+         last = max(last, engine%last)
+      end if
+      call form_region(engine, first, last, why)
+   end subroutine form_cluster
+
+   !> Make bodies first .. last (widened to whole contacts and busy neighbours) the
+   !> region, at the current time, with their closed-form states.
+   subroutine form_region(engine, first, last, why)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: first, last
+      character(len=*), intent(in) :: why
+      integer :: a, b, i, s
+      logical :: changed
+      real(wp) :: u, v
+
+      a = first
+      b = last
+      ! whole contacts, and busy neighbours with their partners
+      do
+         changed = .false.
+         do i = a, b
+            s = engine%body(i)%busy
+            if (s > 0 .and. s < engine%n) then
+               if (s < a) then
+                  a = s
+                  changed = .true.
+               end if
+               if (s + 1 > b) then
+                  b = s + 1
+                  changed = .true.
+               end if
+            end if
+         end do
+         ! neighbours in a contact of their own, or touching (a touching pair at rest
+         ! has a gap of exactly 0, whose closing no root can see)
+         if (a > 1) then
+            if (engine%body(a - 1)%busy >= 0 .or. closed_gap(engine, a - 1)) then
+               a = a - 1
+               changed = .true.
+            end if
+         end if
+         if (b < engine%n) then
+            if (engine%body(b + 1)%busy >= 0 .or. closed_gap(engine, b)) then
+               b = b + 1
+               changed = .true.
+            end if
+         end if
+         if (.not. changed) exit
+      end do
+      ! the closed-form contacts inside become integrated: their states now, and the
+      ! part of their record known so far (the integrator finishes it)
+      do i = a, b
+         if (engine%body(i)%in_region) cycle
+         call body_state_at(engine, i, engine%time, u, v)
+         s = engine%body(i)%busy
+         engine%body(i) = body_state(t0=engine%time, u0=u, v0=v, busy=s)
+      end do
+      do s = max(a - 1, 0), min(b, engine%n)
+         if (engine%exact(s)%active) call hand_over(engine, s)
+      end do
+      do i = a, b
+         engine%body(i)%busy = -1
+         engine%body(i)%in_region = .true.
+      end do
+      if (engine%first == 0) engine%counters%clusters = engine%counters%clusters + 1
+      engine%first = a
+      engine%last = b
+      engine%region_begun = .false.
+      call log_switch(engine, a, b, why)
+      do s = max(a - 2, 0), min(b + 1, engine%n)
+         call schedule(engine, s)
+      end do
+   end subroutine form_region
+
+   !> Whether the gap of pair s is closed (<= 0) now
+   logical function closed_gap(engine, s)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      real(wp) :: gap, rate
+      call slot_gap_at(engine, s, engine%time, gap, rate)
+      closed_gap = .not. gap > 0.0_wp
+   end function closed_gap
+
+   !> An exact contact in progress is handed to the integrator: what its record holds
+   !> so far stays in the slot (start, approach speed, and the dissipated energy, peak
+   !> force and deformation up to now), for the integrator to finish.
+   subroutine hand_over(engine, s)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: s
+      real(wp) :: x, xd, f, e_in, e_now, tau
+      type(contact_law) :: law
+      call contact_state(engine, s, engine%time, x, xd, f)
+      law = slot_law(engine, s)
+      e_in = 0.5_wp * engine%exact(s)%contact%mass * engine%exact(s)%contact%velocity**2
+      e_now = 0.5_wp * engine%exact(s)%contact%mass * xd**2 &
+         & + power_law_potential(law%stiffness, law%exponent, x)
+      tau = engine%time - engine%exact(s)%t_start
+      engine%exact(s)%handed = .true.
+      engine%exact(s)%so_far_dissipated = max(e_in - e_now, 0.0_wp)
+      engine%exact(s)%so_far_peak = f
+      if (tau >= engine%exact(s)%outcome%time_at_peak_force) &
+         & engine%exact(s)%so_far_peak = engine%exact(s)%outcome%peak_force
+      engine%exact(s)%so_far_deformation = x
+      if (tau >= engine%exact(s)%outcome%compression_time) &
+         & engine%exact(s)%so_far_deformation = engine%exact(s)%outcome%max_compression
+      engine%exact(s)%active = .false.
+      ! the integrator counts it when it ends
+      engine%counters%closed_form_contacts = engine%counters%closed_form_contacts - 1
+   end subroutine hand_over
+
+   !> Grow the region by one body (and whatever comes with it) on one side; the
+   !> integrator has written the region's states back.
+   subroutine grow_region(engine, left_side)
+      type(chain_engine), intent(inout) :: engine
+      logical, intent(in) :: left_side
+      character(len=max_message) :: why
+      integer :: a, b
+      a = engine%first
+      b = engine%last
+      if (left_side) then
+         a = max(a - 1, 1)
+         write(why, '(a, i0, a)') "body ", a, " touches the cluster"
+      else
+         b = min(b + 1, engine%n)
+         write(why, '(a, i0, a)') "body ", b, " touches the cluster"
+      end if
+      call region_release(engine)
+      call form_region(engine, a, b, why)
+   end subroutine grow_region
+
+   !> Mark the region's bodies free (the integrator wrote their states back).
+   subroutine region_release(engine)
+      type(chain_engine), intent(inout) :: engine
+      integer :: i
+      do i = engine%first, engine%last
+         engine%body(i)%in_region = .false.
+         engine%body(i)%busy = -1
+      end do
+   end subroutine region_release
+
+   !> The cluster has separated: its bodies fly freely again.
+   subroutine dissolve_region(engine)
+      type(chain_engine), intent(inout) :: engine
+      integer :: a, b, s
+      a = engine%first
+      b = engine%last
+      call region_release(engine)
+      engine%first = 0
+      engine%last = 0
+      call log_switch(engine, 0, 0, "the cluster has separated: closed forms again")
+      do s = max(a - 2, 0), min(b + 1, engine%n)
+         call schedule(engine, s)
+      end do
+   end subroutine dissolve_region
+
+   !> Append to the log of decisions.
+   subroutine log_switch(engine, first, last, why)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: first, last
+      character(len=*), intent(in) :: why
+      type(chain_switch), allocatable :: grown(:)
+      if (engine%n_switches == size(engine%switches)) then
+         allocate(grown(2 * size(engine%switches)))
+         grown(:engine%n_switches) = engine%switches
+         call move_alloc(grown, engine%switches)
+      end if
+      engine%n_switches = engine%n_switches + 1
+      engine%switches(engine%n_switches) = chain_switch(time=engine%time, first=first, &
+         & last=last, reason=why)
+   end subroutine log_switch
+
+   ! =================================================================================
+   ! Rest under gravity
+   ! =================================================================================
+
+   !> For a region resting against the wall that gravity points to: the energy it has
+   !> above its static equilibrium minus the least energy any of its contacts needs to
+   !> open (negative: no contact can ever open again, the region is at rest for good).
+   !> The region's energy relative to everything open is
+   !>   E = kinetic + sum_j (Pi_j(x_j) - W_j x_j),
+   !> W_j the weight beyond contact j (gravity's potential is linear in the
+   !> deformations); its least value, at the equilibrium x_j* = (W_j/c_j)^(1/n_j), is
+   !> -sum_j B_j with B_j = W_j x_j* n_j/(n_j + 1), and any state with contact j open
+   !> has E >= -sum B + B_j. So E + sum B < min B means at rest. Huge when the region
+   !> is not a stack on such a wall. u and v: the region's displacements and
+   !> velocities.
+   function capture_margin(engine, u, v) result(margin)
+      type(chain_engine), intent(in) :: engine
+      real(wp), intent(in) :: u(:), v(:)
+      real(wp) :: margin
+      real(wp) :: e, b_sum, b_min, weight, x, xs
+      integer :: a, b, i, j, k, s
+      type(contact_law) :: law
+      logical :: from_left
+
+      margin = huge(1.0_wp)
+      a = engine%first
+      b = engine%last
+      if (a <= 0 .or. engine%gravity == 0.0_wp) return
+      from_left = engine%gravity < 0.0_wp
+      if (from_left .and. .not. (a == 1 .and. engine%chain%left_wall)) return
+      if (.not. from_left .and. .not. (b == engine%n .and. engine%chain%right_wall)) return
+      e = 0.0_wp
+      do i = a, b
+         e = e + 0.5_wp * engine%chain%mass(i) * v(i - a + 1)**2
+      end do
+      b_sum = 0.0_wp
+      b_min = huge(1.0_wp)
+      ! contacts from the wall outwards: the wall's, then the pairs
+      do k = 0, b - a
+         if (from_left) then
+            s = a - 1 + k
+         else
+            s = b - k
+         end if
+         weight = 0.0_wp
+         if (from_left) then
+            do j = s + 1, b
+               weight = weight + engine%chain%mass(j)
+            end do
+         else
+            do j = a, s
+               weight = weight + engine%chain%mass(j)
+            end do
+         end if
+         weight = weight * abs(engine%gravity)
+         law = slot_law(engine, s)
+         x = region_deformation(engine, s, u)
+         e = e + power_law_potential(law%stiffness, law%exponent, x) - weight * x
+         xs = (weight / law%stiffness)**(1.0_wp / law%exponent)
+         b_sum = b_sum + weight * xs * (law%exponent / (law%exponent + 1.0_wp))
+         b_min = min(b_min, weight * xs * (law%exponent / (law%exponent + 1.0_wp)))
+      end do
+      margin = e + b_sum - b_min
+   end function capture_margin
+
+   !> Kinetic + elastic + gravitational energy of the region (displacements u and
+   !> velocities v of its bodies; the slots inside it and its walls)
+   function region_energy(engine, u, v) result(e)
+      type(chain_engine), intent(in) :: engine
+      real(wp), intent(in) :: u(:), v(:)
+      real(wp) :: e
+      integer :: i, s
+      type(contact_law) :: law
+      e = 0.0_wp
+      do i = engine%first, engine%last
+         e = e + 0.5_wp * engine%chain%mass(i) * v(i - engine%first + 1)**2 &
+            & - engine%chain%mass(i) * engine%chain%gravity * u(i - engine%first + 1)
+      end do
+      do s = engine%first - 1, engine%last
+         if (s < 0 .or. s > engine%n) cycle
+         if (.not. slot_exists(engine, s)) cycle
+         if ((s == engine%first - 1 .and. s > 0) .or. (s == engine%last .and. &
+            & s < engine%n)) cycle
+         law = slot_law(engine, s)
+         e = e + power_law_potential(law%stiffness, law%exponent, &
+            & region_deformation(engine, s, u))
+      end do
+   end function region_energy
+
+   !> The deformation of slot s of the region from its displacements u (first .. last)
+   pure real(wp) function region_deformation(engine, s, u)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      real(wp), intent(in) :: u(:)
+      integer :: a
+      a = engine%first
+      if (s == 0) then
+         region_deformation = -(engine%chain%left_gap + u(1 - a + 1))
+      else if (s == engine%n) then
+         region_deformation = u(engine%n - a + 1) - engine%chain%right_gap
+      else
+         region_deformation = (u(s - a + 1) - u(s + 1 - a + 1)) - engine%chain%gap(s)
+      end if
+   end function region_deformation
+
+   !> The static equilibrium of the region resting on its wall: displacements u (first
+   !> .. last), velocities 0.
+   subroutine rest_state(engine, u)
+      type(chain_engine), intent(in) :: engine
+      real(wp), intent(out) :: u(:)
+      integer :: a, b, k, s, j
+      real(wp) :: weight, xs
+      type(contact_law) :: law
+      logical :: from_left
+      a = engine%first
+      b = engine%last
+      from_left = engine%gravity < 0.0_wp
+      do k = 0, b - a
+         if (from_left) then
+            s = a - 1 + k
+         else
+            s = b - k
+         end if
+         weight = 0.0_wp
+         if (from_left) then
+            do j = s + 1, b
+               weight = weight + engine%chain%mass(j)
+            end do
+         else
+            do j = a, s
+               weight = weight + engine%chain%mass(j)
+            end do
+         end if
+         law = slot_law(engine, s)
+         xs = (weight * abs(engine%gravity) / law%stiffness)**(1.0_wp / law%exponent)
+         if (from_left) then
+            if (s == 0) then
+               u(1) = -(engine%chain%left_gap + xs)
+            else
+               u(s + 1 - a + 1) = u(s - a + 1) - xs - engine%chain%gap(s)
+            end if
+         else
+            if (s == engine%n) then
+               u(b - a + 1) = engine%chain%right_gap + xs
+            else
+               u(s - a + 1) = u(s + 1 - a + 1) + xs + engine%chain%gap(s)
+            end if
+         end if
+      end do
+   end subroutine rest_state
+
+   !> The region has come to rest for good and nothing else can happen: its bodies
+   !> are put at their static equilibrium.
+   subroutine settle_at_rest(engine)
+      type(chain_engine), intent(inout) :: engine
+      real(wp), allocatable :: u(:), u_now(:), v_now(:)
+      integer :: i, a
+      a = engine%first
+      allocate(u(engine%last - a + 1), u_now(engine%last - a + 1), &
+         & v_now(engine%last - a + 1))
+      do i = a, engine%last
+         u_now(i - a + 1) = engine%body(i)%u0
+         v_now(i - a + 1) = engine%body(i)%v0
+      end do
+      call rest_state(engine, u)
+      ! what the region has above its equilibrium will all be dissipated
+      engine%dissipated = engine%dissipated + region_energy(engine, u_now, v_now) &
+         & - region_energy(engine, u, 0.0_wp * v_now)
+      do i = a, engine%last
+         engine%body(i) = body_state(t0=engine%time, u0=u(i - a + 1), v0=0.0_wp)
+      end do
+      engine%first = 0
+      engine%last = 0
+      ! at rest: the velocities stay 0 (gravity is held by the contacts)
+      engine%gravity = 0.0_wp
+   end subroutine settle_at_rest
+
+   ! =================================================================================
+   ! Samples and the result
+   ! =================================================================================
+
+   !> The next sample time not yet taken (huge if none)
+   pure real(wp) function next_sample_time(engine)
+      type(chain_engine), intent(in) :: engine
+      next_sample_time = huge(1.0_wp)
+      if (.not. allocated(engine%options%sample_times)) return
+      if (engine%next_sample <= size(engine%options%sample_times)) &
+         & next_sample_time = engine%options%sample_times(engine%next_sample)
+   end function next_sample_time
+
+   !> Take every sample due at the current time or before it (all: every sample left,
+   !> when nothing can happen after the end).
+   subroutine take_samples(engine, integrator, all)
+      type(chain_engine), intent(inout) :: engine
+      class(cluster_integrator), intent(inout), optional :: integrator
+      logical, intent(in), optional :: all
+      real(wp) :: ts, u, v
+      real(wp), allocatable :: ur(:), vr(:)
+      integer :: k, i, s
+      type(contact_force_type) :: f
+      type(contact_law) :: law
+      logical :: every
+
+      if (.not. allocated(engine%options%sample_times)) return
+      every = .false.
+      if (present(all)) every = all
+      do while (engine%next_sample <= size(engine%options%sample_times))
+         ts = engine%options%sample_times(engine%next_sample)
+         if (ts > engine%time .and. .not. every) exit
+         k = engine%next_sample
+         if (engine%first > 0 .and. present(integrator)) then
+            allocate(ur(engine%last - engine%first + 1), vr(engine%last - engine%first + 1))
+            call integrator%state_at(engine, ts, ur, vr)
+         end if
+         do i = 1, engine%n
+            if (engine%body(i)%in_region .and. allocated(ur)) then
+               u = ur(i - engine%first + 1)
+               v = vr(i - engine%first + 1)
+            else
+               call body_state_at(engine, i, ts, u, v)
+            end if
+            engine%sample_u(i, k) = engine%q_initial(i) + u
+            engine%sample_v(i, k) = v
+         end do
+         do s = 0, engine%n
+            engine%sample_f(s, k) = 0.0_wp
+            if (.not. slot_exists(engine, s)) cycle
+            law = slot_law(engine, s)
+            if (s == 0) then
+               call contact_force_wall(law%stiffness, law%exponent, law%damping, &
+                  & 0.0_wp, engine%sample_u(1, k), engine%sample_v(1, k), &
+                  & -engine%chain%left_gap, -1, f)
+            else if (s == engine%n) then
+               call contact_force_wall(law%stiffness, law%exponent, law%damping, &
+                  & 0.0_wp, engine%sample_u(s, k), engine%sample_v(s, k), &
+                  & engine%q_initial(s) + engine%chain%right_gap, 1, f)
+            else
+               call contact_force_pair(law%stiffness, law%exponent, law%damping, 0.0_wp, &
+                  & engine%sample_u(s, k), engine%sample_v(s, k), engine%sample_u(s + 1, k), &
+                  & engine%sample_v(s + 1, k), f)
+            end if
+            engine%sample_f(s, k) = f%force
+         end do
+         if (allocated(ur)) deallocate(ur, vr)
+         engine%next_sample = engine%next_sample + 1
+      end do
+   end subroutine take_samples
+
+   !> The result from the final state of the engine.
+   subroutine fill_result(engine, result)
+      type(chain_engine), intent(inout) :: engine
+      type(chain_result), intent(inout) :: result
+      integer :: i, s, nsamples
+      real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, e_grav0, p0, p, scale, x
+      type(contact_law) :: law
+
+      result%time = engine%time
+      allocate(result%positions(engine%n), result%velocities(engine%n))
+      e_kin = 0.0_wp
+      e_grav = 0.0_wp
+      p = 0.0_wp
+      do i = 1, engine%n
+         call body_state_at(engine, i, engine%time, u, v)
+         result%positions(i) = engine%q_initial(i) + u
+         result%velocities(i) = v
+         e_kin = e_kin + 0.5_wp * engine%chain%mass(i) * v**2
+         e_grav = e_grav - engine%chain%mass(i) * engine%chain%gravity * u
+         p = p + engine%chain%mass(i) * v
+      end do
+      e_el = 0.0_wp
+      do s = 0, engine%n
+         if (.not. slot_exists(engine, s)) cycle
+         law = slot_law(engine, s)
+         if (s == 0) then
+            x = -(engine%chain%left_gap + (result%positions(1) - engine%q_initial(1)))
+         else if (s == engine%n) then
+            x = (result%positions(s) - engine%q_initial(s)) - engine%chain%right_gap
+         else
+            x = result%positions(s) - result%positions(s + 1)
+         end if
+         e_el = e_el + power_law_potential(law%stiffness, law%exponent, x)
+      end do
+      e_kin0 = 0.0_wp
+      p0 = 0.0_wp
+      scale = 0.0_wp
+      do i = 1, engine%n
+         e_kin0 = e_kin0 + 0.5_wp * engine%chain%mass(i) * engine%chain%velocity(i)**2
+         p0 = p0 + engine%chain%mass(i) * engine%chain%velocity(i)
+         scale = scale + engine%chain%mass(i) * abs(engine%chain%velocity(i))
+      end do
+      e_grav0 = 0.0_wp
+      result%initial_energy = e_kin0
+      result%dissipated = engine%dissipated
+      ! the energy put in by gravity counts in the scale of the error
+      result%energy_error = abs(e_kin + e_el + e_grav + engine%dissipated - e_kin0 - e_grav0) &
+         & / max(e_kin0 + abs(e_grav), tiny(1.0_wp))
+      if (.not. (engine%chain%left_wall .or. engine%chain%right_wall) .and. &
+         & engine%chain%gravity == 0.0_wp) then
+         result%momentum_error = abs(p - p0) / max(scale, tiny(1.0_wp))
+      end if
+      result%rested = engine%rested
+      result%rest_time = engine%rest_time
+      result%n_contacts = engine%n_contacts
+      allocate(result%contacts(engine%n_records))
+      result%contacts = engine%records(:engine%n_records)
+      nsamples = size(engine%sample_u, 2)
+      allocate(result%sample_positions(engine%n, nsamples), &
+         & result%sample_velocities(engine%n, nsamples), &
+         & result%sample_forces(0:engine%n, nsamples))
+      result%sample_positions = engine%sample_u
+      result%sample_velocities = engine%sample_v
+      result%sample_forces = engine%sample_f
+      result%counters = engine%counters
+      allocate(result%switches(engine%n_switches))
+      result%switches = engine%switches(:engine%n_switches)
+      if (engine%counters%integrated_contacts == 0) then
+         result%method_used = by_closed_forms
+      else if (engine%counters%closed_form_contacts == 0) then
+         result%method_used = by_integration
+      else
+         result%method_used = 3
+      end if
+      result%message = "success"
+   end subroutine fill_result
+
+   !> A failed run: the message, nothing else.
+   subroutine fail(engine, result, stat)
+      type(chain_engine), intent(in) :: engine
+      type(chain_result), intent(inout) :: result
+      integer, intent(in) :: stat
+      result%message = engine%message
+      result%time = engine%time
+      if (stat == hcimpact_ok) result%message = "success"
+   end subroutine fail
+
+   ! =================================================================================
+   ! The heap of events (indexed binary min-heap over the slots)
+   ! =================================================================================
+
+   !> Set the event time of slot s (huge: remove it from the heap).
+   subroutine heap_update(engine, s, t)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: s
+      real(wp), intent(in) :: t
+      integer :: k
+      engine%event_time(s) = t
+      k = engine%heap_pos(s)
+      if (t >= huge(1.0_wp)) then
+         if (k > 0) call heap_remove(engine, k)
+         return
+      end if
+      if (k == 0) then
+         engine%heap_size = engine%heap_size + 1
+         k = engine%heap_size
+         engine%heap(k) = s
+         engine%heap_pos(s) = k
+      end if
+      call sift_up(engine, k)
+      call sift_down(engine, engine%heap_pos(s))
+   end subroutine heap_update
+
+   subroutine heap_remove(engine, k)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: k
+      integer :: s, last
+      s = engine%heap(k)
+      last = engine%heap(engine%heap_size)
+      engine%heap_pos(s) = 0
+      engine%heap_size = engine%heap_size - 1
+      if (k > engine%heap_size) return
+      engine%heap(k) = last
+      engine%heap_pos(last) = k
+      call sift_up(engine, k)
+      call sift_down(engine, engine%heap_pos(last))
+   end subroutine heap_remove
+
+   subroutine sift_up(engine, start)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: start
+      integer :: k, parent, s
+      k = start
+      do while (k > 1)
+         parent = k / 2
+         if (.not. before(engine, engine%heap(k), engine%heap(parent))) exit
+         s = engine%heap(k)
+         engine%heap(k) = engine%heap(parent)
+         engine%heap(parent) = s
+         engine%heap_pos(engine%heap(k)) = k
+         engine%heap_pos(engine%heap(parent)) = parent
+         k = parent
+      end do
+   end subroutine sift_up
+
+   subroutine sift_down(engine, start)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: start
+      integer :: k, child, s
+      k = start
+      do
+         child = 2 * k
+         if (child > engine%heap_size) exit
+         if (child < engine%heap_size) then
+            if (before(engine, engine%heap(child + 1), engine%heap(child))) child = child + 1
+         end if
+         if (.not. before(engine, engine%heap(child), engine%heap(k))) exit
+         s = engine%heap(k)
+         engine%heap(k) = engine%heap(child)
+         engine%heap(child) = s
+         engine%heap_pos(engine%heap(k)) = k
+         engine%heap_pos(engine%heap(child)) = child
+         k = child
+      end do
+   end subroutine sift_down
+
+   !> Slot a's event comes before slot b's (ties: the lower slot first, so that the
+   !> order is the same in every run)
+   pure logical function before(engine, a, b)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: a, b
+      before = engine%event_time(a) < engine%event_time(b) .or. &
+         & (engine%event_time(a) == engine%event_time(b) .and. a < b)
+   end function before
+
+end module hcimpact_chain_engine

@@ -1,0 +1,353 @@
+! SPDX-License-Identifier: Apache-2.0
+!> A system of bodies on a line: what the caller describes (`chain_type`, its contact
+!> laws and walls), how it is computed (`chain_options`), and what comes back
+!> (`chain_result`, with the list of contacts); the one validator of such a system.
+!>
+!> Conventions (doc/chains.md). Bodies are numbered 1 .. n from left to right;
+!> velocities are positive to the right. The bodies are points on the line: the
+!> position q_i of body i is such that the gap between bodies i and i+1 is
+!> q_(i+1) - q_i (their surfaces touch at gap 0, and overlap by the deformation
+!> x = q_i - q_(i+1) > 0). Initially q_1 = 0 and q_(i+1) = q_i + gap(i); add the
+!> bodies' sizes to q to get centres. A wall on the left stands at q_1(0) - gap_left,
+!> one on the right at q_n(0) + gap_right. `gravity` is a constant acceleration of
+!> every body along the line (m/s^2, negative: towards the left).
+!>
+!> Contact pairs are numbered 0 .. n: pair i (1 <= i < n) is bodies i and i+1, pair
+!> 0 the left wall and body 1, pair n body n and the right wall.
+module hcimpact_chain_types
+   use, intrinsic :: iso_fortran_env, only : int64
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use hcimpact_kinds, only : wp, nan
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
+      & hcimpact_err_domain, hcimpact_err_size
+   use hcimpact_contact, only : check_parameters
+   implicit none
+   private
+
+   public :: contact_law, chain_type, chain_options, contact_record, chain_result
+   public :: chain_counters, chain_switch
+   public :: check_chain
+   public :: method_auto, method_exact, method_integrated
+   public :: integrator_bdf, integrator_adams
+   public :: by_closed_forms, by_integration
+   public :: max_message
+
+   !> Method: decide per contact (closed forms where contacts are isolated, CVODE for
+   !> clusters); the default
+   integer, parameter :: method_auto = 0
+   !> Method: closed forms only (a cluster is an error, hcimpact_err_unavailable)
+   integer, parameter :: method_exact = 1
+   !> Method: integrate the whole system with CVODE from the start
+   integer, parameter :: method_integrated = 2
+
+   !> CVODE's linear multistep method: BDF (default) or Adams
+   integer, parameter :: integrator_bdf = 1, integrator_adams = 2
+
+   !> How a contact was computed: by the closed forms of one impact, or by integration
+   integer, parameter :: by_closed_forms = 1, by_integration = 2
+
+   !> Longest message of a result
+   integer, parameter :: max_message = 256
+
+   !> The contact law of one pair: f = c x^n, damping b
+   type :: contact_law
+      !> Contact constant c in N/m^n, > 0
+      real(wp) :: stiffness = 0.0_wp
+      !> Exponent n, >= 1e-6 (3/2: Hertz)
+      real(wp) :: exponent = 1.5_wp
+      !> Damping b in s/m, >= 0
+      real(wp) :: damping = 0.0_wp
+   end type contact_law
+
+   !> A system of bodies on a line (module header: conventions)
+   type :: chain_type
+      !> Masses in kg (n >= 1), > 0
+      real(wp), allocatable :: mass(:)
+      !> Initial velocities in m/s
+      real(wp), allocatable :: velocity(:)
+      !> Initial gaps between neighbours in m (n - 1 of them), >= 0 (0: touching
+      !> without preload)
+      real(wp), allocatable :: gap(:)
+      !> The law of each neighbouring pair (n - 1)
+      type(contact_law), allocatable :: law(:)
+      !> Walls: present or not, their laws and their gaps to the end bodies (>= 0)
+      logical :: left_wall = .false., right_wall = .false.
+      type(contact_law) :: left_law, right_law
+      real(wp) :: left_gap = 0.0_wp, right_gap = 0.0_wp
+      !> Constant acceleration along the line in m/s^2 (negative: to the left)
+      real(wp) :: gravity = 0.0_wp
+   end type chain_type
+
+   !> How to compute a system
+   type :: chain_options
+      !> End time in s; <= 0: until no contact can happen again (all bodies
+      !> separating with no wall ahead, or at rest on a wall under gravity)
+      real(wp) :: t_end = -1.0_wp
+      !> Relative tolerance of the integration (CVODE); the closed forms are exact
+      real(wp) :: rtol = 1.0e-10_wp
+      !> method_auto, method_exact or method_integrated
+      integer :: method = method_auto
+      !> integrator_bdf or integrator_adams
+      integer :: integrator = integrator_bdf
+      !> Largest number of integration steps (all clusters together)
+      integer(int64) :: max_steps = 100000000_int64
+      !> Largest number of contacts recorded (more are counted, not recorded)
+      integer :: max_contacts = 1000000
+      !> Largest number of contacts computed before giving up (a bound of the loop,
+      !> e.g. for a ball that would bounce forever without gravity in contact)
+      integer(int64) :: max_events = 100000000_int64
+      !> Times (s) at which to sample positions, velocities and pair forces, in
+      !> increasing order (optional)
+      real(wp), allocatable :: sample_times(:)
+   end type chain_options
+
+   !> One contact between a pair, from its start to its end
+   type :: contact_record
+      !> The pair (0: left wall and body 1; n: body n and the right wall)
+      integer :: pair = -1
+      !> Start and end of the contact in s (end NaN if it has not ended)
+      real(wp) :: t_start = nan, t_end = nan
+      !> Approach speed at the start and separation speed at the end, m/s (>= 0)
+      real(wp) :: approach_speed = nan, separation_speed = nan
+      !> Largest force in N and largest deformation in m during the contact
+      real(wp) :: peak_force = nan, max_deformation = nan
+      !> Energy dissipated in the contact, J
+      real(wp) :: dissipated = nan
+      !> by_closed_forms, or by_integration (also for part of the contact)
+      integer :: method = 0
+   end type contact_record
+
+   !> The work done
+   type :: chain_counters
+      !> Contacts computed by the closed forms
+      integer(int64) :: closed_form_contacts = 0
+      !> Contacts computed (at least in part) by integration
+      integer(int64) :: integrated_contacts = 0
+      !> Integration steps, right-hand side evaluations, Jacobians, roots located
+      integer(int64) :: steps = 0, rhs_evals = 0, jacobian_evals = 0, roots = 0
+      !> Clusters integrated (each from its start until it separates)
+      integer(int64) :: clusters = 0
+   end type chain_counters
+
+   !> A switch between the two ways of computing (the log of the decisions)
+   type :: chain_switch
+      !> Time in s
+      real(wp) :: time = nan
+      !> First and last body of the integrated cluster (0 0 when it dissolved)
+      integer :: first = 0, last = 0
+      !> Why, e.g. "pair 3 starts while pair 2 is in contact"
+      character(len=max_message) :: reason = ""
+   end type chain_switch
+
+   !> What `chain_simulate` computes
+   type :: chain_result
+      !> Time reached (s): t_end, the time after which no contact can happen, or the
+      !> time at which the system came to rest
+      real(wp) :: time = nan
+      !> Positions (m, module header) and velocities (m/s) at that time; for a system
+      !> at rest, its rest state (velocities 0)
+      real(wp), allocatable :: positions(:), velocities(:)
+      !> True when the system came to rest on a wall under gravity (rest_time: when
+      !> its energy fell below what any contact needs to open)
+      logical :: rested = .false.
+      real(wp) :: rest_time = nan
+      !> The contacts, in the order they ended; n_contacts counts every contact,
+      !> also those beyond options%max_contacts
+      type(contact_record), allocatable :: contacts(:)
+      integer(int64) :: n_contacts = 0
+      !> Samples at options%sample_times: positions and velocities (n x samples),
+      !> pair forces (pairs 0 .. n x samples, 0 for a missing wall)
+      real(wp), allocatable :: sample_positions(:, :), sample_velocities(:, :)
+      real(wp), allocatable :: sample_forces(:, :)
+      !> Energy: initial (kinetic + gravitational), and the relative error of
+      !> kinetic + elastic + gravitational + dissipated against it at the end
+      real(wp) :: initial_energy = nan, energy_error = nan
+      !> Dissipated energy in J
+      real(wp) :: dissipated = nan
+      !> Relative change of the momentum (only without walls and gravity, else NaN)
+      real(wp) :: momentum_error = nan
+      !> by_closed_forms when no contact was integrated, by_integration when every
+      !> contact was, 3 when both were used
+      integer :: method_used = 0
+      !> Work done and the decisions taken
+      type(chain_counters) :: counters
+      type(chain_switch), allocatable :: switches(:)
+      !> "success", or what went wrong
+      character(len=max_message) :: message = ""
+   end type chain_result
+
+contains
+
+   !> Check a system and its options. hcimpact_ok or the status of the first problem,
+   !> with a message that names it:
+   !> - hcimpact_err_size: no body (n < 1), or arrays of different sizes (velocity n,
+   !>   gap and law n - 1), or sample times out of order;
+   !> - hcimpact_err_not_finite: a NaN or infinite value;
+   !> - hcimpact_err_mass: a mass not positive;
+   !> - the statuses of `check_parameters` for a law (stiffness, exponent, damping);
+   !> - hcimpact_err_domain: a negative gap (initial overlap), rtol outside (0, 1), a
+   !>   method or an integrator that does not exist, max_steps, max_events < 1,
+   !>   max_contacts < 0.
+   pure subroutine check_chain(chain, options, stat, message)
+      !> The system
+      type(chain_type), intent(in) :: chain
+      !> The options
+      type(chain_options), intent(in) :: options
+      !> Status
+      integer, intent(out) :: stat
+      !> What is wrong ("success" when nothing is)
+      character(len=max_message), intent(out) :: message
+      integer :: n, i
+
+      stat = hcimpact_err_size
+      if (.not. allocated(chain%mass)) then
+         message = "no masses"
+         return
+      end if
+      n = size(chain%mass)
+      if (n < 1) then
+         message = "a system needs at least one body"
+         return
+      end if
+      if (.not. allocated(chain%velocity)) then
+         message = "no velocities"
+         return
+      end if
+      if (size(chain%velocity) /= n) then
+         write(message, '(a, i0, a, i0, a)') "velocities: ", size(chain%velocity), &
+            & " given for ", n, " bodies"
+         return
+      end if
+      if (n > 1) then
+         if (.not. (allocated(chain%gap) .and. allocated(chain%law))) then
+            message = "the gaps and the contact laws between neighbours are missing"
+            return
+         end if
+         if (size(chain%gap) /= n - 1 .or. size(chain%law) /= n - 1) then
+            write(message, '(a, i0, a, i0, a, i0, a)') "gaps and laws: ", n - 1, &
+               & " needed (one per neighbouring pair), ", size(chain%gap), " and ", &
+               & size(chain%law), " given"
+            return
+         end if
+      end if
+      stat = hcimpact_err_not_finite
+      do i = 1, n
+         if (.not. (ieee_is_finite(chain%mass(i)) .and. ieee_is_finite(chain%velocity(i)))) &
+            & then
+            write(message, '(a, i0, a)') "body ", i, ": mass or velocity NaN or infinite"
+            return
+         end if
+      end do
+      if (.not. (ieee_is_finite(chain%gravity) .and. ieee_is_finite(chain%left_gap) .and. &
+         & ieee_is_finite(chain%right_gap))) then
+         message = "gravity or a wall gap is NaN or infinite"
+         return
+      end if
+      stat = hcimpact_err_mass
+      do i = 1, n
+         if (.not. chain%mass(i) > 0.0_wp) then
+            write(message, '(a, i0, a)') "body ", i, ": mass must be positive"
+            return
+         end if
+      end do
+      do i = 1, n - 1
+         stat = hcimpact_err_not_finite
+         if (.not. ieee_is_finite(chain%gap(i))) then
+            write(message, '(a, i0, a)') "gap ", i, " is NaN or infinite"
+            return
+         end if
+         stat = hcimpact_err_domain
+         if (chain%gap(i) < 0.0_wp) then
+            write(message, '(a, i0, a)') "gap ", i, &
+               & " is negative (bodies may touch, gap 0, but not overlap at the start)"
+            return
+         end if
+         stat = law_status(chain%law(i))
+         if (stat /= hcimpact_ok) then
+            write(message, '(a, i0, a)') "the law of pair ", i, &
+               & " (stiffness > 0, exponent >= 1e-6, damping >= 0, all finite)"
+            return
+         end if
+      end do
+      if (chain%left_wall) then
+         stat = law_status(chain%left_law)
+         if (stat /= hcimpact_ok) then
+            message = "the law of the left wall (stiffness > 0, exponent >= 1e-6, damping >= 0)"
+            return
+         end if
+         stat = hcimpact_err_domain
+         if (chain%left_gap < 0.0_wp) then
+            message = "the left wall's gap is negative (no overlap at the start)"
+            return
+         end if
+      end if
+      if (chain%right_wall) then
+         stat = law_status(chain%right_law)
+         if (stat /= hcimpact_ok) then
+            message = "the law of the right wall (stiffness > 0, exponent >= 1e-6, damping >= 0)"
+            return
+         end if
+         stat = hcimpact_err_domain
+         if (chain%right_gap < 0.0_wp) then
+            message = "the right wall's gap is negative (no overlap at the start)"
+            return
+         end if
+      end if
+      stat = hcimpact_err_not_finite
+      if (.not. (ieee_is_finite(options%t_end) .and. ieee_is_finite(options%rtol))) then
+         message = "t_end or rtol is NaN or infinite"
+         return
+      end if
+      stat = hcimpact_err_domain
+      if (.not. (options%rtol > 0.0_wp .and. options%rtol < 1.0_wp)) then
+         message = "rtol must lie in (0, 1)"
+         return
+      end if
+      if (options%method < method_auto .or. options%method > method_integrated) then
+         message = "method must be auto, exact or integrated"
+         return
+      end if
+      if (options%integrator /= integrator_bdf .and. options%integrator /= integrator_adams) &
+         & then
+         message = "the integrator must be BDF or Adams"
+         return
+      end if
+      if (options%max_steps < 1 .or. options%max_events < 1 .or. options%max_contacts < 0) &
+         & then
+         message = "max_steps and max_events must be positive, max_contacts not negative"
+         return
+      end if
+      if (allocated(options%sample_times)) then
+         stat = hcimpact_err_not_finite
+         if (.not. all(ieee_is_finite(options%sample_times))) then
+            message = "a sample time is NaN or infinite"
+            return
+         end if
+         stat = hcimpact_err_size
+         do i = 2, size(options%sample_times)
+            if (.not. options%sample_times(i) >= options%sample_times(i - 1)) then
+               message = "the sample times must not decrease"
+               return
+            end if
+         end do
+         stat = hcimpact_err_domain
+         if (size(options%sample_times) > 0) then
+            if (options%sample_times(1) < 0.0_wp) then
+               message = "the sample times must not be negative"
+               return
+            end if
+         end if
+      end if
+      stat = hcimpact_ok
+      message = "success"
+   end subroutine check_chain
+
+   !> The status of a contact law (the library's one validator)
+   elemental function law_status(law) result(stat)
+      type(contact_law), intent(in) :: law
+      integer :: stat
+      stat = check_parameters(stiffness=law%stiffness, exponent=law%exponent, &
+         & damping=law%damping)
+   end function law_status
+
+end module hcimpact_chain_types
