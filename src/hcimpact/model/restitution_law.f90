@@ -105,9 +105,9 @@ contains
          ! z = -(1 + beta) exp(-(1 + beta)), |z| < 7e-17: W0(z) = z - z**2 + ... = z to
          ! 2**-100 relative. 1 + beta = ah + al is kept exact. (Underflow of exp for
          ! beta > 745 is harmless.)
-         call two_sum(1.0_wp, beta, ah, al)
+         call sum_parts(1.0_wp, beta, ah, al)
          z = -(ah * exp(-ah)) * (1.0_wp + al * (1.0_wp / ah - 1.0_wp))
-         call fast_two_sum(1.0_wp, z, vh, vl)
+         call fast_sum_parts(1.0_wp, z, vh, vl)
          call div_dd(vh, vl, beta, k, ql)
          k = k + ql
       else
@@ -271,7 +271,7 @@ contains
          d = 1.0_wp - 1.0_wp / beta
       else
          call rebound_dd(beta, vh, vl)
-         call two_sum(beta, -vh, sh, sl)
+         call sum_parts(beta, -vh, sh, sl)
          d = (sh + (sl - vl)) / beta
       end if
    end function one_minus_k
@@ -299,11 +299,11 @@ contains
       integer :: k
 
       if (abs(u) <= 1.0_wp) then
-         call two_prod(u, u, ph, pl)
-         call two_sum(2.0_wp, u, dh, dl)
+         call product_parts(u, u, ph, pl)
+         call sum_parts(2.0_wp, u, dh, dl)
          ! (ph + pl)/(dh + dl) as a double-double
          qh = ph / dh
-         call two_prod(qh, dh, sh, sl)
+         call product_parts(qh, dh, sh, sl)
          ql = ((((ph - sh) - sl) + pl) - qh * dl) / dh
          y = u / dh
          y2 = y * y
@@ -313,14 +313,14 @@ contains
             series = series * y2 + 1.0_wp / real(2*k + 3, wp)
          end do
          series = 2.0_wp * y * y2 * series
-         call two_sum(qh, -series, sh, sl)
-         call fast_two_sum(sh, sl + ql, hh, hl)
+         call sum_parts(qh, -series, sh, sl)
+         call fast_sum_parts(sh, sl + ql, hh, hl)
       else
-         call two_sum(1.0_wp, u, ah, al)
+         call sum_parts(1.0_wp, u, ah, al)
          call log_dd(ah, 0, lh, ll)
          ll = ll + al / ah
-         call two_sum(u, -lh, sh, sl)
-         call fast_two_sum(sh, sl - ll, hh, hl)
+         call sum_parts(u, -lh, sh, sl)
+         call fast_sum_parts(sh, sl - ll, hh, hl)
       end if
    end subroutine h_dd
 
@@ -349,7 +349,7 @@ contains
       real(wp), intent(out) :: qh, ql
       real(wp) :: ph, pl
       qh = ah / b
-      call two_prod(qh, b, ph, pl)
+      call product_parts(qh, b, ph, pl)
       ql = (((ah - ph) - pl) + al) / b
    end subroutine div_dd
 

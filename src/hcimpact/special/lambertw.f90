@@ -153,7 +153,7 @@ contains
          x = z
          shift = 0
          include "lambertw_ln.inc"
-         call fast_two_sum(lh, ll, key, key_lo)
+         call fast_sum_parts(lh, ll, key, key_lo)
          ! The row from y1 (within 2**-17 of y): the polynomials hold 1/64 of their
          ! half-width (> 2**-11 here) beyond their intervals, and key - xc stays exact.
          row = geo_row(y1, ya_base, ya_off)
@@ -209,7 +209,7 @@ contains
             shift = -600
          end if
          include "lambertw_ln.inc"
-         call fast_two_sum(-lh, -ll, key, key_lo)
+         call fast_sum_parts(-lh, -ll, key, key_lo)
          row = geo_row(-y1, yb_base, yb_off)     ! y1: see lambert_w0
          include "lambertw_eval.inc"
          w = tab(2, row) + (y_lo + tab(3, row) * key_lo)
@@ -332,16 +332,16 @@ contains
          vh = 0.0_wp
       else if (th < fast_tmax) then
          call sqrt_2t(th, tl, sh, sl)
-         call fast_two_sum(sh, sl + sh * sh * series_tail(s_coef(2:8, 0), sh), vh, vl)
+         call fast_sum_parts(sh, sl + sh * sh * series_tail(s_coef(2:8, 0), sh), vh, vl)
       else if (th < ta_tmax) then
          key = th
          row = geo_row(th, ta_base, ta_off)
          include "lambertw_eval.inc"
-         call fast_two_sum(tab(2, row), y_lo + tab(3, row) * tl, vh, vl)
+         call fast_sum_parts(tab(2, row), y_lo + tab(3, row) * tl, vh, vl)
       else
          ! t >= 32: z = -exp(-1-t) is above -6e-15; its rounding moves W0 by far less
          ! than an ulp of 1 + W0, and vl keeps W0 itself.
-         call fast_two_sum(1.0_wp, lambert_w0(-exp(-1.0_wp - th)), vh, vl)
+         call fast_sum_parts(1.0_wp, lambert_w0(-exp(-1.0_wp - th)), vh, vl)
       end if
    end subroutine lambert_w0p1_dd
 
@@ -372,12 +372,12 @@ contains
          vh = minus_inf
       else if (th < fast_tmax) then
          call sqrt_2t(th, tl, sh, sl)
-         call fast_two_sum(-sh, sh * sh * series_tail(s_coef(2:8, 0), -sh) - sl, vh, vl)
+         call fast_sum_parts(-sh, sh * sh * series_tail(s_coef(2:8, 0), -sh) - sl, vh, vl)
       else if (th < tb_tmax) then
          key = th
          row = geo_row(th, tb_base, tb_off)
          include "lambertw_eval.inc"
-         call fast_two_sum(tab(2, row), y_lo + tab(3, row) * tl, vh, vl)
+         call fast_sum_parts(tab(2, row), y_lo + tab(3, row) * tl, vh, vl)
       else
          call log1pmx_root(th, tl, vh, vl)
          vh = -vh
@@ -439,7 +439,7 @@ contains
 
       u = th + log1p(th + log1p(th))
       do iter = 1, max_iter
-         call two_sum(1.0_wp, u, ah, al)
+         call sum_parts(1.0_wp, u, ah, al)
          call log_dd(ah, 0, lh, ll)
          ll = ll + al / ah
          r = (((u - th) - lh) - tl) - ll
@@ -449,7 +449,7 @@ contains
          if (abs(du) <= 2.0_wp**(-28) * u .or. iter == max_iter) exit
          u = u - du
       end do
-      call fast_two_sum(u, -du, uh, ul)
+      call fast_sum_parts(u, -du, uh, ul)
    end subroutine log1pmx_root
 
    include "../numerics/ddarith.inc"
@@ -460,7 +460,7 @@ contains
       real(wp), intent(out) :: rh, rl
       real(wp) :: qh, ql
       rh = sqrt(ah)
-      call two_prod(rh, rh, qh, ql)
+      call product_parts(rh, rh, qh, ql)
       rl = (((ah - qh) - ql) + al) / (2.0_wp * rh)
    end subroutine sqrt_dd
 
