@@ -26,6 +26,8 @@ module hcimpact
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_force_element, only : contact_force_type, contact_force, contact_force_pair, &
       & contact_force_wall
+   use hcimpact_chain, only : chain_exact, contact_law, chain_type, chain_options, &
+      & contact_record, chain_result, chain_counters, chain_switch
    use hcimpact_legacy_damping, only : n_damping_rules, damping_rule_names, legacy_damping
    implicit none
    public

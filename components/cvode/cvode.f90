@@ -10,6 +10,7 @@ module hcimpact_cvode
    use hcimpact_cvode_solver, only : cvode_options, cvode_counters, simulation_type, &
       & simulate, simulate_power, simulate_law, cvode_bdf, cvode_adams, cvode_flag_name
    use hcimpact_cvode_sundials, only : sundials_major
+   use hcimpact_cvode_chain, only : chain_simulate
    implicit none
    public
 
