@@ -17,7 +17,10 @@
  *    nothing is written. On any other error every output is NaN.
  *  - Array ("_array") forms take the number of elements n and plain arrays of n
  *    elements; an output array may be the input array itself (computed in place),
- *    other overlaps are not allowed.
+ *    other overlaps are not allowed. In a library built with OpenMP, large arrays
+ *    are shared among OMP_NUM_THREADS threads (hcimpact_array_threads()); the
+ *    results and the status (that of the lowest failing index) are those of a
+ *    serial run, bit for bit.
  *  - The library keeps no state: every function may be called from several threads
  *    at once, and no function allocates memory that the caller must free.
  *
@@ -104,6 +107,11 @@ HCIMPACT_API const char *hcimpact_version(void);
 /** Version of the library as 10000*major + 100*minor + patch; compare it with the
  *  header's HCIMPACT_VERSION to detect a mismatch between header and library. */
 HCIMPACT_API int hcimpact_version_number(void);
+
+/** Number of threads the array forms share a large array among when called here and
+ *  now: OpenMP's (OMP_NUM_THREADS; 1 inside a parallel region of the caller's unless
+ *  nesting is enabled), 1 in a library built without OpenMP. */
+HCIMPACT_API int hcimpact_array_threads(void);
 
 /* ------------------------------------------------------------------------
  * Lambert W, real branches

@@ -22,6 +22,8 @@ module hcimpact_scene_run
    use, intrinsic :: iso_fortran_env, only : error_unit, int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp
+   !$ use hcimpact_parallel, only : min_parallel_impact
+   !$ use omp_lib, only : omp_get_thread_num
    use hcimpact_status, only : hcimpact_ok, status_message
    use hcimpact_version_info, only : hcimpact_version_string
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, velocity_at_depth, &
@@ -404,20 +406,36 @@ contains
       real(wp), allocatable :: after(:, :)
       real(wp) :: t0, elapsed, row(15)
       integer(int64) :: evaluations
-      integer :: i, stat, ncol
+      integer :: i, stat, ncol, done, mine
+      integer, allocatable :: stats(:)
       character(len=40), allocatable :: header(:)
 
-      allocate(out(size(speeds)), after(2, size(speeds)))
+      allocate(out(size(speeds)), after(2, size(speeds)), stats(size(speeds)))
       after = nan
       evaluations = 0
+      done = 0
       t0 = wall_clock()
       call progress_begin(name, size(speeds))
+      ! The impacts are independent: in parallel when the program is built with OpenMP
+      ! (the library's array threshold and schedule); the progress line is drawn by
+      ! the first thread alone.
+      !$omp parallel do if (size(speeds) >= min_parallel_impact) private(mine) &
+      !$omp & schedule(dynamic, 4)
       do i = 1, size(speeds)
-         call impact(contact_at(sc, speeds(i)), out(i), stat)
-         if (stat /= hcimpact_ok) then
-            call progress_end()
+         call impact(contact_at(sc, speeds(i)), out(i), stats(i))
+         !$omp atomic capture
+         done = done + 1
+         mine = done
+         !$omp end atomic
+         !$ if (omp_get_thread_num() /= 0) cycle
+         call progress_step(mine)
+      end do
+      !$omp end parallel do
+      call progress_end()
+      do i = 1, size(speeds)
+         if (stats(i) /= hcimpact_ok) then
             error = "the impact at V = " // real_str(speeds(i), 8) // " m/s: " &
-               & // status_message(stat)
+               & // status_message(stats(i))
             return
          end if
          evaluations = evaluations + sum(int(out(i)%evaluations, int64))
@@ -425,9 +443,7 @@ contains
             call two_body_velocities(sc%body1%mass, sc%body2%mass, speeds(i), 0.0_wp, &
                & out(i)%restitution, after(1, i), after(2, i), stat)
          end if
-         call progress_step(i)
       end do
-      call progress_end()
       elapsed = wall_clock() - t0
 
       header = [character(len=40) :: "speed [m/s]", "beta [-]", "restitution [-]", &

@@ -32,7 +32,7 @@ _API = (
     "impact", "impact_law", "velocity_at_depth", "time_law", "time_law_samples", "simulate",
     "has_simulate", "FitResult", "fit_damping", "fit_damping_linear", "fit_static",
     "fit_elastic", "fit_impact",
-    "status_message", "version", "version_number", "library_path",
+    "status_message", "version", "version_number", "library_path", "array_threads",
     "COMPRESSION", "RESTITUTION", "DEFAULT_MIN_VELOCITY",
 )
 _TYPES = ("ImpactResult", "HcimpactError", "InputError", "ComputationError",

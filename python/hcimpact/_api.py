@@ -35,7 +35,7 @@ __all__ = [
     "impact", "velocity_at_depth", "time_law", "time_law_samples", "simulate",
     "has_simulate", "FitResult", "fit_damping", "fit_damping_linear", "fit_static",
     "fit_elastic", "fit_impact",
-    "status_message", "version", "version_number", "library_path",
+    "status_message", "version", "version_number", "library_path", "array_threads",
     "COMPRESSION", "RESTITUTION", "DEFAULT_MIN_VELOCITY",
 ]
 
@@ -788,6 +788,13 @@ def version() -> str:
 def version_number() -> int:
     """Version of the loaded library as 10000 major + 100 minor + patch."""
     return int(_lib().hcimpact_version_number())
+
+
+def array_threads() -> int:
+    """Threads the library shares a large array call among (OpenMP's OMP_NUM_THREADS
+    as read when the library was loaded; 1 in a library built without OpenMP). The
+    results are the same bit for bit whatever the number."""
+    return int(_lib().hcimpact_array_threads())
 
 
 def library_path() -> str:

@@ -126,6 +126,7 @@ def _declare(lib: ctypes.CDLL) -> None:
         "hcimpact_status_message": (c_char_p, [i]),
         "hcimpact_version": (c_char_p, []),
         "hcimpact_version_number": (i, []),
+        "hcimpact_array_threads": (i, []),
         "hcimpact_damping_for_restitution": (i, [d, d, d, pd]),
         "hcimpact_hertz_constant": (d, [d] * 6),
         "hcimpact_effective_mass": (d, [d, d]),
