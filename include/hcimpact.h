@@ -192,9 +192,13 @@ HCIMPACT_API int hcimpact_restitution_derivative_array(int n, const double *beta
  *  approach speed velocity (m/s, >= 0): b = beta(e)/max(velocity, min_velocity).
  *  Below min_velocity (m/s, > 0; HCIMPACT_DEFAULT_MIN_VELOCITY is 1e-3) b is that of
  *  min_velocity, so that it stays finite as the speed tends to 0.
+ *  Every b that is a double is returned (b = 1/(e V) for tiny e, formed without
+ *  overflow on the way).
  *  Returns HCIMPACT_OK; HCIMPACT_ERR_NOT_FINITE (NaN or infinite argument),
  *  HCIMPACT_ERR_RESTITUTION (e outside (0, 1]), HCIMPACT_ERR_VELOCITY (velocity < 0
- *  or min_velocity <= 0): *damping = NaN; HCIMPACT_ERR_NULL (damping is NULL). */
+ *  or min_velocity <= 0), HCIMPACT_ERR_DOMAIN (the exact b exceeds the largest
+ *  double, e.g. e = 1e-310 at 1 m/s): *damping = NaN; HCIMPACT_ERR_NULL (damping is
+ *  NULL). */
 HCIMPACT_API int hcimpact_damping_for_restitution(double e, double velocity, double min_velocity,
                                                   double *damping);
 

@@ -292,6 +292,17 @@ static void test_restitution(void)
                hcimpact_damping_for_restitution(NAN, 1.0, 1e-3, &damping), HCIMPACT_ERR_NOT_FINITE);
   check_status("damping_for_restitution(NULL)",
                hcimpact_damping_for_restitution(0.5, 1.0, 1e-3, NULL), HCIMPACT_ERR_NULL);
+  /* issue 13: b beyond DBL_MAX is a status, b = 1/(e V) = 1e300 a double */
+  check_status("damping_for_restitution(1e-310, 1, 1e-3)",
+               hcimpact_damping_for_restitution(1e-310, 1.0, 1e-3, &damping), HCIMPACT_ERR_DOMAIN);
+  check_nan("damping_for_restitution(1e-310, 1, 1e-3) output", damping);
+  check_status("damping_for_restitution(0.5, 0, 1e-320)",
+               hcimpact_damping_for_restitution(0.5, 0.0, 1e-320, &damping), HCIMPACT_ERR_DOMAIN);
+  check_status("damping_for_restitution(1e-310, 1e10, 1e-3)",
+               hcimpact_damping_for_restitution(1e-310, 1e10, 1e-3, &damping), HCIMPACT_OK);
+  /* (1e-310 is a subnormal, 1e-310 * 1e10 a normal double: b = 1/(e V) as one quotient) */
+  check_close("damping_for_restitution(1e-310, 1e10) = 1/(e V)", damping,
+              1.0 / (1e-310 * 1e10), 4e-16);
 }
 
 static void test_two_bodies(void)

@@ -30,6 +30,7 @@ module test_impact
       & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta
    use hcimpact_power_rules, only : power_phase_pieces, max_pieces, cc_max_beta, &
       & cc_max_compression_le, end_piece_le, whole_max_beta
+   use hcimpact_restitution_law, only : restitution_inverse
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome
@@ -151,7 +152,8 @@ contains
          & new_unittest("graded-pieces-tile", test_graded_pieces_tile), &
          & new_unittest("graded-pieces-evaluations", test_graded_pieces_evaluations), &
          & new_unittest("graded-pieces-seams", test_graded_pieces_seams), &
-         & new_unittest("whole-contact-seam", test_whole_contact_seam) &
+         & new_unittest("whole-contact-seam", test_whole_contact_seam), &
+         & new_unittest("damping-extremes", test_damping_extremes) &
          & ]
    end subroutine collect_impact
 
@@ -1472,5 +1474,87 @@ contains
          end do
       end do
    end subroutine check_seam
+
+   ! ------------------------------------------------------------------------------
+   ! Issue 13: the extremes of the inputs
+   ! ------------------------------------------------------------------------------
+
+   !> damping_for_restitution over e from 1e-320 to 1 and speeds from subnormal to
+   !> DBL_MAX: b = beta(e)/V whenever that is a double (issue 13: b = +Inf with
+   !> hcimpact_ok for e = 1e-310, where b = 1/(e V) = 1e300 at V = 1e10 is a double),
+   !> hcimpact_err_domain with NaN where it exceeds the largest double
+   !> ((1e-310, 1, 1e-3) and (0.5, 0, 1e-320) of the issue). The expectation: ln b
+   !> from the mpmath inverse of restitution.csv (beta = 1/e below 2^-60), decided
+   !> away from the boundary by ln 4; where b V is a normal double, b V = beta(e)
+   !> within 2 ulps.
+   subroutine test_damping_extremes(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: targets(9) = [1.0e-320_wp, 1.0e-310_wp, 1.0e-300_wp, &
+         & 1.0e-100_wp, 1.0e-20_wp, 0.01_wp, 0.5_wp, 0.9_wp, 1.0_wp - epsilon(1.0_wp)]
+      real(wp), parameter :: speeds(10) = [0.0_wp, 1.0e-320_wp, 1.0e-300_wp, 1.0e-10_wp, &
+         & 1.0_wp, 1.0e10_wp, 1.0e100_wp, 1.0e300_wp, 1.7e308_wp, huge(1.0_wp)]
+      real(wp) :: b, beta, ln_b, speed
+      integer :: i, j, stat
+      character(len=:), allocatable :: label
+      do i = 1, size(targets)
+         do j = 1, size(speeds)
+            speed = max(speeds(j), 1.0e-320_wp)
+            call damping_for_restitution(targets(i), speeds(j), b, stat, &
+               & min_velocity=1.0e-320_wp)
+            label = "e = " // format_real(targets(i)) // ", V = " // format_real(speeds(j))
+            if (targets(i) < 2.0_wp**(-60)) then
+               ! ln(1/(e V)) without forming it
+               ln_b = -(log(targets(i)) + log(speed))
+            else
+               call restitution_of(targets(i), beta)
+               ln_b = log(beta) - log(speed)
+            end if
+            if (ln_b > log(huge(1.0_wp)) + log(4.0_wp)) then
+               call check(error, stat == hcimpact_err_domain .and. ieee_is_nan(b), label &
+                  & // ": b beyond DBL_MAX, status " // int_text(stat))
+            else if (ln_b < log(huge(1.0_wp)) - log(4.0_wp)) then
+               call check(error, stat == hcimpact_ok .and. ieee_is_finite(b) .and. &
+                  & b >= 0.0_wp, label // ": status " // int_text(stat) // ", b = " &
+                  & // format_real(b))
+               if (allocated(error)) return
+               ! b = beta/V to its rounding (a subnormal b has fewer digits)
+               if (b >= tiny(1.0_wp)) then
+                  call check(error, abs(log(b) - ln_b) <= 1.0e-13_wp * max(1.0_wp, abs(ln_b)), &
+                     & label // ": ln b = " // format_real(log(b)) // ", expected " &
+                     & // format_real(ln_b))
+                  if (allocated(error)) return
+                  if (speed >= 1.0e-150_wp .and. speed <= 1.0e150_wp .and. &
+                     & targets(i) >= 2.0_wp**(-60)) then
+                     call check(error, abs(b * speed - beta) <= 2.0_wp * spacing(beta), &
+                        & label // ": b V = " // format_real(b * speed) // ", beta(e) = " &
+                        & // format_real(beta))
+                  end if
+               end if
+            end if
+            if (allocated(error)) return
+         end do
+      end do
+      ! issue 13's cases, and b = 1/(e V) = 1e300 exactly as the product and quotient of
+      ! the doubles give it
+      call damping_for_restitution(1.0e-310_wp, 1.0_wp, b, stat, min_velocity=1.0e-3_wp)
+      call check(error, stat == hcimpact_err_domain .and. ieee_is_nan(b), &
+         & "(1e-310, 1, 1e-3): status " // int_text(stat))
+      if (allocated(error)) return
+      call damping_for_restitution(0.5_wp, 0.0_wp, b, stat, min_velocity=1.0e-320_wp)
+      call check(error, stat == hcimpact_err_domain .and. ieee_is_nan(b), &
+         & "(0.5, 0, 1e-320): status " // int_text(stat))
+      if (allocated(error)) return
+      call damping_for_restitution(1.0e-310_wp, 1.0e10_wp, b, stat)
+      call check(error, stat == hcimpact_ok .and. abs(b - 1.0_wp / (1.0e-310_wp * 1.0e10_wp)) &
+         & <= spacing(b), "(1e-310, 1e10): b = " // format_real(b))
+   contains
+      !> beta(e), the exact inverse of k(beta) (hcimpact_restitution_law, within 4 ulps
+      !> of mpmath's restitution.csv)
+      subroutine restitution_of(e, beta)
+         real(wp), intent(in) :: e
+         real(wp), intent(out) :: beta
+         beta = restitution_inverse(e)
+      end subroutine restitution_of
+   end subroutine test_damping_extremes
 
 end module test_impact
