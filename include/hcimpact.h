@@ -337,13 +337,16 @@ HCIMPACT_API int hcimpact_velocity_at_depth_array(const hcimpact_contact *contac
  *  f[i] = c x^n (1 + b x') (N). Before the contact (t <= 0): x = 0, x' = V, F = 0;
  *  after it: x = 0, x' = -k V, F = 0. Each time costs a few quadratures.
  *  Returns HCIMPACT_OK; the statuses of hcimpact_impact; HCIMPACT_ERR_NOT_FINITE (a
- *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE. */
+ *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE (also
+ *  when the library cannot allocate its copy of the n values: out of memory, outputs
+ *  NaN). */
 HCIMPACT_API int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
                                    double *x, double *v, double *f);
 
 /** The time law on n >= 2 equally spaced times t[i] = contact_time i/(n - 1), written
  *  to t, with x, v and f as in hcimpact_time_law (x[0] = x[n-1] = 0).
- *  Returns as hcimpact_time_law; n < 2 gives HCIMPACT_ERR_SIZE. */
+ *  Returns as hcimpact_time_law; n < 2, or n samples beyond the memory available,
+ *  give HCIMPACT_ERR_SIZE (every output NaN). */
 HCIMPACT_API int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
                                            double *x, double *v, double *f);
 

@@ -16,7 +16,7 @@
 !>
 !> Everything here is safe under -ffpe-trap=invalid,zero,overflow.
 module test_impact
-   use, intrinsic :: iso_c_binding, only : c_loc, c_null_ptr, c_int
+   use, intrinsic :: iso_c_binding, only : c_loc, c_null_ptr, c_int, c_long
    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf, &
       & ieee_is_nan, ieee_is_finite
    use testdrive, only : new_unittest, unittest_type, error_type, check, test_failed
@@ -30,6 +30,7 @@ module test_impact
       & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta
    use hcimpact_power_rules, only : power_phase_pieces, max_pieces, cc_max_beta, &
       & cc_max_compression_le, end_piece_le, whole_max_beta
+   use hcimpact_api_motion, only : c_time_law, c_time_law_samples
    use hcimpact_restitution_law, only : restitution_inverse
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
@@ -81,6 +82,32 @@ module test_impact
       real(wp), allocatable :: t(:)
       real(wp), allocatable :: ref_hi(:, :), ref_lo(:, :)
    end type timelaw_table
+
+   !> struct rlimit of <sys/resource.h> (rlim_t is an unsigned long on Linux; the
+   !> values used here are far below 2^63)
+   type, bind(C) :: rlimit_type
+      integer(c_long) :: cur
+      integer(c_long) :: max
+   end type rlimit_type
+   !> RLIMIT_AS of Linux: the address space of the process
+   integer(c_int), parameter :: rlimit_as = 9_c_int
+
+   interface
+      !> int getrlimit(int resource, struct rlimit *rlim)
+      function c_getrlimit(resource, rlim) result(stat) bind(C, name="getrlimit")
+         import :: c_int, rlimit_type
+         integer(c_int), value :: resource
+         type(rlimit_type), intent(out) :: rlim
+         integer(c_int) :: stat
+      end function c_getrlimit
+      !> int setrlimit(int resource, const struct rlimit *rlim)
+      function c_setrlimit(resource, rlim) result(stat) bind(C, name="setrlimit")
+         import :: c_int, rlimit_type
+         integer(c_int), value :: resource
+         type(rlimit_type), intent(in) :: rlim
+         integer(c_int) :: stat
+      end function c_setrlimit
+   end interface
 
    type(impact_table), save :: impacts
    type(timelaw_table), save :: timelaws
@@ -153,7 +180,8 @@ contains
          & new_unittest("graded-pieces-evaluations", test_graded_pieces_evaluations), &
          & new_unittest("graded-pieces-seams", test_graded_pieces_seams), &
          & new_unittest("whole-contact-seam", test_whole_contact_seam), &
-         & new_unittest("damping-extremes", test_damping_extremes) &
+         & new_unittest("damping-extremes", test_damping_extremes), &
+         & new_unittest("out-of-memory", test_out_of_memory) &
          & ]
    end subroutine collect_impact
 
@@ -1556,5 +1584,108 @@ contains
          beta = restitution_inverse(e)
       end subroutine restitution_of
    end subroutine test_damping_extremes
+
+   !> Out of memory is a status, not an abort (issue 13: "Error allocating 320000000
+   !> bytes" stopped the process in time_law_samples and in the C wrappers of the time
+   !> law): with the address space limited (setrlimit RLIMIT_AS, Linux) to what the
+   !> process uses plus 16 MB, time_law_samples of 2^22 samples and the C entry points
+   !> hcimpact_time_law and hcimpact_time_law_samples, whose copies need 128 MB, give
+   !> hcimpact_err_size with NaN outputs and nothing allocated; the limit is restored
+   !> and the same calls with 11 samples work.
+   subroutine test_out_of_memory(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n = 2**22
+      type(rlimit_type), target :: old_limit, new_limit
+      type(hcimpact_contact), target :: c_contact
+      real(wp), allocatable, target :: t(:), x(:), v(:), f(:)
+      real(wp), allocatable :: ts(:), xs(:), vs(:), fs(:), probe(:)
+      integer(c_long) :: used
+      integer :: stat, alloc_stat
+      integer(c_int) :: c_stat
+      type(contact_type) :: contact
+
+      contact = contact_type(mass=0.1_wp, stiffness=1.7135e10_wp, exponent=1.5_wp, &
+         & damping=0.1_wp, velocity=1.0_wp)
+      c_contact = hcimpact_contact(0.1_wp, 1.7135e10_wp, 1.5_wp, 0.1_wp, 1.0_wp)
+      ! the caller's arrays, before the limit
+      allocate(t(n), x(n), v(n), f(n))
+      t = 1.0e-5_wp
+      x = 0.0_wp
+      used = address_space_used()
+      if (used <= 0_c_long .or. c_getrlimit(rlimit_as, old_limit) /= 0) then
+         call test_failed(error, "cannot read the address space used (/proc/self/status) " &
+            & // "or its limit (getrlimit): this test needs Linux")
+         return
+      end if
+      new_limit = rlimit_type(used + 16_c_long * 2_c_long**20, old_limit%max)
+      if (c_setrlimit(rlimit_as, new_limit) /= 0) then
+         call test_failed(error, "setrlimit(RLIMIT_AS) failed")
+         return
+      end if
+      ! the limit acts: 32 MB cannot be had
+      allocate(probe(n), stat=alloc_stat)
+      if (alloc_stat == 0) then
+         deallocate(probe)
+         stat = c_setrlimit(rlimit_as, old_limit)
+         call test_failed(error, "the address-space limit does not act on allocate")
+         return
+      end if
+      call time_law_samples(contact, n, ts, xs, vs, fs, stat)
+      c_stat = c_time_law(c_loc(c_contact), int(n, c_int), c_loc(t), c_loc(x), c_loc(v), &
+         & c_loc(f))
+      ! restore before any check (the checks' messages allocate)
+      alloc_stat = c_setrlimit(rlimit_as, old_limit)
+      call check(error, alloc_stat == 0, "setrlimit could not restore the limit")
+      if (allocated(error)) return
+      call check(error, stat == hcimpact_err_size .and. .not. (allocated(ts) .or. &
+         & allocated(xs) .or. allocated(vs) .or. allocated(fs)), "time_law_samples, " &
+         & // int_text(n) // " samples without the memory: status " // int_text(stat))
+      if (allocated(error)) return
+      call check(error, c_stat == hcimpact_err_size .and. ieee_is_nan(x(1)) &
+         & .and. ieee_is_nan(f(n)), "hcimpact_time_law without the memory: status " &
+         & // int_text(int(c_stat)))
+      if (allocated(error)) return
+      ! hcimpact_time_law_samples, under the limit again
+      used = address_space_used()
+      new_limit = rlimit_type(used + 16_c_long * 2_c_long**20, old_limit%max)
+      stat = c_setrlimit(rlimit_as, new_limit)
+      c_stat = c_time_law_samples(c_loc(c_contact), int(n, c_int), c_loc(t), c_loc(x), &
+         & c_loc(v), c_loc(f))
+      alloc_stat = c_setrlimit(rlimit_as, old_limit)
+      call check(error, stat == 0 .and. alloc_stat == 0 .and. c_stat == hcimpact_err_size &
+         & .and. ieee_is_nan(t(1)) .and. ieee_is_nan(x(n)), "hcimpact_time_law_samples " &
+         & // "without the memory: status " // int_text(int(c_stat)))
+      if (allocated(error)) return
+      ! and with the memory, the same calls work
+      call time_law_samples(contact, 11, ts, xs, vs, fs, stat)
+      call check(error, stat == hcimpact_ok .and. size(xs) == 11 .and. xs(11) == 0.0_wp, &
+         & "time_law_samples after the limit: status " // int_text(stat))
+      if (allocated(error)) return
+      c_stat = c_time_law_samples(c_loc(c_contact), 11_c_int, c_loc(t), c_loc(x), c_loc(v), &
+         & c_loc(f))
+      call check(error, c_stat == hcimpact_ok .and. x(11) == 0.0_wp .and. t(1) == 0.0_wp, &
+         & "hcimpact_time_law_samples after the limit: status " // int_text(int(c_stat)))
+   end subroutine test_out_of_memory
+
+   !> The address space of this process in bytes (VmSize of /proc/self/status), or 0
+   function address_space_used() result(bytes)
+      integer(c_long) :: bytes
+      character(len=256) :: line
+      integer :: unit, stat
+      integer(c_long) :: kb
+      bytes = 0_c_long
+      open(newunit=unit, file="/proc/self/status", status="old", action="read", iostat=stat)
+      if (stat /= 0) return
+      do
+         read(unit, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         if (line(1:7) == "VmSize:") then
+            read(line(8:), *, iostat=stat) kb
+            if (stat == 0) bytes = kb * 1024_c_long
+            exit
+         end if
+      end do
+      close(unit)
+   end function address_space_used
 
 end module test_impact

@@ -150,14 +150,19 @@ contains
       type(law_integrand), intent(out) :: f
       integer, intent(out) :: stat
       real(wp) :: lo, hi, x, p, e, step
-      integer :: it
+      integer :: it, alloc_stat
 
       stat = hcimpact_ok
       if (log(damping + tiny(1.0_wp)) + log(velocity) > log(max_beta)) then
          stat = hcimpact_err_domain
          return
       end if
-      allocate(f%law, source=law)
+      allocate(f%law, source=law, stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         ! out of memory for the copy of the law
+         stat = hcimpact_err_size
+         return
+      end if
       f%tr = new_trajectory(two_prod(damping, velocity))
       f%mass = mass
       f%velocity = velocity

@@ -263,8 +263,10 @@ contains
    !> The time law on nsamples equally spaced times from 0 to the contact time
    !> (both included): t(i) = contact_time (i - 1)/(nsamples - 1).
    !>
-   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2. The outputs are
-   !> allocated with max(nsamples, 0) elements in every case, NaN on error.
+   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2, or if the four
+   !> arrays of nsamples elements cannot be allocated (out of memory: then none of them
+   !> is allocated). Otherwise the outputs are allocated with max(nsamples, 0) elements
+   !> in every case, NaN on error.
    pure subroutine time_law_samples(contact, nsamples, t, x, v, f, stat)
       !> The contact
       type(contact_type), intent(in) :: contact
@@ -281,10 +283,19 @@ contains
       !> Status
       integer, intent(out) :: stat
       type(outcome_type) :: outcome
-      integer :: i
+      integer :: i, alloc_stat
 
       allocate(t(max(nsamples, 0)), x(max(nsamples, 0)), v(max(nsamples, 0)), &
-         & f(max(nsamples, 0)))
+         & f(max(nsamples, 0)), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         ! out of memory: nothing is allocated, and the size is what was asked too much
+         if (allocated(t)) deallocate(t)
+         if (allocated(x)) deallocate(x)
+         if (allocated(v)) deallocate(v)
+         if (allocated(f)) deallocate(f)
+         stat = hcimpact_err_size
+         return
+      end if
       t = nan
       x = nan
       v = nan
