@@ -274,8 +274,9 @@ typedef struct {
  *  HCIMPACT_ERR_DAMPING (6)      damping < 0,
  *  HCIMPACT_ERR_DOMAIN (8)       b V above 1e40 (HCIMPACT_MAX_BETA), or a result
  *                                would leave the double range,
- *  HCIMPACT_ERR_NO_CONVERGENCE (9) a quadrature did not converge (not seen for
- *                                b V up to 1e6),
+ *  HCIMPACT_ERR_NO_CONVERGENCE (9) exponent above 100 (the times are not
+ *                                integrated beyond), or a quadrature did not
+ *                                converge (not seen for b V up to 1e40),
  *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written). */
 HCIMPACT_API int hcimpact_impact(const hcimpact_contact *contact, hcimpact_outcome *outcome);
 
@@ -318,8 +319,10 @@ HCIMPACT_API int hcimpact_impact_array(int n, const hcimpact_contact *contacts,
 /** Velocity x' in m/s at the compression x (m, 0 <= x <= x_max) on the branch
  *  HCIMPACT_COMPRESSION_BRANCH (x' >= 0) or HCIMPACT_RESTITUTION_BRANCH (x' <= 0):
  *  V(x) = u(h(b V) (1 - (x/x_max)^(n+1)))/b through Lambert W (MODEL.md), smooth as
- *  b -> 0. At x = 0 it is V resp. -k V, at x = x_max 0.
- *  Returns HCIMPACT_OK; the statuses of hcimpact_impact for the contact;
+ *  b -> 0. At x = 0 it is exactly V resp. the rebound velocity -k V of
+ *  hcimpact_impact, at x = x_max 0. No quadrature: any exponent up to about 6e299.
+ *  Returns HCIMPACT_OK; the statuses of hcimpact_impact for the contact (not those
+ *  of its times and force);
  *  HCIMPACT_ERR_NOT_FINITE (x NaN or infinite), HCIMPACT_ERR_DOMAIN (x < 0,
  *  x > x_max by more than 4 ulp, or another branch): *velocity = NaN;
  *  HCIMPACT_ERR_NULL. */
@@ -335,7 +338,8 @@ HCIMPACT_API int hcimpact_velocity_at_depth_array(const hcimpact_contact *contac
 /** The time law at n >= 1 times t[i] (s from the start of contact, any order):
  *  compression x[i] (m), velocity v[i] = x' (m/s) and contact force
  *  f[i] = c x^n (1 + b x') (N). Before the contact (t <= 0): x = 0, x' = V, F = 0;
- *  after it: x = 0, x' = -k V, F = 0. Each time costs a few quadratures.
+ *  from the contact time of hcimpact_impact on: x = 0, x' = -k V, F = 0 exactly.
+ *  Each time costs a few quadratures.
  *  Returns HCIMPACT_OK; the statuses of hcimpact_impact; HCIMPACT_ERR_NOT_FINITE (a
  *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE (also
  *  when the library cannot allocate its copy of the n values: out of memory, outputs
@@ -344,7 +348,8 @@ HCIMPACT_API int hcimpact_time_law(const hcimpact_contact *contact, int n, const
                                    double *x, double *v, double *f);
 
 /** The time law on n >= 2 equally spaced times t[i] = contact_time i/(n - 1), written
- *  to t, with x, v and f as in hcimpact_time_law (x[0] = x[n-1] = 0).
+ *  to t, with x, v and f as in hcimpact_time_law (x[0] = x[n-1] = 0 and
+ *  f[0] = f[n-1] = 0 exactly, t[n-1] the contact time of hcimpact_impact).
  *  Returns as hcimpact_time_law; n < 2, or n samples beyond the memory available,
  *  give HCIMPACT_ERR_SIZE (every output NaN). */
 HCIMPACT_API int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,

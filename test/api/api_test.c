@@ -455,6 +455,16 @@ static void test_impact(void)
   contact = steel_ball(1.0);
   contact.damping = 0.0;
   check_status("impact(b = 0)", hcimpact_impact(&contact, &outcome), HCIMPACT_OK);
+  {
+    /* issue 13: the steel ball at V = 1e40 (beta = 1e39) had a compression time of 0 */
+    hcimpact_contact fast = steel_ball(1e40);
+    hcimpact_outcome o;
+    check_status("impact(V = 1e40)", hcimpact_impact(&fast, &o), HCIMPACT_OK);
+    check_close("impact(V = 1e40) compression time", o.compression_time, 4.270256913017152e-27,
+                1e-15);
+    check_close("impact(V = 1e40) time of the peak", o.time_at_peak_force, 8.95173406821078e-29,
+                1e-15);
+  }
   check_close("impact(b = 0) k", outcome.restitution, 1.0, 0.0);
   check_close("impact(b = 0) x_max", outcome.max_compression, 3.5092181079293274e-5, rel);
   check_close("impact(b = 0) t_contact", outcome.contact_time, 1.0328594573451282e-4, rel);
@@ -550,10 +560,16 @@ static void test_trajectory(void)
   /* velocity at a depth */
   check_status("velocity_at_depth(0, compression)",
                hcimpact_velocity_at_depth(&contact, 0.0, HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_OK);
-  check_close("velocity_at_depth(0, compression) = V", v, 5.0, rel);
+  check_true("velocity_at_depth(0, compression) = V exactly", v == 5.0);
   check_status("velocity_at_depth(0, restitution)",
                hcimpact_velocity_at_depth(&contact, 0.0, HCIMPACT_RESTITUTION_BRANCH, &v), HCIMPACT_OK);
-  check_close("velocity_at_depth(0, restitution) = -k V", v, outcome.rebound_velocity, rel);
+  check_true("velocity_at_depth(0, restitution) = -k V exactly", v == outcome.rebound_velocity);
+  /* issue 13: n = DBL_MAX gave HCIMPACT_OK with NaN */
+  bad.exponent = DBL_MAX;
+  i = hcimpact_velocity_at_depth(&bad, 1e-5, HCIMPACT_COMPRESSION_BRANCH, &v);
+  check_true("velocity_at_depth(n = DBL_MAX): a status or a finite velocity",
+             (i != HCIMPACT_OK && isnan(v)) || (i == HCIMPACT_OK && isfinite(v)));
+  bad.exponent = 0.0;
   check_status("velocity_at_depth(x_max)",
                hcimpact_velocity_at_depth(&contact, outcome.max_compression,
                                           HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_OK);
@@ -631,6 +647,12 @@ static void test_trajectory(void)
   for (i = 1; i < 5; ++i) check_true("time_law_samples increasing", t[i] > t[i - 1]);
   check_true("time_law_samples x[0] = 0", x[0] == 0.0);
   check_close("time_law_samples v[0] = V", xd[0], 5.0, rel);
+  /* issue 13: the contact is over at the contact time of hcimpact_impact */
+  check_true("time_law_samples x[4] = F[4] = 0, v[4] = -k V",
+             x[4] == 0.0 && f[4] == 0.0 && xd[4] == outcome.rebound_velocity);
+  t[0] = outcome.contact_time;
+  check_status("time_law(contact time)", hcimpact_time_law(&contact, 1, t, x, xd, f), HCIMPACT_OK);
+  check_true("time_law(contact time): x = F = 0", x[0] == 0.0 && f[0] == 0.0);
   check_status("time_law_samples (n = 1)", hcimpact_time_law_samples(&contact, 1, t, x, xd, f), HCIMPACT_ERR_SIZE);
   check_status("time_law_samples (bad contact)", hcimpact_time_law_samples(&bad, 5, t, x, xd, f), HCIMPACT_ERR_EXPONENT);
   check_true("time_law_samples (bad contact): NaN", isnan(t[0]) && isnan(x[4]) && isnan(f[2]));

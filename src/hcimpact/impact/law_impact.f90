@@ -11,7 +11,7 @@ module hcimpact_law_impact
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
       & hcimpact_err_size, hcimpact_err_elastic_law
    use hcimpact_libm, only : log1p
-   use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
+   use hcimpact_double_double, only : dd_real, dd, two_sum, operator(+), &
       & operator(-), operator(*), operator(/), &
       & dd_exp
    use hcimpact_lambertw, only : lambert_wm1p1
@@ -21,7 +21,7 @@ module hcimpact_law_impact
    use hcimpact_trajectory, only : trajectory_type, new_trajectory, phase_integrand, &
       & compression_phase, restitution_phase, turn_q, end_r, phase_duration, &
       & duration_from_turn, duration_from_end, invert_from_turn, invert_from_end, &
-      & scaled_velocity, phase_length
+      & scaled_velocity, phase_length, damping_product
    implicit none
    private
 
@@ -163,7 +163,7 @@ contains
          stat = hcimpact_err_size
          return
       end if
-      f%tr = new_trajectory(two_prod(damping, velocity))
+      f%tr = new_trajectory(damping_product(damping, velocity))
       f%mass = mass
       f%velocity = velocity
       f%energy_unit = mass * velocity * velocity
