@@ -300,7 +300,10 @@ typedef struct {
  *  bodies), damping b in s/m, approach speed in m/s. Same outcome and statuses as
  *  hcimpact_impact (mass, damping, velocity checked alike); a NULL law, outcome or
  *  callback gives HCIMPACT_ERR_NULL (nothing written), and a callback returning a
- *  value that is not finite, or a law that is not increasing, HCIMPACT_ERR_ELASTIC_LAW. */
+ *  value that is not finite, or a law that is not increasing, HCIMPACT_ERR_ELASTIC_LAW.
+ *  HCIMPACT_ERR_DOMAIN where the law's values the method needs leave the double range
+ *  (energies m V^2 h(bV)/(bV)^2 near the bottom of the range, f or f' infinite or
+ *  subnormal where the peak's sign is decided), rather than a wrong number. */
 HCIMPACT_API int hcimpact_impact_law(const hcimpact_elastic_law *law, double mass, double damping,
                                      double velocity, hcimpact_outcome *outcome);
 

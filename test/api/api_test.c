@@ -424,6 +424,23 @@ static void test_impact_law(void)
   law.force = cb_nan;
   check_status("impact_law(NaN force)", hcimpact_impact_law(&law, 0.1, 0.1, 2.0, &outcome),
                HCIMPACT_ERR_ELASTIC_LAW);
+  /* issue 13: the peak of a law through callbacks at large and tiny scales (m = 1e300 gave
+     2.0e155 N, b = 1e-300 gave 4.3e-87 N) agrees with the power law */
+  law.force = cb_force;
+  contact.mass = 1e300;
+  contact.velocity = 5.0;
+  check_status("impact(m = 1e300)", hcimpact_impact(&contact, &reference), HCIMPACT_OK);
+  check_status("impact_law(m = 1e300)", hcimpact_impact_law(&law, 1e300, 0.1, 5.0, &outcome),
+               HCIMPACT_OK);
+  check_close("impact_law(m = 1e300) F_max", outcome.peak_force, reference.peak_force, 1e-14);
+  contact.mass = 0.1;
+  contact.damping = 1e-300;
+  check_status("impact(b = 1e-300)", hcimpact_impact(&contact, &reference), HCIMPACT_OK);
+  check_status("impact_law(b = 1e-300)", hcimpact_impact_law(&law, 0.1, 1e-300, 5.0, &outcome),
+               HCIMPACT_OK);
+  check_close("impact_law(b = 1e-300) F_max", outcome.peak_force, reference.peak_force, 1e-14);
+  check_close("impact_law(b = 1e-300) time of the peak", outcome.time_at_peak_force,
+              reference.time_at_peak_force, 1e-14);
 }
 
 static void test_impact(void)
