@@ -128,6 +128,15 @@ def make_cases():
     cases.append(dict(m=2.5476085925512183e-12, c=591848.3479628453, n=1.5,
                       V=4.7916356680899754e-05, b=208697002.29078904, tag="timelaw",
                       tl_fracs=EARLY, tl_times=[2.6842756814519497e-08]))
+    # two contacts of the trapping build's sweep: x_max = 3.6e282 (the time unit's
+    # product with 1/H overflowed before its quotient by V), and beta = 2.1e38 with
+    # n = 9.3 (d R(d) underflowed next to the end of contact)
+    cases.append(dict(m=2.29562955624599565e183, c=1.72121672058806109e-67,
+                      n=0.936194925387041965, V=4.08593997108846904e162,
+                      b=8.83804562301416088e-135, tag="timelaw"))
+    cases.append(dict(m=1.73107294698573407e-203, c=1.43134534168580123e-57,
+                      n=9.33407117475858250, V=5.24414686115013018e165,
+                      b=3.94631707913109737e-128, tag="timelaw"))
     for cs in cases:
         for key in ("m", "c", "n", "V", "b"):
             cs[key] = float(cs[key])

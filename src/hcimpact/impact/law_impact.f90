@@ -79,11 +79,7 @@ contains
             lo = x
          end if
          force = f%law%force(x)
-         if (force > 0.0_wp) then
-            step = excess / force
-         else
-            step = huge(1.0_wp)
-         end if
+         step = newton_step(excess, force)
          if (abs(step) <= 2.0_wp * epsilon(1.0_wp) * x) then
             x = x - step
             return
@@ -101,6 +97,19 @@ contains
          if (.not. hi - lo > 2.0_wp * epsilon(1.0_wp) * hi) return
       end do
    end function inverse_potential
+
+   !> The Newton step excess/force of an inversion of the potential (Pi' = f), or the
+   !> largest double where the force is not positive and finite or the quotient would
+   !> overflow (not formed: the Debug build traps): the caller then bisects.
+   elemental function newton_step(excess, force) result(step)
+      real(wp), intent(in) :: excess, force
+      real(wp) :: step
+      step = huge(1.0_wp)
+      if (force > 0.0_wp .and. force <= huge(1.0_wp) .and. abs(excess) <= huge(1.0_wp)) then
+         if (exponent(excess) - exponent(force) < maxexponent(1.0_wp) - 1) &
+            & step = excess / force
+      end if
+   end function newton_step
 
    !> Energy fraction S = Pi(x)/(m V^2) at the point with distances dturn, dend.
    pure function energy_fraction(tr, phase, dturn, dend) result(s)
@@ -216,6 +225,11 @@ contains
             return
          end if
          if (p >= e) exit
+         if (hi > 0.5_wp * huge(1.0_wp)) then
+            ! Pi below m V^2 H up to the largest double: x_max is beyond the range
+            stat = hcimpact_err_domain
+            return
+         end if
          lo = hi
          hi = 2.0_wp * hi
       end do
@@ -242,11 +256,7 @@ contains
          else
             lo = x
          end if
-         if (law%force(x) > 0.0_wp) then
-            step = p / law%force(x)
-         else
-            step = huge(1.0_wp)
-         end if
+         step = newton_step(p, law%force(x))
          if (abs(step) <= 2.0_wp * epsilon(1.0_wp) * x) then
             x = x - step
             exit
@@ -267,8 +277,11 @@ contains
       ! the exponent of Pi near 0, for the inversion near the ends of contact
       x = 1.0e-6_wp * f%x_max
       p = law%potential(x)
-      if (p > 0.0_wp .and. law%force(x) > 0.0_wp) then
-         f%power = x * law%force(x) / p
+      ! (x f/p from a positive finite x f and p only where no overflow can occur)
+      step = law%force(x)
+      if (p > 0.0_wp .and. step > 0.0_wp .and. step <= huge(1.0_wp)) then
+         if (exponent(x) + exponent(step) - exponent(p) < maxexponent(1.0_wp) - 1) &
+            & f%power = (x * step) / p
          if (.not. (f%power > 0.0_wp .and. f%power < 1.0e3_wp)) f%power = 2.0_wp
       end if
       ! Next to an end of contact the quadratures ask the law for x at the energies
@@ -447,6 +460,7 @@ contains
       integer, intent(out) :: stat
       type(dd_real) :: l, other
       real(wp) :: force, slope, share, slope_lo, slope_hi, force_lo, force_hi
+      logical :: surely_rising, surely_falling
 
       stat = hcimpact_ok
       if (from_turn) then
@@ -494,12 +508,19 @@ contains
             force_lo = 0.0_wp
             force_hi = tiny(1.0_wp)
          end if
-         if (slope_lo > 0.0_wp .and. greater_product([f%mass, f%velocity, slope_lo, w], &
-            & [damping, force_hi, force_hi])) then
+         ! (the products only of positive finite factors: Fortran's .and. may evaluate
+         ! both operands)
+         surely_rising = .false.
+         surely_falling = .false.
+         if (slope_lo > 0.0_wp) surely_rising = greater_product([f%mass, f%velocity, &
+            & slope_lo, w], [damping, force_hi, force_hi])
+         if (.not. surely_rising .and. force_lo > 0.0_wp .and. slope_hi <= huge(1.0_wp)) then
+            surely_falling = greater_product([damping, force_lo, force_lo], &
+               & [f%mass, f%velocity, slope_hi, w])
+         end if
+         if (surely_rising) then
             rising = .true.
-         else if (force_lo > 0.0_wp .and. slope_hi <= huge(1.0_wp) .and. &
-            & greater_product([damping, force_lo, force_lo], &
-            & [f%mass, f%velocity, slope_hi, w])) then
+         else if (surely_falling) then
             rising = .false.
          else
             stat = hcimpact_err_domain

@@ -375,9 +375,12 @@ contains
       ! time in units of the integrals
       tau = dd(t) / model%time_unit
       e = dur(1) + dur(2)
-      if (tau%hi < 1.0e-20_wp * e%hi) then
+      if (tau%hi < 1.0e-20_wp * dur(1)%hi) then
          ! The start of the motion: x = V t, x' = V, F = c x^n (1 + b V), with relative
-         ! corrections of order (t/T)^(n+1) < 1e-20, below an ulp. (The inversion below
+         ! corrections of order (t/t_c)^(n+1) < 1e-20, t_c the compression time, below an
+         ! ulp (of the compression, not of the contact: above beta = 1e20 the compression
+         ! is shorter than 1e-20 of the contact, and the whole of it was taken as its
+         ! start before issue 13). (The inversion below
          ! would lose a time this small, down to subnormal t, in its rounding.) The
          ! state is the two doubles x and V exactly: its force is the contact-force
          ! element's (hcimpact_force_element)
@@ -420,9 +423,13 @@ contains
          lt = length - d
       end if
       ! ln((x/x_max)^(n+1)) from the form of S for the nearer end of the phase (in l),
-      ! in double-double: x and F are each one exponential of it, rounded once
-      if (lt%hi <= d%hi) then
-         ln_share = turn_log_share(model, phase, lt%hi)
+      ! in double-double: x and F are each one exponential of it, rounded once. In
+      ! compression the end form R(d) = 1 - (1 + beta) d G2(-beta d) cancels to about
+      ! 1/(beta d) where beta d is large (a large beta, 9 ulps of x at 3.6e28): there the
+      ! turning point's form, whose 1 - q does not cancel (as in power_nodes).
+      if (lt%hi <= d%hi .or. (phase == compression_phase &
+         & .and. model%f%tr%beta%hi * d%hi > 4.0_wp)) then
+         ln_share = turn_log_share(model, phase, lt)
       else if (from_turn) then
          ln_share = end_log_share(model, phase, dd_log(d), d%hi)
       else

@@ -14,7 +14,7 @@ module hcimpact_power_model
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), &
-      & dd_exp, dd_log, dd_sqrt
+      & dd_exp, dd_log, dd_sqrt, dd_scale
    use hcimpact_contact, only : contact_type, max_beta
    use hcimpact_trajectory, only : new_trajectory, phase_integrand, compression_phase, &
       & restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, damping_product, &
@@ -189,9 +189,18 @@ contains
          return
       end if
       ! x_max/((n+1) H V): products with 1/(n+1) and 1/H (both to 2**-104), one quotient
-      ! by the double V
-      model%time_unit = (model%x_max * model%inv_np1_dd &
-         & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
+      ! by the double V. Above x_max = 2^800 the product with 1/H (up to 2^134) could
+      ! overflow before the quotient brings it back into the range: x_max and V are
+      ! scaled to [1/2, 1) first and the result back (exact)
+      if (model%x_max%hi < 2.0_wp**800) then
+         model%time_unit = (model%x_max * model%inv_np1_dd &
+            & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
+      else
+         em = exponent(model%x_max%hi)
+         model%time_unit = dd_scale((dd_scale(model%x_max, -em) * model%inv_np1_dd &
+            & * dd_real(model%inv_hq(1), model%inv_hq(2))) / fraction(contact%velocity), &
+            & em - ev)
+      end if
    end subroutine new_power_model
 
    !> The constants only the time law needs: those of `power_end_time` (only the time
@@ -229,7 +238,7 @@ contains
       real(wp), intent(in) :: dend
       !> Density
       real(wp) :: rate
-      real(wp) :: q, s, p
+      real(wp) :: q, s, p, r
       if (dturn <= dend) then
          ! (x/x_max)^(n+1) = 1 - q: delta = exp(-alpha ln(1 - q)) - 1, small near the turn
          q = turn_q(self%tr, self%phase, dturn)
@@ -237,7 +246,15 @@ contains
          rate = expm1(-(self%alpha_hi * s + self%alpha_lo * s))
       else
          ! (x/x_max)^(n+1) = d R(d)/H, singular like d^(-alpha) at the end
-         p = dend * end_r(self%tr, self%phase, dend) / self%tr%hq%hi
+         r = end_r(self%tr, self%phase, dend)
+         p = dend * r
+         if (p < tiny(1.0_wp)) then
+            ! (d R below the normal range, d next to the end at large beta, where R(0) = k
+            ! and H are both about 1/beta: their quotient first, which does not underflow)
+            p = dend * (r / self%tr%hq%hi)
+         else
+            p = p / self%tr%hq%hi
+         end if
          p = p - p * (self%tr%hq%lo / self%tr%hq%hi)
          rate = p**(-self%alpha_hi) * (1.0_wp - self%alpha_lo * log(p)) - 1.0_wp
       end if
@@ -323,12 +340,25 @@ contains
 
    !> ln((x/x_max)^(n+1)) near the turning point, at |l| = lt: (x/x_max)^(n+1) = 1 - q,
    !> formed exactly from q (double-double; accurate relative to itself near the turn).
+   !> q at lt%hi, moved by the trailing part: dq/d|l| = |x'/V|/H = |expm1(beta l)|/(beta H),
+   !> which for large beta |l| is beta q, so that the rounding of |l| would cost
+   !> beta |l| times an ulp of q (9 ulps of x at beta = 4e28).
    pure function turn_log_share(model, phase, lt) result(ln_share)
       type(power_model), intent(in) :: model
       integer, intent(in) :: phase
-      real(wp), intent(in) :: lt
+      type(dd_real), intent(in) :: lt
       type(dd_real) :: ln_share
-      ln_share = dd_log(two_sum(1.0_wp, -turn_q(model%f%tr, phase, lt)))
+      real(wp) :: q, slope, beta, l
+      beta = model%f%tr%beta%hi
+      q = turn_q(model%f%tr, phase, lt%hi)
+      l = lt%hi
+      if (phase == restitution_phase) l = -lt%hi
+      if (beta > 0.0_wp) then
+         slope = abs(expm1(beta * l) / beta) / model%f%tr%hq%hi
+      else
+         slope = lt%hi / model%f%tr%hq%hi
+      end if
+      ln_share = dd_log(two_sum(1.0_wp, -q) - slope * lt%lo)
    end function turn_log_share
 
    !> ln((x/x_max)^(n+1)) near an end of contact: (x/x_max)^(n+1) = d R(d)/H, given

@@ -534,7 +534,11 @@ contains
       real(wp), intent(in) :: dxb
       !> Density at the node
       real(wp) :: fx
-      fx = self%density(self%turn_gap + dxa * self%unit, self%end_gap + dxb * self%unit)
+      ! (the distance to the end of contact no smaller than the smallest normal number:
+      ! scaled by a tiny unit, the rule's last nodes would reach 0, where the density is
+      ! infinite)
+      fx = self%density(self%turn_gap + dxa * self%unit, &
+         & max(self%end_gap + dxb * self%unit, tiny(1.0_wp)))
    end function phase_eval
 
    !> |l| of the end of contact of a phase, in double-double.
