@@ -11,7 +11,7 @@ module hcimpact_law_impact
    use hcimpact_kinds, only : wp, ik, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
       & hcimpact_err_size, hcimpact_err_elastic_law
-   use hcimpact_double_double, only : dd_real, dd, operator(+), &
+   use hcimpact_double_double, only : dd_real, dd, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), &
       & dd_exp
    use hcimpact_elastic, only : elastic_law
@@ -20,7 +20,7 @@ module hcimpact_law_impact
    use hcimpact_trajectory, only : trajectory_type, new_trajectory, phase_integrand, &
       & compression_phase, restitution_phase, turn_q, end_r, phase_duration, &
       & duration_from_turn, duration_from_end, invert_from_turn, invert_from_end, &
-      & scaled_velocity, phase_length, damping_product, branch_speed
+      & scaled_velocity, phase_length, branch_speed
    implicit none
    private
 
@@ -197,7 +197,7 @@ contains
          stat = hcimpact_err_size
          return
       end if
-      f%tr = new_trajectory(damping_product(damping, velocity))
+      f%tr = new_trajectory(two_prod(damping, velocity))
       f%mass = mass
       f%velocity = velocity
       ! m V^2 < 2**(e_m + 2 e_V): tested on the binary exponents before the product,

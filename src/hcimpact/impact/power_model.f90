@@ -17,8 +17,7 @@ module hcimpact_power_model
       & dd_exp, dd_log, dd_sqrt, dd_scale
    use hcimpact_contact, only : contact_type, max_beta
    use hcimpact_trajectory, only : new_trajectory, phase_integrand, compression_phase, &
-      & restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, damping_product, &
-      & log_form_beta
+      & restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, log_form_beta
    implicit none
    private
 
@@ -101,7 +100,7 @@ contains
          stat = hcimpact_err_domain
          return
       end if
-      beta = damping_product(contact%damping, contact%velocity)
+      beta = two_prod(contact%damping, contact%velocity)
       if (beta%hi > max_beta) then
          stat = hcimpact_err_domain
          return

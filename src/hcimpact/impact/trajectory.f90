@@ -60,8 +60,7 @@ module hcimpact_trajectory
    private
 
 
-   public :: trajectory_type, new_trajectory, damping_product, phase_integrand, &
-      & phase_density, phase_end_time
+   public :: trajectory_type, new_trajectory, phase_integrand, phase_density, phase_end_time
    public :: compression_phase, restitution_phase
    public :: h_over_square_dd, h_over_square, g2, turn_q, end_r
    public :: phase_duration, duration_from_turn, duration_from_end
@@ -339,28 +338,6 @@ contains
          end if
       end if
    end function end_r
-
-   !> beta = b V as the exact product of the damping and the approach speed (finite,
-   !> >= 0, their product below 2**1000). A factor near the top of the double range
-   !> (DBL_MAX with V subnormal is a valid contact) is out of reach of Veltkamp's
-   !> splitting in the error-free product: its high half rounds up to 2**1024. Half
-   !> the difference of their binary exponents is moved from one factor to the other
-   !> first, which is exact (the small factor is scaled up, the large one stays normal).
-   elemental function damping_product(damping, velocity) result(beta)
-      !> Damping b in s/m
-      real(wp), intent(in) :: damping
-      !> Approach speed V in m/s
-      real(wp), intent(in) :: velocity
-      !> b V exactly
-      type(dd_real) :: beta
-      integer :: k
-      if (max(damping, velocity) < 2.0_wp**996) then
-         beta = two_prod(damping, velocity)
-      else
-         k = (exponent(damping) - exponent(velocity)) / 2
-         beta = two_prod(scale(damping, -k), scale(velocity, k))
-      end if
-   end function damping_product
 
    !> The constants of the trajectory for beta = b V >= 0 (finite).
    pure function new_trajectory(beta) result(tr)
