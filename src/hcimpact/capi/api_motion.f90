@@ -155,6 +155,9 @@ contains
 
    !> int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
    !>                       double *x, double *v, double *f)
+   !>
+   !> HCIMPACT_ERR_SIZE also when the library cannot allocate its copies of the n
+   !> values (out of memory); x, v, f are then NaN.
    function c_time_law(contact, n, t, x, v, f) result(stat) bind(C, name="hcimpact_time_law")
       !> const hcimpact_contact *
       type(c_ptr), value, intent(in) :: contact
@@ -173,7 +176,7 @@ contains
       type(hcimpact_contact), pointer :: c_in
       real(c_double), pointer :: ts(:), xs(:), vs(:), fs(:)
       real(wp), allocatable :: tt(:), xx(:), vv(:), ff(:)
-      integer :: status
+      integer :: status, alloc_stat
       if (.not. (c_associated(contact) .and. c_associated(t) .and. c_associated(x) &
          & .and. c_associated(v) .and. c_associated(f))) then
          stat = hcimpact_err_null
@@ -188,9 +191,17 @@ contains
       call c_f_pointer(x, xs, [n])
       call c_f_pointer(v, vs, [n])
       call c_f_pointer(f, fs, [n])
-      ! copies: the outputs may be the time array itself
+      ! copies (the outputs may be the time array itself); out of memory for them is
+      ! HCIMPACT_ERR_SIZE with NaN outputs (n too large for the memory available)
+      allocate(tt(n), xx(n), vv(n), ff(n), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         xs = nan
+         vs = nan
+         fs = nan
+         stat = hcimpact_err_size
+         return
+      end if
       tt = ts
-      allocate(xx(n), vv(n), ff(n))
       call time_law(to_contact(c_in), tt, xx, vv, ff, status)
       xs = xx
       vs = vv
@@ -202,6 +213,8 @@ contains
    !>                               double *x, double *v, double *f)
    !>
    !> n >= 2 equally spaced times from 0 to the contact time, both included.
+   !> HCIMPACT_ERR_SIZE also when the n samples cannot be allocated (out of memory);
+   !> every output is then NaN.
    function c_time_law_samples(contact, n, t, x, v, f) result(stat) &
          & bind(C, name="hcimpact_time_law_samples")
       !> const hcimpact_contact *
