@@ -32,7 +32,10 @@ module hcimpact_scene_run
    use hcimpact_lambertw, only : lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1
    use hcimpact_scene_model, only : scene_type, n_outputs, output_names, output_files, &
       & out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
-      & out_lambertw, out_legacy, out_cvode, nan
+      & out_lambertw, out_legacy, out_cvode, out_contacts, out_final, out_motion, &
+      & system_outputs, nan
+   use hcimpact_scene_chain, only : system_method, system_needs_ode, describe_system, &
+      & write_system_parameters, run_system
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
       & abandon_results, csv_open, csv_row, csv_line, csv_close
    use hcimpact_scene_ode, only : ode_available, ode_description, ode_missing, ode_run_type, &
@@ -70,11 +73,11 @@ module hcimpact_scene_run
 
    !> The components an output can need
    integer, parameter :: c_impact = 1, c_velocity = 2, c_timelaw = 3, c_klaw = 4, &
-      & c_lambertw = 5, c_ode = 6, n_components = 6
+      & c_lambertw = 5, c_ode = 6, c_system = 7, n_components = 7
    character(len=*), parameter :: component_names(n_components) = [character(len=44) :: &
       & "closed forms + quadrature of the times", "closed-form V(x) (Lambert W)", &
       & "time law (quadrature inverted by Newton)", "restitution law k(beta)", &
-      & "Lambert W curves", "ODE solver (CVODE)"]
+      & "Lambert W curves", "ODE solver (CVODE)", "a system of bodies on a line"]
 
 contains
 
@@ -102,6 +105,8 @@ contains
          uses(c_lambertw) = .true.
       case (out_cvode)
          uses([c_impact, c_ode]) = .true.
+      case (out_contacts, out_final, out_motion)
+         uses(c_system) = .true.
       end select
    end function needs
 
@@ -140,6 +145,8 @@ contains
       case (out_cvode)
          text = "CVODE at " // count_str(size(sc%tolerances), "tolerance") // " x " &
             & // count_str(ns, "speed") // ", against the closed forms"
+      case (out_contacts, out_final, out_motion)
+         text = system_method(sc, k)
       case default
          text = ""
       end select
@@ -158,14 +165,18 @@ contains
       type(results_type) :: res
       type(csv_type) :: csv
       character(len=:), allocatable :: error, log_text
-      logical :: used(n_components)
+      logical :: used(n_components), unavailable, system_done
       integer :: k, i
       real(wp) :: t0
 
       call console_begin(opts%quiet, opts%progress)
       code = exit_ok
       t0 = wall_clock()
-      call describe_scene(sc)
+      if (sc%is_system) then
+         call describe_system(sc)
+      else
+         call describe_scene(sc)
+      end if
 
       ! the plan
       used = .false.
@@ -184,6 +195,16 @@ contains
          end if
          call say_text("  ODE solver: ", ode_description)
       end if
+      if (sc%is_system) then
+         if (system_needs_ode(sc) .and. .not. ode_available) then
+            call shout("error: the method 'integrated' needs the CVODE component: " &
+               & // ode_missing)
+            code = exit_unavailable
+            return
+         end if
+         call say_text("  ODE solver: ", trim(ode_description) // " (for clusters of" &
+            & // " overlapping contacts)")
+      end if
       if (opts%plan_only) then
          if (console_failed()) then
             call shout("error: the standard output: writing failed: " // console_reason())
@@ -201,10 +222,18 @@ contains
          end if
       end if
 
-      call write_parameters(sc, res, error)
+      if (sc%is_system) then
+         call write_system_parameters(sc, res, error)
+      else
+         call write_parameters(sc, res, error)
+      end if
+      system_done = .false.
+      unavailable = .false.
       do k = 1, n_outputs
          if (allocated(error)) exit
          if (.not. sc%wanted(k)) cycle
+         ! one run of a system gives all its outputs
+         if (system_outputs(k) .and. system_done) cycle
          select case (k)
          case (out_summary)
             call run_summary(sc, sc%speeds, "summary", res, .true., error)
@@ -224,12 +253,16 @@ contains
             call run_legacy(sc, res, error)
          case (out_cvode)
             call run_cvode(sc, res, error)
+         case (out_contacts, out_final, out_motion)
+            call run_system(sc, res, error, unavailable)
+            system_done = .true.
          end select
          if (allocated(error)) then
             call shout("error: " // trim(output_names(k)) // ": " // error)
             call abandon_results(res)
             if (res%active) call shout("nothing written: the partial results were removed")
             code = exit_failure
+            if (unavailable) code = exit_unavailable
             return
          end if
       end do
