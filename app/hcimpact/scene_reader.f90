@@ -64,7 +64,7 @@ module hcimpact_scene_reader
       & "body1", "body2", "wall", "contact", "damping", "sampling", "bodies", "left_wall", &
       & "right_wall"]
    !> The variables each group takes
-   character(len=*), parameter :: group_variables(n_groups) = [character(len=96) :: &
+   character(len=*), parameter :: group_variables(n_groups) = [character(len=160) :: &
       & "title, speeds, outputs", &
       & "mass, radius, density, young, poisson, flat", &
       & "mass, radius, density, young, poisson, flat", &
@@ -903,6 +903,13 @@ contains
       end if
       p = index(msg, "Bad data for namelist object ")
       if (p > 0) then
+         ! a list that reads on into the next line's name: that name is unknown
+         owner = unknown_name(line, gid)
+         if (len(owner) > 0) then
+            text = "unknown name '" // owner // "' (&" // trim(group_names(gid)) // " takes " &
+               & // trim(group_variables(gid)) // ")"
+            return
+         end if
          token = trim(msg(p + len("Bad data for namelist object "):))
          text = "a value of " // token // " is not of the right kind: " // clip(adjustl(line))
          return
@@ -930,6 +937,32 @@ contains
       end if
       text = "cannot read this line: " // clip(adjustl(line))
    end function explain
+
+   !> The first name assigned on the line (name = ...) that group gid does not take, or
+   !> "".
+   function unknown_name(line, gid) result(name)
+      character(len=*), intent(in) :: line
+      integer, intent(in) :: gid
+      character(len=:), allocatable :: name
+      character(len=len(line)) :: bare
+      character(len=len(group_variables(gid)) + 2) :: known
+      integer :: i, first, last
+      name = ""
+      bare = lower(line)
+      call blank_quotes(bare)
+      i = index(bare, "!")
+      if (i > 0) bare(i:) = " "
+      known = ", " // lower(group_variables(gid))
+      do i = 1, len_trim(bare)
+         if (bare(i:i) /= "=") cycle
+         call name_before(bare(1:i - 1), first, last)
+         if (last < first) cycle
+         if (index(trim(known) // ",", ", " // bare(first:last) // ",") == 0) then
+            name = trim(line(first:last))
+            return
+         end if
+      end do
+   end function unknown_name
 
    !> Lines first..last of the source joined by blanks, comments and quoted text kept
    !> apart from `!` comments, which are dropped.
@@ -1635,10 +1668,14 @@ contains
          end do
          sys%mass_from_density = .true.
       end if
-      if (any(sys%poisson > 0.5_wp)) then
-         error = at(src, g_bodies, "poisson") // "Poisson's ratio must lie in (-1, 0.5]"
-         return
-      end if
+      do i = 1, n
+         ! (NaN where not given: no ordered comparison with it, which would trap)
+         if (ieee_is_nan(sys%poisson(i))) cycle
+         if (sys%poisson(i) > 0.5_wp) then
+            error = at(src, g_bodies, "poisson") // "Poisson's ratio must lie in (-1, 0.5]"
+            return
+         end if
+      end do
       call per_body("velocity", body_velocity, sys%velocity, -huge(1.0_wp), .true.)
       if (allocated(error)) return
 
