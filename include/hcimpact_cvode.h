@@ -92,18 +92,18 @@ HCIMPACT_API int hcimpact_simulate_message(const hcimpact_contact *contact, doub
  *  N/m^n (> 0), exponent n (>= 1e-6; 1.5: Hertz), damping b in s/m (>= 0); the rules
  *  of hcimpact_impact. */
 typedef struct {
-  double stiffness;
-  double exponent;
-  double damping;
+  double stiffness; /**< c in N/m^n, > 0 */
+  double exponent;  /**< n, >= 1e-6 (1.5: Hertz) */
+  double damping;   /**< b in s/m, >= 0 */
 } hcimpact_chain_law;
 
 /** A fixed wall at one end: its contact law with the end body, as
  *  hcimpact_chain_law, and the gap between them in m (>= 0; 0: touching). */
 typedef struct {
-  double stiffness;
-  double exponent;
-  double damping;
-  double gap;
+  double stiffness; /**< c in N/m^n, > 0 */
+  double exponent;  /**< n, >= 1e-6 */
+  double damping;   /**< b in s/m, >= 0 */
+  double gap;       /**< gap to the end body in m, >= 0 */
 } hcimpact_chain_wall;
 
 /** How to compute a system. A structure of zeros (hcimpact_chain_options o = {0};)
