@@ -144,14 +144,15 @@ def scaling_sections(sc, mem):
                  % (any_n["rtol"], any_n["t_end"] * 1e3, nrounds))
     lines.append("")
     lines.append("| N | steps | RHS evals | Jacobians | wave at bead | s per call | µs per step "
-                 "| ns per step and bead |")
-    lines.append("|---:|---:|---:|---:|---:|---:|---:|---:|")
+                 "| ns per step and bead | ms per bead the wave crosses |")
+    lines.append("|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for n in sizes:
         p = per_n[n]
-        lines.append("| %d | %d | %d | %d | %d | %s | %s | %s |" % (
+        lines.append("| %d | %d | %d | %d | %d | %s | %s | %s | %s |" % (
             n, p["steps"], p["rhs"], p["jac"], p["front"], fmt_range(p["seconds"]),
             fmt_range([x * 1e6 for x in p["per_step"]]),
-            fmt_range([x * 1e9 for x in p["per_bead"]])))
+            fmt_range([x * 1e9 for x in p["per_bead"]]),
+            fmt_range([x * 1e3 / p["front"] for x in p["seconds"]])))
     lines.append("")
     lines.append("Slope of log(time per step) against log(N), fitted over all sizes in each "
                  "round: **%s** (median, smallest–largest over the rounds); of log(time per "
