@@ -11,9 +11,10 @@
 !>     and with --states the final positions and velocities in DIR/hc_<integrator>_
 !>     <rtol>.csv (with the system's parameters in its header, for the SciPy script).
 !>   bench_chain scaling OUT.csv --sizes N1,N2,... --rounds R --t-end T --rtol R
-!>       [--min-seconds S]
+!>       [--min-seconds S] [--gap G]
 !>     Per-step cost against N: in every round each size once, in an order reversed
-!>     every other round; a row per round and size.
+!>     every other round; a row per round and size (with --gap, the chain has the gap G
+!>     in m between all its beads instead of touching).
 !>   bench_chain memory --n N --t-end T --rtol R
 !>     One run; the peak resident set size (getrusage) before the chain is built and
 !>     after the run, in KiB: one CSV row.
@@ -51,7 +52,7 @@ program bench_chain
    character(len=4096) :: mode, arg, out_path, out_path2, states_dir
    character(len=4096) :: list_text
    integer :: ia, n, rounds, method, integrator
-   real(wp) :: t_end, rtol, min_seconds
+   real(wp) :: t_end, rtol, min_seconds, gap
    real(wp), allocatable :: rtols(:), sizes(:)
 
    if (command_argument_count() < 1) call usage()
@@ -63,6 +64,7 @@ program bench_chain
    t_end = 1.0e-3_wp
    rtol = 1.0e-10_wp
    min_seconds = 0.05_wp
+   gap = 0.0_wp
    states_dir = ""
    out_path = ""
    out_path2 = ""
@@ -81,6 +83,8 @@ program bench_chain
          rtol = next_real()
       case ("--min-seconds")
          min_seconds = next_real()
+      case ("--gap")
+         gap = next_real()
       case ("--rtols")
          rtols = next_list()
       case ("--sizes")
@@ -204,6 +208,19 @@ contains
       wave_front = maxloc(result%velocities, dim=1)
    end function wave_front
 
+   !> Bodies in the last integrated region (from the log of switches; 0: none)
+   pure integer function region_size(result)
+      type(chain_result), intent(in) :: result
+      integer :: k
+      region_size = 0
+      do k = size(result%switches), 1, -1
+         if (result%switches(k)%first > 0) then
+            region_size = result%switches(k)%last - result%switches(k)%first + 1
+            return
+         end if
+      end do
+   end function region_size
+
    character(len=5) function integrator_name(integ)
       integer, intent(in) :: integ
       integrator_name = merge("bdf  ", "adams", integ == integrator_bdf)
@@ -280,18 +297,19 @@ contains
       open(newunit=unit, file=trim(out_path), status="replace", action="write", iostat=ios)
       if (ios /= 0) error stop "bench_chain: cannot write the scaling CSV"
       write(unit, '(a)') "round,n,t_end,rtol,status,seconds,calls,steps,rhs_evals," // &
-         & "jacobian_evals,front,energy_error"
+         & "jacobian_evals,front,energy_error,gap,clusters,switches,region"
       do r = 1, rounds
          do kk = 1, size(sizes)
             k = kk
             if (mod(r, 2) == 0) k = size(sizes) + 1 - kk
-            call struck_chain(nint(sizes(k)), chain)
+            call struck_chain(nint(sizes(k)), chain, gap)
             seconds = time_runs(chain, options_for(t_end, rtol, method_auto, integrator), &
                & min_seconds, result, stat, calls)
             write(unit, '(i0, ",", i0, 2(",", es10.3e2), ",", i0, ",", es12.5e2, 5(",", i0), &
-               & ",", es10.3e3)') r, nint(sizes(k)), t_end, rtol, stat, seconds, calls, &
-               & result%counters%steps, result%counters%rhs_evals, &
-               & result%counters%jacobian_evals, wave_front(result), result%energy_error
+               & ",", es10.3e3, ",", es10.3e2, 3(",", i0))') r, nint(sizes(k)), t_end, rtol, &
+               & stat, seconds, calls, result%counters%steps, result%counters%rhs_evals, &
+               & result%counters%jacobian_evals, wave_front(result), result%energy_error, &
+               & gap, result%counters%clusters, size(result%switches), region_size(result)
             flush(unit)
             write(error_unit, '(a, i0, a, i0, a, i0, a, f9.3, a)') "scaling: round ", r, &
                & " n = ", nint(sizes(k)), " steps ", result%counters%steps, " ", seconds, " s"

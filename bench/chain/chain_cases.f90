@@ -49,16 +49,19 @@ contains
          & ieee_value(1.0_wp, ieee_positive_inf))
    end function wall_stiffness
 
-   !> A chain of n touching beads (gaps 0, no preload), elastic (b = 0), no walls; the
-   !> first bead moves at striker_speed towards the others, which are at rest.
-   subroutine struck_chain(n, chain)
+   !> A chain of n touching beads (gaps 0, no preload; or the gap given between every
+   !> pair, m), elastic (b = 0), no walls; the first bead moves at striker_speed
+   !> towards the others, which are at rest.
+   subroutine struck_chain(n, chain, gap)
       integer, intent(in) :: n
       type(chain_type), intent(out) :: chain
+      real(wp), intent(in), optional :: gap
       allocate(chain%mass(n), chain%velocity(n), chain%gap(n - 1), chain%law(n - 1))
       chain%mass = bead_mass()
       chain%velocity = 0.0_wp
       chain%velocity(1) = striker_speed
       chain%gap = 0.0_wp
+      if (present(gap)) chain%gap = gap
       chain%law = contact_law(stiffness=bead_stiffness(), exponent=1.5_wp, damping=0.0_wp)
    end subroutine struck_chain
 

@@ -8,7 +8,8 @@
 # of doc/chains-bench.md.
 #
 # Parts (all by default; --only PART,PART,... to run some, the others' CSV files kept):
-#   scaling  per-step cost of the struck chain against N = 1e2 ... 1e5 (interleaved rounds)
+#   scaling  per-step cost of the struck chain against N = 1e2 ... 1e5 (interleaved rounds),
+#            touching and with small gaps
 #   memory   peak RSS against N = 1e2 ... 1e6 (one process per N)
 #   scipy    work-precision against SciPy's solve_ivp, N = 100 and N = 1000
 #   dilute   closed forms against CVODE on the dilute systems (interleaved rounds)
@@ -127,6 +128,7 @@ if has_part scaling; then
     fi
     set -x
     "$bench" scaling "$out/scaling.csv" --t-end 3e-4 --rtol 1e-8 "$@"
+    "$bench" scaling "$out/scaling_gap.csv" --t-end 1e-3 --rtol 1e-8 --gap 1e-6 "$@"
     { set +x; } 2>/dev/null
 fi
 
