@@ -19,11 +19,12 @@
 !>     One run; the peak resident set size (getrusage) before the chain is built and
 !>     after the run, in KiB: one CSV row.
 !>   bench_chain dilute TIMES.csv ACCURACY.csv --rounds R [--rtol R] [--rtols LIST]
-!>       [--min-seconds S]
+!>       [--min-seconds S] [--closed-forms-only]
 !>     The dilute systems: methods auto and exact (closed forms) against integrated
 !>     (CVODE BDF and Adams at rtol), timed one after the other in every round, in an
 !>     order reversed every other round; the integrated answers' errors against the
-!>     exact one, at rtol and (one run each) at every rtol of LIST.
+!>     exact one, at rtol and (one run each) at every rtol of LIST. With
+!>     --closed-forms-only, methods auto and exact alone (for a profiler).
 program bench_chain
    use, intrinsic :: iso_c_binding, only : c_int, c_long
    use, intrinsic :: iso_fortran_env, only : error_unit, output_unit, int64
@@ -52,6 +53,7 @@ program bench_chain
    character(len=4096) :: mode, arg, out_path, out_path2, states_dir
    character(len=4096) :: list_text
    integer :: ia, n, rounds, method, integrator
+   logical :: closed_forms_only
    real(wp) :: t_end, rtol, min_seconds, gap
    real(wp), allocatable :: rtols(:), sizes(:)
 
@@ -65,6 +67,7 @@ program bench_chain
    rtol = 1.0e-10_wp
    min_seconds = 0.05_wp
    gap = 0.0_wp
+   closed_forms_only = .false.
    states_dir = ""
    out_path = ""
    out_path2 = ""
@@ -85,6 +88,8 @@ program bench_chain
          min_seconds = next_real()
       case ("--gap")
          gap = next_real()
+      case ("--closed-forms-only")
+         closed_forms_only = .true.
       case ("--rtols")
          rtols = next_list()
       case ("--sizes")
@@ -348,6 +353,7 @@ contains
       type(chain_options) :: options(n_methods), sweep
       type(chain_result) :: swept
       integer :: times_unit, acc_unit, k, r, j, jj, i, stat(n_methods), stat_sweep, calls, ios
+      integer :: timed
       real(wp) :: seconds, round_seconds(rounds, n_methods)
       open(newunit=times_unit, file=trim(out_path), status="replace", action="write", &
          & iostat=ios)
@@ -365,10 +371,12 @@ contains
          options(2) = options_for(dilute_t_end(k), rtol, method_exact, integrator_bdf)
          options(3) = options_for(dilute_t_end(k), rtol, method_integrated, integrator_bdf)
          options(4) = options_for(dilute_t_end(k), rtol, method_integrated, integrator_adams)
+         timed = n_methods
+         if (closed_forms_only) timed = 2
          do r = 1, rounds
-            do jj = 1, n_methods
+            do jj = 1, timed
                j = jj
-               if (mod(r, 2) == 0) j = n_methods + 1 - jj
+               if (mod(r, 2) == 0) j = timed + 1 - jj
                seconds = time_runs(chain, options(j), merge(min_seconds, 0.0_wp, j <= 2), &
                   & results(j), stat(j), calls)
                round_seconds(r, j) = seconds
@@ -377,10 +385,11 @@ contains
             end do
             flush(times_unit)
          end do
-         do j = 1, n_methods
+         do j = 1, timed
             call write_accuracy(acc_unit, trim(dilute_names(k)), trim(names(j)), &
                & rtol, stat(j), median(round_seconds(:, j)), results(j), results(1))
          end do
+         if (closed_forms_only) cycle
          ! CVODE's error against the exact answer as the tolerance tightens
          do i = 1, size(rtols)
             do j = 3, n_methods
