@@ -52,11 +52,27 @@ foreach(_hcimpact_component_target IN LISTS _hcimpact_components)
     COMPONENT hcimpact_development)
 endforeach()
 
+# The installed .mod files are the Fortran API: the umbrella modules and the topic
+# modules the documentation names (doc/building.md). gfortran writes into a module file
+# everything a user of it needs, so the internal modules (double-double, rules, the C
+# and FORTRAN 77 layers, the components' solvers) stay in the build tree.
+set(_hcimpact_public_modules
+  hcimpact hcimpact_kinds hcimpact_status hcimpact_version_info hcimpact_lambertw
+  hcimpact_restitution_law hcimpact_quadrature hcimpact_impact_model hcimpact_hertz
+  hcimpact_elastic hcimpact_force_element hcimpact_chain hcimpact_chain_types
+  hcimpact_legacy_damping hcimpact_parallel)
+if(TARGET hcimpact_cvode)
+  list(APPEND _hcimpact_public_modules hcimpact_cvode)
+endif()
+if(TARGET hcimpact_lapack)
+  list(APPEND _hcimpact_public_modules hcimpact_calibration)
+endif()
+list(TRANSFORM _hcimpact_public_modules PREPEND "${HCIMPACT_MODULE_DIR}/")
+list(TRANSFORM _hcimpact_public_modules APPEND ".mod")
 install(
-  DIRECTORY "${HCIMPACT_MODULE_DIR}/"
+  FILES ${_hcimpact_public_modules}
   DESTINATION "${HCIMPACT_INSTALL_MODULEDIR}"
-  COMPONENT hcimpact_development
-  FILES_MATCHING PATTERN "*.mod" PATTERN "*.smod")
+  COMPONENT hcimpact_development)
 install(
   DIRECTORY "${PROJECT_SOURCE_DIR}/include/"
   DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
