@@ -22,6 +22,7 @@ module hcimpact_cvode_chain
    use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp, nan
+   use hcimpact_cvode_report, only : report_detail
    use hcimpact_cvode_halting, only : halting_suspend, halting_resume, callback_enter, &
       & callback_leave
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_solver
@@ -279,7 +280,7 @@ contains
          end if
          if (.not. c_associated(self%mem)) exit setup
          where = "CVodeSetErrHandler"
-         ierr = capture_errors(self%ctx, self%mem, c_null_ptr)
+         ierr = capture_errors(self%ctx, self%mem, c_loc(self%region%report))
          if (ierr /= 0) exit setup
          where = "CVodeInit"
          ierr = FCVodeInit(self%mem, c_funloc(chain_rhs_callback), real(engine%time, c_double), &
@@ -320,7 +321,7 @@ contains
       if (ierr /= 0) then
          stat = hcimpact_err_solver
          engine%message = "CVODE setup failed in " // trim(where) // ": " &
-            & // cvode_flag_name(ierr)
+            & // cvode_flag_name(ierr) // report_detail(self%region%report)
          call release_all(self)
          return
       end if
@@ -362,7 +363,7 @@ contains
          if (ierr < 0) then
             stat = hcimpact_err_solver
             write(engine%message, '(a, es10.3, a)') "CVODE failed at t = ", tret(1), &
-               & " s: " // cvode_flag_name(ierr)
+               & " s: " // cvode_flag_name(ierr) // report_detail(self%region%report)
             what = advance_failed
             return
          end if

@@ -62,6 +62,7 @@ module hcimpact_cvode_solver
       & largest_eigenvalue, scaled_energy, guarded_product, guarded_quotient, finite_value, &
       & rhs_ok, rhs_recoverable, rhs_law_failure, &
       & n_events, event_max_compression, event_peak_force, event_end_of_contact
+   use hcimpact_cvode_report, only : report_detail
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
       & context_create, context_free, capture_errors
@@ -563,7 +564,7 @@ contains
       ! caller's halting back on for our own code (traps still catch our bugs).
       call halting_suspend(sys%halting)
       sys%law_failed = .false.
-      sys%solver_code = 0
+      sys%report%code = 0
       simulation%length_unit = sys%length
       simulation%time_unit = sys%time
       y = [0.0_c_double, 1.0_c_double]
@@ -605,7 +606,7 @@ contains
             exit setup
          end if
          where = "CVodeSetErrHandler"
-         ierr = capture_errors(ctx, cvode_mem, c_loc(sys))
+         ierr = capture_errors(ctx, cvode_mem, c_loc(sys%report))
          if (ierr /= 0) exit setup
          where = "CVodeInit"
          ierr = FCVodeInit(cvode_mem, c_funloc(rhs_callback), 0.0_c_double, y_vec)
@@ -674,7 +675,7 @@ contains
       if (ierr /= 0) then
          stat = hcimpact_err_solver
          simulation%message = "CVODE setup failed in " // where // ": " &
-            & // cvode_flag_name(ierr) // solver_detail(sys)
+            & // cvode_flag_name(ierr) // report_detail(sys%report)
       else
          tret = 0.0_c_double
          ! CVODE's own limit (CVodeSetMaxNumSteps) counts the steps of one call, and
@@ -701,7 +702,7 @@ contains
                end if
                simulation%message = "CVODE failed at t = " &
                   & // trim(real_text(guarded_product(tret(1), sys%time))) // " s: " &
-                  & // cvode_flag_name(ierr) // solver_detail(sys)
+                  & // cvode_flag_name(ierr) // report_detail(sys%report)
                exit march
             end if
             ! every step is returned once with CV_SUCCESS (a root in it is returned
@@ -1029,24 +1030,6 @@ contains
       if (stat == rhs_law_failure) sys%law_failed = .true.
       if (stat /= rhs_ok) ierr = -1
    end function events_callback
-
-   !> Length of solver_detail(sys).
-   pure function solver_detail_length(sys) result(length)
-      type(impact_system), intent(in) :: sys
-      integer :: length
-      length = 0
-      if (allocated(sys%solver_message)) then
-         if (len(sys%solver_message) > 0) length = len(sys%solver_message) + 3
-      end if
-   end function solver_detail_length
-
-   !> The last message of CVODE's error handler, if any, as " (<message>)"; empty
-   !> without one.
-   pure function solver_detail(sys) result(text)
-      type(impact_system), intent(in) :: sys
-      character(len=solver_detail_length(sys)) :: text
-      if (len(text) > 0) text = " (" // sys%solver_message // ")"
-   end function solver_detail
 
    !> The name of a CVODE return flag, blank-padded.
    pure function flag_label(flag) result(name)
