@@ -180,6 +180,13 @@ set(HCIMPACT_PC_NAME "hcimpact")
 set(HCIMPACT_PC_DESCRIPTION "${PROJECT_DESCRIPTION}")
 set(HCIMPACT_PC_REQUIRES "")
 set(HCIMPACT_PC_LIBS "-L\${libdir} -lhcimpact")
+# A static libhcimpact.a built with OpenMP calls the OpenMP runtime, which a Fortran
+# or C link does not name by itself: in Libs, so that `pkg-config --libs` (without
+# --static, as legacy makefiles call it) is enough.
+if(NOT BUILD_SHARED_LIBS AND HCIMPACT_OPENMP_ENABLED)
+  _hcimpact_pc_link_flags(_hcimpact_pc_openmp ${OpenMP_Fortran_LIB_NAMES})
+  string(APPEND HCIMPACT_PC_LIBS " ${_hcimpact_pc_openmp}")
+endif()
 set(HCIMPACT_PC_CFLAGS "Cflags: -I\${includedir} -I\${moduledir}")
 configure_file("${PROJECT_SOURCE_DIR}/cmake/hcimpact.pc.in" "${PROJECT_BINARY_DIR}/hcimpact.pc" @ONLY)
 install(FILES "${PROJECT_BINARY_DIR}/hcimpact.pc" DESTINATION "${HCIMPACT_INSTALL_PKGCONFIGDIR}"
