@@ -12,6 +12,10 @@
  *   --count N      contacts per group (default 65536)
  *   --seed S       random seed (default 20261125)
  *   --group G      only one group: "low" (beta <= 100) or "high" (100 < beta <= 1e8)
+ *   --lambertw     time hcimpact_lambert_w0 and hcimpact_lambert_wm1 instead, on four
+ *                  groups of arguments (W0 on (-1/e, 0) and on [e, 1e300], W-1 on
+ *                  (-1/e, 0), both next to the branch point, z + 1/e in [1e-15, 1e-2]):
+ *                  the same protocol, to compare two builds of the library
  *
  * The contacts of a group: n log-uniform in [0.5, 3] with a quarter exactly 1.5 (Hertz),
  * beta = b V log-uniform in [1e-3, 100] (low) or (100, 1e8] (high), m, c, V
@@ -34,6 +38,7 @@ typedef struct {
     double v[9];
 } outcome;
 typedef int (*impact_fn)(const contact *, outcome *);
+typedef double (*lambert_fn)(double);
 
 enum { max_libs = 4 };
 
@@ -99,6 +104,19 @@ static double time_pass(impact_fn impact, const contact *contacts, const size_t 
     return 1e9 * (t1 - t0) / (double)count;
 }
 
+/* One pass of a Lambert W function over all arguments in the given order: ns per call */
+static double time_pass_w(lambert_fn w, const double *z, const size_t *order, size_t count,
+                          double *results)
+{
+    double t0 = thread_seconds();
+    for (size_t i = 0; i < count; ++i) {
+        size_t k = order[i];
+        results[k] = w(z[k]);
+    }
+    double t1 = thread_seconds();
+    return 1e9 * (t1 - t0) / (double)count;
+}
+
 static void make_group(contact *contacts, size_t count, double beta_lo, double beta_hi)
 {
     for (size_t i = 0; i < count; ++i) {
@@ -111,11 +129,76 @@ static void make_group(contact *contacts, size_t count, double beta_lo, double b
     }
 }
 
+/* The Lambert W groups: the same rounds, ratios and bit-identity counts as the impacts */
+static int run_lambertw(int nlibs, const char **paths, lambert_fn *w0, lambert_fn *wm1,
+                        int rounds, size_t count)
+{
+    const char *group_text[4] = {"W0, z in (-1/e, 0)", "W0, z in [e, 1e300]",
+                                 "W-1, z in (-1/e, 0)", "W-1, z + 1/e in [1e-15, 1e-2]"};
+    const double inv_e = 0.36787944117144233;
+    double *z = malloc(count * sizeof *z);
+    size_t *order = malloc(count * sizeof *order);
+    double *results[max_libs];
+    double *per_round = malloc((size_t)rounds * max_libs * sizeof *per_round);
+    double *ratios = malloc((size_t)rounds * max_libs * sizeof *ratios);
+    if (!z || !order || !per_round || !ratios) {
+        fprintf(stderr, "bench_one_impact: out of memory\n");
+        return 1;
+    }
+    for (int l = 0; l < nlibs; ++l) {
+        results[l] = malloc(count * sizeof(double));
+        if (!results[l]) {
+            fprintf(stderr, "bench_one_impact: out of memory\n");
+            return 1;
+        }
+    }
+    printf("| arguments | library | ns per call (median of %d rounds) | min | max |"
+           " ratio to the first (median, min, max) | results differing |\n", rounds);
+    printf("|---|---|---:|---:|---:|---|---:|\n");
+    for (int g = 0; g < 4; ++g) {
+        for (size_t i = 0; i < count; ++i) {
+            switch (g) {
+            case 0: case 2: z[i] = -inv_e * uniform(); break;
+            case 1: z[i] = log_uniform(2.718281828459045, 1e300); break;
+            default: z[i] = -inv_e + log_uniform(1e-15, 1e-2); break;
+            }
+            order[i] = i;
+        }
+        lambert_fn *w = (g < 2) ? w0 : wm1;
+        for (int l = 0; l < nlibs; ++l) time_pass_w(w[l], z, order, count, results[l]);
+        for (int r = 0; r < rounds; ++r) {
+            double t[max_libs];
+            for (int s = 0; s < nlibs; ++s) {
+                int l = (r % 2) ? nlibs - 1 - s : s;
+                shuffle(order, count);
+                t[l] = time_pass_w(w[l], z, order, count, results[l]);
+            }
+            for (int l = 0; l < nlibs; ++l) {
+                per_round[l * rounds + r] = t[l];
+                ratios[l * rounds + r] = t[l] / t[0];
+            }
+        }
+        for (int l = 0; l < nlibs; ++l) {
+            size_t differing = 0;
+            for (size_t i = 0; i < count; ++i)
+                differing += memcmp(&results[l][i], &results[0][i], sizeof(double)) != 0;
+            double *tl = &per_round[l * rounds], *rl = &ratios[l * rounds];
+            double tmed = median(tl, (size_t)rounds);
+            double rmed = median(rl, (size_t)rounds);
+            printf("| %s | %s | %.1f | %.1f | %.1f | %.3f (%.3f, %.3f) | %zu |\n",
+                   group_text[g], paths[l], tmed, tl[0], tl[rounds - 1], rmed, rl[0],
+                   rl[rounds - 1], differing);
+        }
+    }
+    return 0;
+}
+
 int main(int argc, char **argv)
 {
     int rounds = 15;
     size_t count = 65536;
     const char *only = NULL;
+    int lambertw = 0;
     const char *paths[max_libs];
     int nlibs = 0;
     rng_state = 20261125u;
@@ -124,6 +207,7 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--count") && i + 1 < argc) count = (size_t)atol(argv[++i]);
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc) rng_state = (uint64_t)atoll(argv[++i]);
         else if (!strcmp(argv[i], "--group") && i + 1 < argc) only = argv[++i];
+        else if (!strcmp(argv[i], "--lambertw")) lambertw = 1;
         else if (argv[i][0] == '-') {
             fprintf(stderr, "bench_one_impact: unknown option %s\n", argv[i]);
             return 2;
@@ -135,10 +219,11 @@ int main(int argc, char **argv)
     }
     if (nlibs == 0 || rounds < 1 || count < 2) {
         fprintf(stderr, "usage: bench_one_impact [--rounds R] [--count N] [--seed S] "
-                        "[--group low|high] LIB [LIB ...]\n");
+                        "[--group low|high] [--lambertw] LIB [LIB ...]\n");
         return 2;
     }
     impact_fn impact[max_libs];
+    lambert_fn w0[max_libs], wm1[max_libs];
     for (int l = 0; l < nlibs; ++l) {
         /* RTLD_LOCAL|RTLD_DEEPBIND: each copy keeps its own symbols */
         void *handle = dlopen(paths[l], RTLD_NOW | RTLD_LOCAL | RTLD_DEEPBIND);
@@ -147,11 +232,14 @@ int main(int argc, char **argv)
             return 1;
         }
         impact[l] = (impact_fn)dlsym(handle, "hcimpact_impact");
-        if (!impact[l]) {
-            fprintf(stderr, "bench_one_impact: %s: no hcimpact_impact\n", paths[l]);
+        w0[l] = (lambert_fn)dlsym(handle, "hcimpact_lambert_w0");
+        wm1[l] = (lambert_fn)dlsym(handle, "hcimpact_lambert_wm1");
+        if (!impact[l] || !w0[l] || !wm1[l]) {
+            fprintf(stderr, "bench_one_impact: %s: not an hcimpact library\n", paths[l]);
             return 1;
         }
     }
+    if (lambertw) return run_lambertw(nlibs, paths, w0, wm1, rounds, count);
 
     const char *group_name[2] = {"low", "high"};
     const char *group_text[2] = {"beta <= 100", "100 < beta <= 1e8"};

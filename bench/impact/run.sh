@@ -45,9 +45,13 @@ fi
 options="-DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON -DHCIMPACT_WITH_CVODE=OFF -DHCIMPACT_WITH_LAPACK=OFF -DHCIMPACT_WITH_OPENMP=OFF -DBUILD_TESTING=OFF -DHCIMPACT_BUILD_EXAMPLES=OFF -DHCIMPACT_BUILD_APP=OFF"
 mkdir -p "$build"
 # the baseline's sources from git, the working tree as it is
-rm -rf "$build/baseline-src"
-mkdir -p "$build/baseline-src"
-git archive "$baseline" | tar -x -C "$build/baseline-src"
+base_full=$(git rev-parse "$baseline")
+if [ "$(cat "$build/baseline-src/.revision" 2>/dev/null || true)" != "$base_full" ]; then
+    rm -rf "$build/baseline-src" "$build/baseline"
+    mkdir -p "$build/baseline-src"
+    git archive "$baseline" | tar -x -C "$build/baseline-src"
+    echo "$base_full" >"$build/baseline-src/.revision"
+fi
 for side in baseline work; do
     if [ "$side" = baseline ]; then src="$build/baseline-src"; else src="."; fi
     echo "+ $CMAKE -S $src -B $build/$side $options" >&2
@@ -61,12 +65,15 @@ $CC -O2 bench/impact/one_impact.c -o "$build/bench_one_impact" -ldl -lm
 cpu=$(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo 2>/dev/null | head -1)
 tmp="$out.tmp.$$"
 mkdir -p "$(dirname "$out")"
-trap 'rm -f "$tmp" "$tmp.table"' EXIT INT TERM
+trap 'rm -f "$tmp" "$tmp.table" "$tmp.lambertw"' EXIT INT TERM
 load_before=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo "?")
 args="--rounds $rounds --count $count $build/baseline/libhcimpact.so $build/work/libhcimpact.so"
 echo "+ $build/bench_one_impact $args" >&2
 # shellcheck disable=SC2086
 "$build/bench_one_impact" $args >"$tmp.table"
+echo "+ $build/bench_one_impact --lambertw $args" >&2
+# shellcheck disable=SC2086
+"$build/bench_one_impact" --lambertw $args >"$tmp.lambertw"
 load_after=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo "?")
 {
     echo "# One impact: time per call"
@@ -87,6 +94,11 @@ load_after=$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo "?")
     echo "outputs are not bit-identical to the baseline's. Protocol: [bench/README.md](../bench/README.md)."
     echo
     cat "$tmp.table"
+    echo
+    echo "The Lambert W functions of the same two libraries, the same protocol (\`--lambertw\`;"
+    echo "\"results differing\" counts arguments whose W is not bit-identical to the baseline's):"
+    echo
+    cat "$tmp.lambertw"
 } >"$tmp"
 mv "$tmp" "$out"
 echo "wrote $out" >&2
