@@ -777,7 +777,7 @@ contains
       if (.not. ok) ierr = 1
    end function chain_rhs_callback
 
-   !> CVEwtFn: the error weights. A displacement's error is measured against
+   !> The error weights (CVODE's CVEwtFn). A displacement's error is measured against
    !> rtol x_ref, not against rtol |u|: the deformations, differences of displacements
    !> that grow as the bodies move, must keep their accuracy however far the bodies
    !> have gone. A velocity's against rtol (|v| + v_ref), a dissipated energy's

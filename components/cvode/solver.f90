@@ -930,8 +930,9 @@ contains
          & simulation%velocity, simulation%force)
    end subroutine shrink_samples
 
-   !> CVRhsFn: (s, sigma)' at the scaled time t. 0; 1 (recoverable: CVODE retries
-   !> with a smaller step) when the state is too far out; -1 when the user's law failed.
+   !> The right-hand side (CVODE's CVRhsFn): (s, sigma)' at the scaled time t. 0; 1
+   !> (recoverable: CVODE retries with a smaller step) when the state is too far out; -1
+   !> when the user's law failed.
    function rhs_callback(t, y, ydot, user_data) result(ierr) bind(C)
       real(c_double), value :: t
       type(N_Vector) :: y, ydot

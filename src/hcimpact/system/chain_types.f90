@@ -32,12 +32,12 @@ module hcimpact_chain_types
    public :: by_closed_forms, by_integration
    public :: max_message
 
-   !> Method: decide per contact (closed forms where contacts are isolated, CVODE for
-   !> clusters); the default
+   !> The method that decides per contact (closed forms where contacts are isolated,
+   !> CVODE for clusters); the default
    integer, parameter :: method_auto = 0
-   !> Method: closed forms only (a cluster is an error, hcimpact_err_unavailable)
+   !> The method of closed forms only (a cluster is an error, hcimpact_err_unavailable)
    integer, parameter :: method_exact = 1
-   !> Method: integrate the whole system with CVODE from the start
+   !> The method that integrates the whole system with CVODE from the start
    integer, parameter :: method_integrated = 2
 
    !> CVODE's linear multistep method: BDF (default) or Adams
@@ -159,7 +159,7 @@ module hcimpact_chain_types
       !> pair forces (pairs 0 .. n x samples, 0 for a missing wall)
       real(wp), allocatable :: sample_positions(:, :), sample_velocities(:, :)
       real(wp), allocatable :: sample_forces(:, :)
-      !> Energy: initial (kinetic + gravitational), and the relative error of
+      !> The initial energy (kinetic + gravitational), and the relative error of
       !> kinetic + elastic + gravitational + dissipated against it at the end
       real(wp) :: initial_energy = nan, energy_error = nan
       !> Dissipated energy in J
