@@ -1,0 +1,83 @@
+! SPDX-License-Identifier: Apache-2.0
+!> The impacts of a sweep (the outputs summary and sweep) in a build without MPI (fpm,
+!> or CMake without MPI or with HCIMPACT_WITH_MPI=OFF): every impact on this process,
+!> shared among OpenMP threads where the program is built with OpenMP. CMake builds
+!> with MPI compile app/mpi/scene_sweep.f90 instead, a module of the same name and
+!> interface that hands the impacts out to the ranks of `mpirun` (doc/mpi.md).
+module hcimpact_scene_sweep
+   use hcimpact_kinds, only : wp
+   !$ use hcimpact_parallel, only : min_parallel_impact
+   !$ use omp_lib, only : omp_get_thread_num
+   use hcimpact_impact_model, only : contact_type, outcome_type, impact
+   use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
+   implicit none
+   private
+
+   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts
+
+contains
+
+   !> Start: this process is the one that runs the scene (there are no others).
+   subroutine sweep_begin(leader)
+      !> Whether this process runs the scene (always, here)
+      logical, intent(out) :: leader
+      leader = .true.
+   end subroutine sweep_begin
+
+   !> The work of a process that does not run the scene: none here.
+   subroutine sweep_serve(code)
+      !> Exit code of the process
+      integer, intent(out) :: code
+      code = 0
+   end subroutine sweep_serve
+
+   !> The end of the program: nothing to release here.
+   subroutine sweep_end()
+   end subroutine sweep_end
+
+   !> How the impacts of a sweep are computed, for the plan.
+   function sweep_description() result(text)
+      character(len=:), allocatable :: text
+      text = "on this process"
+      !$ text = "on this process, shared among OpenMP threads"
+   end function sweep_description
+
+   !> The impacts of `contact` at each of `speeds` (its velocity replaced), with the
+   !> progress shown under `label`.
+   subroutine sweep_impacts(contact, speeds, label, out, stats)
+      !> The contact (masses, law, damping); its velocity is not used
+      type(contact_type), intent(in) :: contact
+      !> The approach speeds in m/s
+      real(wp), intent(in) :: speeds(:)
+      !> The progress line's label
+      character(len=*), intent(in) :: label
+      !> The outcome at each speed
+      type(outcome_type), intent(out) :: out(:)
+      !> The status of each impact
+      integer, intent(out) :: stats(:)
+      type(contact_type) :: at_speed
+      integer :: i, done, mine
+
+      done = 0
+      call progress_begin(label, size(speeds))
+      ! The impacts are independent: in parallel when the program is built with OpenMP
+      ! (the library's array threshold and schedule); the progress line is drawn by
+      ! the first thread alone.
+      !$omp parallel do if (size(speeds) >= min_parallel_impact) private(mine, at_speed) &
+      !$omp & schedule(dynamic, 4)
+      do i = 1, size(speeds)
+         at_speed = contact
+         at_speed%velocity = speeds(i)
+         call impact(at_speed, out(i), stats(i))
+         !$omp atomic capture
+         done = done + 1
+         mine = done
+         !$omp end atomic
+         !$ if (omp_get_thread_num() /= 0) cycle
+         call progress_step(mine)
+      end do
+      !$omp end parallel do
+      call progress_end()
+   end subroutine sweep_impacts
+
+end module hcimpact_scene_sweep
