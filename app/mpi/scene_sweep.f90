@@ -18,13 +18,14 @@
 !> looks complete.
 module hcimpact_scene_sweep
    use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Comm_rank, MPI_Comm_size, MPI_Send, &
-      & MPI_Isend, MPI_Wait, MPI_Recv, MPI_Probe, MPI_Iprobe, MPI_Status, MPI_Request, &
+      & MPI_Isend, MPI_Wait, MPI_Recv, MPI_Iprobe, MPI_Status, MPI_Request, &
       & MPI_COMM_WORLD, MPI_DOUBLE_PRECISION, MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_REQUEST_NULL, &
       & MPI_STATUS_IGNORE
    use hcimpact_kinds, only : wp, ik
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
    use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
    use hcimpact_scene_text, only : str
+   use hcimpact_scene_system, only : pause_microseconds
    implicit none
    private
 
@@ -32,9 +33,15 @@ module hcimpact_scene_sweep
 
    !> Message tags: a chunk to compute, its results, the end of the program
    integer, parameter :: tag_work = 1, tag_result = 2, tag_stop = 3
-   !> Most impacts of a chunk, and chunks handed to a rank ahead of its results (so
-   !> that it never waits for rank 0 between two chunks)
-   integer, parameter :: max_chunk = 64, in_flight = 2
+   !> Most impacts of a chunk (some milliseconds of work: a message's round trip, which
+   !> on a loaded machine can cost a time slice of the scheduler, stays small beside
+   !> it), and chunks handed to a rank ahead of its results (so that it never waits
+   !> for rank 0 between two chunks)
+   integer, parameter :: max_chunk = 1024, in_flight = 2
+   !> How long a rank without work sleeps before it looks for a message again, in
+   !> microseconds: waiting in MPI_Probe would spin and take a core from rank 0 (which
+   !> writes the files after the sweep) and from other jobs of a shared machine
+   integer, parameter :: idle_pause = 200
    !> Doubles of a chunk message (first index, count, the contact's mass, stiffness,
    !> exponent and damping, the speeds) and of a result message (first index, count,
    !> then per impact: the nine outcomes, the three evaluation counts, the status)
@@ -69,17 +76,25 @@ contains
       type(MPI_Status) :: status
       type(MPI_Request) :: sending(in_flight)
       type(contact_type) :: contact
-      type(outcome_type) :: out(max_chunk)
-      real(wp) :: work(work_size)
-      real(wp), asynchronous :: results(result_size, in_flight)
-      integer :: stats(max_chunk), count, i, slot
+      type(outcome_type), allocatable :: out(:)
+      real(wp), allocatable :: work(:)
+      real(wp), allocatable, asynchronous :: results(:, :)
+      integer, allocatable :: stats(:)
+      integer :: count, i, slot
+      logical :: arrived
       code = 0
+      allocate(out(max_chunk), work(work_size), results(result_size, in_flight), &
+         & stats(max_chunk))
       ! the results go back without waiting for rank 0 to take them (it may be busy with
       ! a chunk of its own), each from its own buffer until its send is complete
       sending = MPI_REQUEST_NULL
       slot = 1
       do
-         call MPI_Probe(0, MPI_ANY_TAG, MPI_COMM_WORLD, status)
+         do
+            call MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, arrived, status)
+            if (arrived) exit
+            call pause_microseconds(idle_pause)
+         end do
          if (status%MPI_TAG /= tag_work) then
             call MPI_Recv(work, work_size, MPI_DOUBLE_PRECISION, 0, status%MPI_TAG, &
                & MPI_COMM_WORLD, status)
@@ -147,13 +162,23 @@ contains
       !> The status of each impact
       integer, intent(out) :: stats(:)
       type(MPI_Status) :: status
-      real(wp) :: results(result_size)
+      real(wp), allocatable :: results(:)
+      ! the chunks on their way to each rank: their buffers and sends (a chunk can be
+      ! larger than what MPI sends without the receiver's help, and the receiver is
+      ! busy with its previous chunk: rank 0 must not wait for it)
+      real(wp), allocatable, asynchronous :: work(:, :, :)
+      type(MPI_Request), allocatable :: sending(:, :)
+      integer, allocatable :: slot(:)
       integer :: n, chunk, n_chunks, next, received, done, rank, k, first, count, i
       logical :: arrived
 
       n = size(speeds)
-      ! a few chunks per rank at least, so that the last ones even out the ranks
-      chunk = max(1, min(max_chunk, n / (4 * n_ranks)))
+      allocate(results(result_size), work(work_size, in_flight, n_ranks - 1), &
+         & sending(in_flight, n_ranks - 1), slot(n_ranks - 1))
+      sending = MPI_REQUEST_NULL
+      slot = 1
+      ! eight chunks per rank at least, so that the last ones even out the ranks
+      chunk = max(1, min(max_chunk, n / (8 * n_ranks)))
       n_chunks = (n + chunk - 1) / chunk
       call progress_begin(label, n)
       next = 1
@@ -193,22 +218,32 @@ contains
          done = done + count
          call progress_step(done)
       end do
+      ! every chunk's results are back, so every chunk was received: these return at once
+      do rank = 1, n_ranks - 1
+         do k = 1, in_flight
+            call MPI_Wait(sending(k, rank), MPI_STATUS_IGNORE)
+         end do
+      end do
       call progress_end()
 
    contains
 
-      !> Send chunk k to a rank.
+      !> Send chunk k to a rank, from the buffer of its oldest chunk (whose results are
+      !> back, or which was never used), without waiting for the rank to take it.
       subroutine send_chunk(to, k)
          integer, intent(in) :: to, k
-         real(wp) :: work(work_size)
-         integer :: first, count
+         integer :: first, count, s
          first = (k - 1) * chunk + 1
          count = min(chunk, n - first + 1)
-         work(1:head + n_contact) = [real(first, wp), real(count, wp), contact%mass, &
+         s = slot(to)
+         slot(to) = modulo(s, in_flight) + 1
+         call MPI_Wait(sending(s, to), MPI_STATUS_IGNORE)
+         work(1:head + n_contact, s, to) = [real(first, wp), real(count, wp), contact%mass, &
             & contact%stiffness, contact%exponent, contact%damping]
-         work(head + n_contact + 1:head + n_contact + count) = speeds(first:first + count - 1)
-         call MPI_Send(work, head + n_contact + count, MPI_DOUBLE_PRECISION, to, tag_work, &
-            & MPI_COMM_WORLD)
+         work(head + n_contact + 1:head + n_contact + count, s, to) = &
+            & speeds(first:first + count - 1)
+         call MPI_Isend(work(:, s, to), head + n_contact + count, MPI_DOUBLE_PRECISION, to, &
+            & tag_work, MPI_COMM_WORLD, sending(s, to))
       end subroutine send_chunk
 
    end subroutine sweep_impacts
