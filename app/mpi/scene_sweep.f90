@@ -57,16 +57,33 @@ module hcimpact_scene_sweep
 
 contains
 
-   !> Start MPI: rank 0 runs the scene, the others serve it (`sweep_serve`).
+   !> Start MPI: rank 0 runs the scene, the others serve it (`sweep_serve`). A program
+   !> not started by an MPI launcher does not start MPI (a singleton start would need
+   !> the launcher's run-time, its files and sockets, for nothing) and runs alone.
    subroutine sweep_begin(leader)
       !> Whether this process runs the scene
       logical, intent(out) :: leader
+      leader = .true.
+      if (.not. launched()) return
       call MPI_Init()
       started = .true.
       call MPI_Comm_rank(MPI_COMM_WORLD, my_rank)
       call MPI_Comm_size(MPI_COMM_WORLD, n_ranks)
       leader = my_rank == 0
    end subroutine sweep_begin
+
+   !> Whether an MPI launcher started this process: the variables mpirun/mpiexec of
+   !> Open MPI, MPICH (Hydra) and Intel MPI, and Slurm's srun with PMI or PMIx set.
+   logical function launched()
+      character(len=*), parameter :: names(5) = [character(len=20) :: &
+         & "OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMI_RANK", "PMIX_RANK", "MPI_LOCALNRANKS"]
+      integer :: i, length, stat
+      launched = .false.
+      do i = 1, size(names)
+         call get_environment_variable(trim(names(i)), length=length, status=stat)
+         if (stat == 0) launched = .true.
+      end do
+   end function launched
 
    !> The work of a rank other than 0: compute the chunks rank 0 sends until it says
    !> the program ends.
@@ -139,7 +156,9 @@ contains
    !> How the impacts of a sweep are computed, for the plan.
    function sweep_description() result(text)
       character(len=:), allocatable :: text
-      if (n_ranks == 1) then
+      if (.not. started) then
+         text = "on this process (not started by an MPI launcher: MPI not used)"
+      else if (n_ranks == 1) then
          text = "on this process (MPI, 1 rank)"
       else
          text = "over " // str(n_ranks) // " MPI ranks: chunks of up to " // str(max_chunk) &
@@ -192,7 +211,9 @@ contains
       received = 0
       done = 0
       do while (received < n_chunks)
-         call MPI_Iprobe(MPI_ANY_SOURCE, tag_result, MPI_COMM_WORLD, arrived, status)
+         arrived = .false.
+         if (n_ranks > 1) call MPI_Iprobe(MPI_ANY_SOURCE, tag_result, MPI_COMM_WORLD, &
+            & arrived, status)
          if (.not. arrived .and. next <= n_chunks) then
             ! nothing has come back: compute the next chunk here
             first = (next - 1) * chunk + 1
