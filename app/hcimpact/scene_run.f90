@@ -37,7 +37,7 @@ module hcimpact_scene_run
    use hcimpact_scene_chain, only : system_method, system_needs_ode, describe_system, &
       & write_system_parameters, run_system
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
-      & abandon_results, csv_open, csv_row, csv_line, csv_close
+      & abandon_results, csv_open, csv_row, csv_line, csv_close, checkpoint_path
    use hcimpact_scene_ode, only : ode_available, ode_description, ode_missing, ode_run_type, &
       & ode_impact
    use hcimpact_legacy_damping, only : n_rules => n_damping_rules, &
@@ -429,7 +429,7 @@ contains
       real(wp), allocatable :: after(:, :)
       real(wp) :: t0, elapsed, row(15)
       integer(int64) :: evaluations
-      integer :: i, stat, ncol
+      integer :: i, stat, ncol, resumed
       integer, allocatable :: stats(:)
       character(len=40), allocatable :: header(:)
 
@@ -437,7 +437,9 @@ contains
       after = nan
       evaluations = 0
       t0 = wall_clock()
-      call sweep_impacts(contact_at(sc, 0.0_wp), speeds, name, out, stats)
+      call sweep_impacts(contact_at(sc, 0.0_wp), speeds, name, checkpoint_path(res, name), &
+         & out, stats, resumed, error)
+      if (allocated(error)) return
       do i = 1, size(speeds)
          if (stats(i) /= hcimpact_ok) then
             error = "the impact at V = " // real_str(speeds(i), 8) // " m/s: " &
@@ -474,9 +476,16 @@ contains
       call csv_close(csv, error)
       if (allocated(error)) return
       if (table) call print_summary(sc, speeds, out, after)
-      call say_text(pad(name, 12), count_str(size(speeds), "impact") // ": " &
-         & // duration_str(elapsed) // ", " // str_int64(evaluations) &
-         & // " integrand evaluations (quadrature)" // files_note(res, name // ".csv"))
+      if (resumed > 0) then
+         call say_text(pad(name, 12), count_str(size(speeds), "impact") // " (" &
+            & // str(resumed) // " from the checkpoint of an earlier run): " &
+            & // duration_str(elapsed) // ", " // str_int64(evaluations) &
+            & // " integrand evaluations (quadrature)" // files_note(res, name // ".csv"))
+      else
+         call say_text(pad(name, 12), count_str(size(speeds), "impact") // ": " &
+            & // duration_str(elapsed) // ", " // str_int64(evaluations) &
+            & // " integrand evaluations (quadrature)" // files_note(res, name // ".csv"))
+      end if
    end subroutine run_summary
 
    !> The console table of the summary (12 significant digits).

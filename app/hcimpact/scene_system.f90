@@ -26,7 +26,7 @@ module hcimpact_scene_system
 
    public :: is_terminal, make_directory, rename_path, remove_path
    public :: directory_exists, file_exists, wall_clock
-   public :: output_file, create_file, write_file, close_file, write_standard_output
+   public :: output_file, create_file, write_file, flush_file, close_file, write_standard_output
    public :: last_system_error, ignore_output_signals, pause_microseconds
 
    !> A file being written (a C stream)
@@ -235,6 +235,18 @@ contains
    !> Flush the file to the device (fflush, then fsync: a network file system may
    !> report a failed write only then) and close it; ok is .false. if any step
    !> failed, and `reason` says why. The stream is closed whatever happened before.
+   !> Hand what was written so far to the operating system (fflush): it survives the
+   !> program being killed. ok is .false. if that failed, and `reason` says why.
+   subroutine flush_file(file, ok, reason)
+      type(output_file), intent(in) :: file
+      logical, intent(out) :: ok
+      character(len=:), allocatable, intent(out) :: reason
+      ok = .false.
+      if (.not. c_associated(file%stream)) return
+      ok = c_fflush(file%stream) == 0_c_int
+      if (.not. ok) reason = last_system_error()
+   end subroutine flush_file
+
    subroutine close_file(file, ok, reason)
       type(output_file), intent(inout) :: file
       logical, intent(out) :: ok

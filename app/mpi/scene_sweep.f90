@@ -11,7 +11,9 @@
 !> holds up no other), and computes a chunk itself whenever no result is waiting.
 !> The results land at their speed's index, so rank 0 then holds exactly the outcomes
 !> a serial run computes (each impact is computed alone, by the same code, from the
-!> same doubles) and writes the same files.
+!> same doubles) and writes the same files. Rank 0 writes each chunk's outcomes to the
+!> sweep's checkpoint as they arrive (hcimpact_scene_checkpoint); a rerun hands out
+!> only the chunks the checkpoint does not hold whole.
 !>
 !> A rank that dies takes the run down (MPI's default error handler, and `mpirun`
 !> ends the job): rank 0 never renames its `.partial` files, so nothing is left that
@@ -21,11 +23,13 @@ module hcimpact_scene_sweep
       & MPI_Isend, MPI_Wait, MPI_Recv, MPI_Iprobe, MPI_Status, MPI_Request, &
       & MPI_COMM_WORLD, MPI_DOUBLE_PRECISION, MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_REQUEST_NULL, &
       & MPI_STATUS_IGNORE
-   use hcimpact_kinds, only : wp, ik
+   use hcimpact_kinds, only : wp
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
    use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
    use hcimpact_scene_text, only : str
    use hcimpact_scene_system, only : pause_microseconds
+   use hcimpact_scene_checkpoint, only : per_impact, packed, unpack, checkpoint_type, &
+      & checkpoint_start, checkpoint_record, checkpoint_finish
    implicit none
    private
 
@@ -45,7 +49,7 @@ module hcimpact_scene_sweep
    !> Doubles of a chunk message (first index, count, the contact's mass, stiffness,
    !> exponent and damping, the speeds) and of a result message (first index, count,
    !> then per impact: the nine outcomes, the three evaluation counts, the status)
-   integer, parameter :: head = 2, n_contact = 4, per_impact = 13
+   integer, parameter :: head = 2, n_contact = 4
    integer, parameter :: work_size = head + n_contact + max_chunk, &
       & result_size = head + per_impact * max_chunk
 
@@ -168,18 +172,29 @@ contains
    end function sweep_description
 
    !> The impacts of `contact` at each of `speeds` (its velocity replaced), with the
-   !> progress shown under `label`: on rank 0, handed out to every rank.
-   subroutine sweep_impacts(contact, speeds, label, out, stats)
+   !> progress shown under `label`: on rank 0, handed out to every rank; those the
+   !> checkpoint holds are taken from it.
+   subroutine sweep_impacts(contact, speeds, label, checkpoint, out, stats, resumed, error)
       !> The contact (masses, law, damping); its velocity is not used
       type(contact_type), intent(in) :: contact
       !> The approach speeds in m/s
       real(wp), intent(in) :: speeds(:)
       !> The progress line's label
       character(len=*), intent(in) :: label
+      !> The checkpoint file, or "" for none
+      character(len=*), intent(in) :: checkpoint
       !> The outcome at each speed
       type(outcome_type), intent(out) :: out(:)
       !> The status of each impact
       integer, intent(out) :: stats(:)
+      !> How many impacts came from the checkpoint
+      integer, intent(out) :: resumed
+      !> Why the checkpoint could not be written (the impacts are all computed: the
+      !> other ranks must not be left with chunks nobody takes)
+      character(len=:), allocatable, intent(out) :: error
+      type(checkpoint_type) :: ck
+      logical, allocatable :: done(:)
+      integer, allocatable :: todo(:)
       type(MPI_Status) :: status
       real(wp), allocatable :: results(:)
       ! the chunks on their way to each rank: their buffers and sends (a chunk can be
@@ -188,35 +203,43 @@ contains
       real(wp), allocatable, asynchronous :: work(:, :, :)
       type(MPI_Request), allocatable :: sending(:, :)
       integer, allocatable :: slot(:)
-      integer :: n, chunk, n_chunks, next, received, done, rank, k, first, count, i
+      integer :: n, chunk, n_chunks, next, received, finished, rank, k, first, count, i
       logical :: arrived
 
       n = size(speeds)
+      allocate(done(n))
+      call checkpoint_start(checkpoint, contact, speeds, out, stats, done, resumed, ck, error)
+      if (allocated(error)) return
       allocate(results(result_size), work(work_size, in_flight, n_ranks - 1), &
          & sending(in_flight, n_ranks - 1), slot(n_ranks - 1))
       sending = MPI_REQUEST_NULL
       slot = 1
       ! eight chunks per rank at least, so that the last ones even out the ranks
       chunk = max(1, min(max_chunk, n / (8 * n_ranks)))
-      n_chunks = (n + chunk - 1) / chunk
+      ! the chunks still to compute: all but those the checkpoint holds whole (one it
+      ! holds in part is computed again: the same doubles)
+      todo = [(k, k = 1, (n + chunk - 1) / chunk)]
+      todo = pack(todo, [(.not. all(done((k - 1) * chunk + 1:min(k * chunk, n))), &
+         & k = 1, size(todo))])
+      n_chunks = size(todo)
       call progress_begin(label, n)
       next = 1
       do k = 1, in_flight
          do rank = 1, n_ranks - 1
             if (next > n_chunks) exit
-            call send_chunk(rank, next)
+            call send_chunk(rank, todo(next))
             next = next + 1
          end do
       end do
       received = 0
-      done = 0
+      finished = n - sum([(min(chunk, n - (todo(k) - 1) * chunk), k = 1, n_chunks)])
       do while (received < n_chunks)
          arrived = .false.
          if (n_ranks > 1) call MPI_Iprobe(MPI_ANY_SOURCE, tag_result, MPI_COMM_WORLD, &
             & arrived, status)
          if (.not. arrived .and. next <= n_chunks) then
             ! nothing has come back: compute the next chunk here
-            first = (next - 1) * chunk + 1
+            first = (todo(next) - 1) * chunk + 1
             count = min(chunk, n - first + 1)
             call impacts_of(contact, speeds(first:first + count - 1), &
                & out(first:first + count - 1), stats(first:first + count - 1))
@@ -231,14 +254,17 @@ contains
                   & out(first + i - 1), stats(first + i - 1))
             end do
             if (next <= n_chunks) then
-               call send_chunk(status%MPI_SOURCE, next)
+               call send_chunk(status%MPI_SOURCE, todo(next))
                next = next + 1
             end if
          end if
+         call checkpoint_record(ck, first, out(first:first + count - 1), &
+            & stats(first:first + count - 1), error)
          received = received + 1
-         done = done + count
-         call progress_step(done)
+         finished = finished + count
+         call progress_step(finished)
       end do
+      call checkpoint_finish(ck, error)
       ! every chunk's results are back, so every chunk was received: these return at once
       do rank = 1, n_ranks - 1
          do k = 1, in_flight
@@ -283,35 +309,5 @@ contains
          call impact(at_speed, out(i), stats(i))
       end do
    end subroutine impacts_of
-
-   !> One impact's outcome and status as doubles (the counts are far below 2^53, so
-   !> exact).
-   pure function packed(out, stat) result(values)
-      type(outcome_type), intent(in) :: out
-      integer, intent(in) :: stat
-      real(wp) :: values(per_impact)
-      values = [out%restitution, out%energy_loss_ratio, out%rebound_velocity, &
-         & out%max_compression, out%peak_force, out%compression_at_peak_force, &
-         & out%time_at_peak_force, out%compression_time, out%contact_time, &
-         & real(out%evaluations, wp), real(stat, wp)]
-   end function packed
-
-   !> The inverse of `packed`.
-   pure subroutine unpack(values, out, stat)
-      real(wp), intent(in) :: values(per_impact)
-      type(outcome_type), intent(out) :: out
-      integer, intent(out) :: stat
-      out%restitution = values(1)
-      out%energy_loss_ratio = values(2)
-      out%rebound_velocity = values(3)
-      out%max_compression = values(4)
-      out%peak_force = values(5)
-      out%compression_at_peak_force = values(6)
-      out%time_at_peak_force = values(7)
-      out%compression_time = values(8)
-      out%contact_time = values(9)
-      out%evaluations = int(values(10:12), ik)
-      stat = nint(values(13))
-   end subroutine unpack
 
 end module hcimpact_scene_sweep

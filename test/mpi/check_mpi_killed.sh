@@ -3,7 +3,7 @@
 #
 # A rank killed in the middle of a run under MPI (2 ranks): the run fails (exit code
 # not 0, mpirun names the rank that died) and leaves no file that looks complete
-# (only .partial files, if any). The rank killed is rank 1, found among the children
+# (only .partial files and the checkpoints of sweeps, if any). The rank killed is rank 1, found among the children
 # of the mpirun this script started and killed by its process id.
 #
 # Usage: check_mpi_killed.sh MPIEXEC MPI_PROGRAM SCENE WORK_DIR
@@ -47,7 +47,7 @@ if ! grep -qi "rank 1" "$work/stderr"; then
   exit 1
 fi
 if [ -d "$work/results" ]; then
-  complete="$(cd "$work/results" && ls -A | grep -v '\.partial$' || true)"
+  complete="$(cd "$work/results" && ls -A | grep -vE '\.(partial|checkpoint)$' || true)"
   if [ -n "$complete" ]; then
     echo "FAIL: files that look complete were left: $complete" >&2
     exit 1
