@@ -152,11 +152,12 @@ contains
       call end_program(exit_failure)
    end subroutine finish
 
-   !> End the program with an exit code (the other MPI ranks, if any, are ended first).
+   !> End the program with an exit code (the other MPI ranks, if any, are ended first);
+   !> quietly, also on success: gfortran's STOP would otherwise note the floating-point
+   !> flags raised (underflows are normal here) on standard error.
    subroutine end_program(code)
       integer, intent(in) :: code
       call sweep_end()
-      if (code == exit_ok) stop
       stop code, quiet=.true.
    end subroutine end_program
 
