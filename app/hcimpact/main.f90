@@ -13,18 +13,27 @@ program hcimpact_main
    use hcimpact_scene_help, only : print_help, print_usage_hint
    use hcimpact_scene_system, only : is_terminal, write_standard_output, &
       & ignore_output_signals
+   use hcimpact_scene_sweep, only : sweep_begin, sweep_serve, sweep_end
    implicit none
 
    type(scene_type) :: sc
    type(run_options) :: opts
    character(len=:), allocatable :: arg, scene_path, output_dir, error, list
-   logical :: replace(n_outputs), add(n_outputs), files, ok
+   logical :: replace(n_outputs), add(n_outputs), files, ok, leader, show_progress
    integer :: i, n, code
 
    ! a file size limit or a closed pipe then fails a write (reported, the partial files
    ! removed) instead of killing the program
    call ignore_output_signals()
+   ! with MPI (mpirun -n N), ranks other than 0 only compute the impacts of sweeps
+   ! (doc/mpi.md); every exit of rank 0 goes through end_program, which ends them
+   call sweep_begin(leader)
+   if (.not. leader) then
+      call sweep_serve(code)
+      call end_program(code)
+   end if
    replace = .false.
+   show_progress = .false.
    add = .false.
    files = .true.
    n = command_argument_count()
@@ -68,6 +77,8 @@ program hcimpact_main
          opts%plan_only = .true.
       case ("-q", "--quiet")
          opts%quiet = .true.
+      case ("--progress")
+         show_progress = .true.
       case default
          if (len(arg) > 2) then
             if (arg(1:2) == "--") call usage_error("unknown option " // arg)
@@ -95,7 +106,7 @@ program hcimpact_main
    end if
    if (allocated(error)) then
       write(error_unit, '(a)') "error: " // error
-      stop exit_usage, quiet=.true.
+      call end_program(exit_usage)
    end if
 
    opts%write_files = files
@@ -105,9 +116,9 @@ program hcimpact_main
    else
       opts%output_dir = "hcimpact-results/" // sc%name
    end if
-   opts%progress = is_terminal(2)
+   opts%progress = show_progress .or. is_terminal(2)
    call run_scene(sc, sc%text, opts, code)
-   if (code /= exit_ok) stop code, quiet=.true.
+   call end_program(code)
 
 contains
 
@@ -136,17 +147,26 @@ contains
    !> could not take it.
    subroutine finish(ok)
       logical, intent(in) :: ok
-      if (ok) stop
+      if (ok) call end_program(exit_ok)
       write(error_unit, '(a)') "error: the standard output: writing failed"
-      stop exit_failure, quiet=.true.
+      call end_program(exit_failure)
    end subroutine finish
+
+   !> End the program with an exit code (the other MPI ranks, if any, are ended first);
+   !> quietly, also on success: gfortran's STOP would otherwise note the floating-point
+   !> flags raised (underflows are normal here) on standard error.
+   subroutine end_program(code)
+      integer, intent(in) :: code
+      call sweep_end()
+      stop code, quiet=.true.
+   end subroutine end_program
 
    !> Report a bad command line and stop with exit_usage.
    subroutine usage_error(text)
       character(len=*), intent(in) :: text
       write(error_unit, '(a)') "error: " // text
       call print_usage_hint(error_unit)
-      stop exit_usage, quiet=.true.
+      call end_program(exit_usage)
    end subroutine usage_error
 
 end program hcimpact_main

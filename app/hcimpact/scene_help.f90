@@ -40,6 +40,8 @@ contains
       call p("  --plan            print the plan (outputs, methods) and stop")
       call p("  --show-default    print the default scene: a template for your own")
       call p("  -q, --quiet       print only the tables and errors")
+      call p("  --progress        show the progress of long work on standard error even")
+      call p("                    when it is not a terminal (under mpirun, say)")
       call p("  -h, --help        print this text")
       call p("  -V, --version     print the version")
       call p("")

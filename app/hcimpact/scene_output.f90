@@ -7,7 +7,9 @@
 !> directories the run created, are removed (`abandon_results`). On success, files of
 !> earlier runs that this run did not write (e.g. `phase.csv` when phase trajectories
 !> are no longer asked for) are removed, so the directory holds exactly this run's
-!> results. Only files whose names this program writes are ever touched.
+!> results. Only files whose names this program writes are ever touched. The
+!> checkpoints of sweeps go with the run's other files, whether it succeeds or fails
+!> with an error it reports; only a run that is killed leaves them.
 !>
 !> Every write, the flush to the device and the close are checked (through the C
 !> library, hcimpact_scene_system): a file that could not be written whole makes the
@@ -29,14 +31,17 @@ module hcimpact_scene_output
    public :: results_type, csv_type
    public :: open_results, commit_results, abandon_results
    public :: csv_open, csv_row, csv_line, csv_close
-   public :: all_result_files
+   public :: all_result_files, checkpoint_path
 
+   !> The checkpoints of sweeps (hcimpact_scene_checkpoint): `<output>.checkpoint`
+   character(len=*), parameter :: checkpoint_files(2) = [character(len=20) :: &
+      & "summary.checkpoint", "sweep.checkpoint"]
    !> Every file name this program writes into a results directory
-   character(len=*), parameter :: all_result_files(19) = [character(len=20) :: &
+   character(len=*), parameter :: all_result_files(21) = [character(len=20) :: &
       & "summary.csv", "sweep.csv", "histories.csv", "phase.csv", "loops.csv", &
       & "restitution.csv", "lambertw.csv", "velocity_z.csv", "motion_z.csv", &
       & "legacy.csv", "cvode.csv", "contacts.csv", "final.csv", "motion.csv", &
-      & "forces.csv", "pairs.csv", "parameters.csv", "scene.nml", "log.txt"]
+      & "forces.csv", "pairs.csv", "parameters.csv", "scene.nml", "log.txt", checkpoint_files]
 
    !> Most files of one run
    integer, parameter :: max_files = 32
@@ -219,9 +224,25 @@ contains
       do i = 1, res%n_files
          call remove_path(res%path // "/" // trim(res%files(i)) // ".partial")
       end do
+      ! a run that ends with an error it reports keeps no checkpoint: only a run that is
+      ! killed leaves one (a rerun would meet the same error)
+      do i = 1, size(checkpoint_files)
+         call remove_path(res%path // "/" // trim(checkpoint_files(i)))
+         call remove_path(res%path // "/" // trim(checkpoint_files(i)) // ".new")
+      end do
       res%n_files = 0
       call remove_created(res)
    end subroutine abandon_results
+
+   !> The checkpoint file of output `name` ("summary", "sweep"), or "" when no files
+   !> are written.
+   function checkpoint_path(res, name) result(path)
+      type(results_type), intent(in) :: res
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: path
+      path = ""
+      if (res%active) path = res%path // "/" // name // ".checkpoint"
+   end function checkpoint_path
 
    !> Every result file of the directory, whichever run wrote it.
    subroutine remove_all_results(res)

@@ -22,8 +22,6 @@ module hcimpact_scene_run
    use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp
-   !$ use hcimpact_parallel, only : min_parallel_impact
-   !$ use omp_lib, only : omp_get_thread_num
    use hcimpact_status, only : hcimpact_ok, status_message
    use hcimpact_version_info, only : hcimpact_version_string
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, velocity_at_depth, &
@@ -39,12 +37,13 @@ module hcimpact_scene_run
    use hcimpact_scene_chain, only : system_method, system_needs_ode, describe_system, &
       & write_system_parameters, run_system
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
-      & abandon_results, csv_open, csv_row, csv_line, csv_close
+      & abandon_results, csv_open, csv_row, csv_line, csv_close, checkpoint_path
    use hcimpact_scene_ode, only : ode_available, ode_description, ode_missing, ode_run_type, &
       & ode_impact
    use hcimpact_legacy_damping, only : n_rules => n_damping_rules, &
       & rule_names => damping_rule_names, legacy_chi => legacy_damping
    use hcimpact_scene_system, only : wall_clock
+   use hcimpact_scene_sweep, only : sweep_impacts, sweep_description
    use hcimpact_scene_console, only : console_begin, console_log, console_failed, &
       & console_reason, say, emit, say_wrapped, say_text, shout, files_note, pad, str_int64, &
       & progress_begin, progress_step, progress_clear, progress_end
@@ -190,6 +189,8 @@ contains
          call say_text("  " // pad(output_names(k), 12), method(sc, k))
       end do
       if (.not. all(used)) call say_wrapped("  not needed: ", pack(component_names, .not. used))
+      if (sc%wanted(out_summary) .or. sc%wanted(out_sweep)) call say_text("  impacts: ", &
+         & sweep_description())
       if (sc%wanted(out_cvode)) then
          if (.not. ode_available) then
             call shout("error: the output 'cvode' needs the CVODE component: " // ode_missing)
@@ -413,32 +414,17 @@ contains
       real(wp), allocatable :: after(:, :)
       real(wp) :: t0, elapsed, row(15)
       integer(int64) :: evaluations
-      integer :: i, stat, ncol, done, mine
+      integer :: i, stat, ncol, resumed
       integer, allocatable :: stats(:)
       character(len=40), allocatable :: header(:)
 
       allocate(out(size(speeds)), after(2, size(speeds)), stats(size(speeds)))
       after = nan
       evaluations = 0
-      done = 0
       t0 = wall_clock()
-      call progress_begin(name, size(speeds))
-      ! The impacts are independent: in parallel when the program is built with OpenMP
-      ! (the library's array threshold and schedule); the progress line is drawn by
-      ! the first thread alone.
-      !$omp parallel do if (size(speeds) >= min_parallel_impact) private(mine) &
-      !$omp & schedule(dynamic, 4)
-      do i = 1, size(speeds)
-         call impact(contact_at(sc, speeds(i)), out(i), stats(i))
-         !$omp atomic capture
-         done = done + 1
-         mine = done
-         !$omp end atomic
-         !$ if (omp_get_thread_num() /= 0) cycle
-         call progress_step(mine)
-      end do
-      !$omp end parallel do
-      call progress_end()
+      call sweep_impacts(contact_at(sc, 0.0_wp), speeds, name, checkpoint_path(res, name), &
+         & out, stats, resumed, error)
+      if (allocated(error)) return
       do i = 1, size(speeds)
          if (stats(i) /= hcimpact_ok) then
             error = "the impact at V = " // real_str(speeds(i), 8) // " m/s: " &
@@ -475,9 +461,16 @@ contains
       call csv_close(csv, error)
       if (allocated(error)) return
       if (table) call print_summary(sc, speeds, out, after)
-      call say_text(pad(name, 12), count_str(size(speeds), "impact") // ": " &
-         & // duration_str(elapsed) // ", " // str_int64(evaluations) &
-         & // " integrand evaluations (quadrature)" // files_note(res, name // ".csv"))
+      if (resumed > 0) then
+         call say_text(pad(name, 12), count_str(size(speeds), "impact") // " (" &
+            & // str(resumed) // " from the checkpoint of an earlier run): " &
+            & // duration_str(elapsed) // ", " // str_int64(evaluations) &
+            & // " integrand evaluations (quadrature)" // files_note(res, name // ".csv"))
+      else
+         call say_text(pad(name, 12), count_str(size(speeds), "impact") // ": " &
+            & // duration_str(elapsed) // ", " // str_int64(evaluations) &
+            & // " integrand evaluations (quadrature)" // files_note(res, name // ".csv"))
+      end if
    end subroutine run_summary
 
    !> The console table of the summary (12 significant digits).

@@ -2,7 +2,7 @@
 !> What the scene runner needs from the operating system and Fortran does not give, or
 !> gives without telling of failures: whether a stream is a terminal, directories,
 !> renaming and removing files, writing files and the standard output with every
-!> failure seen (POSIX and the C library through `bind(C)`), and a wall clock.
+!> failure seen (POSIX and the C library through `bind(C)`), a wall clock, and a pause.
 !>
 !> Results are written through the C library, not through Fortran units: gfortran 12
 !> reports no error of a buffered write, flush or close (a file on a full disk, or
@@ -26,8 +26,8 @@ module hcimpact_scene_system
 
    public :: is_terminal, make_directory, rename_path, remove_path
    public :: directory_exists, file_exists, wall_clock
-   public :: output_file, create_file, write_file, close_file, write_standard_output
-   public :: last_system_error, ignore_output_signals
+   public :: output_file, create_file, write_file, flush_file, close_file, write_standard_output
+   public :: last_system_error, ignore_output_signals, pause_microseconds
 
    !> A file being written (a C stream)
    type :: output_file
@@ -35,6 +35,11 @@ module hcimpact_scene_system
    end type output_file
 
    interface
+      function c_usleep(microseconds) bind(C, name="usleep") result(r)
+         import :: c_int
+         integer(c_int), value :: microseconds
+         integer(c_int) :: r
+      end function c_usleep
       function c_isatty(fd) bind(C, name="isatty") result(r)
          import :: c_int
          integer(c_int), value :: fd
@@ -124,6 +129,14 @@ contains
    end function last_system_error
 
    !> Whether the file descriptor fd (1: standard output, 2: standard error) is a terminal.
+   !> Sleep for about `microseconds` (less than a second; an interruption by a signal
+   !> only shortens the pause).
+   subroutine pause_microseconds(microseconds)
+      integer, intent(in) :: microseconds
+      integer(c_int) :: r
+      r = c_usleep(int(min(max(microseconds, 0), 999999), c_int))
+   end subroutine pause_microseconds
+
    function is_terminal(fd) result(yes)
       integer, intent(in) :: fd
       logical :: yes
@@ -222,6 +235,18 @@ contains
    !> Flush the file to the device (fflush, then fsync: a network file system may
    !> report a failed write only then) and close it; ok is .false. if any step
    !> failed, and `reason` says why. The stream is closed whatever happened before.
+   !> Hand what was written so far to the operating system (fflush): it survives the
+   !> program being killed. ok is .false. if that failed, and `reason` says why.
+   subroutine flush_file(file, ok, reason)
+      type(output_file), intent(in) :: file
+      logical, intent(out) :: ok
+      character(len=:), allocatable, intent(out) :: reason
+      ok = .false.
+      if (.not. c_associated(file%stream)) return
+      ok = c_fflush(file%stream) == 0_c_int
+      if (.not. ok) reason = last_system_error()
+   end subroutine flush_file
+
    subroutine close_file(file, ok, reason)
       type(output_file), intent(inout) :: file
       logical, intent(out) :: ok

@@ -1,0 +1,238 @@
+! SPDX-License-Identifier: Apache-2.0
+!> Checkpoints of the impacts of a sweep (the outputs summary and sweep): a run that is
+!> killed (a signal, a rank of mpirun that dies, a lost node) leaves the outcomes it
+!> has finished in `<results>/<output>.checkpoint`, and a rerun of the same scene into
+!> the same results directory takes them from there and computes only the rest
+!> (doc/mpi.md). A run that ends, well or with an error it reports, removes its
+!> checkpoints with its other files (hcimpact_scene_output).
+!>
+!> The file: a first line that names the sweep (its output, its number of speeds, the
+!> contact's parameters and a checksum of the speeds, as bit patterns), then one line
+!> per finished impact: its index and the 13 doubles of `packed` as 16 hexadecimal
+!> digits each, so that the outcomes read back are the very doubles computed, and the
+!> results of a resumed run are those of a run in one go, byte for byte. A checkpoint
+!> of another sweep is ignored; a line cut short by the end of a killed run, and
+!> everything after it, too.
+!>
+!> A resumed run first writes what it keeps to `<output>.checkpoint.new`, created
+!> exclusively, and renames it over the old file; every later record is flushed to
+!> the file as soon as its chunk is done. Every write is checked.
+module hcimpact_scene_checkpoint
+   use, intrinsic :: iso_fortran_env, only : int64
+   use hcimpact_kinds, only : wp, ik
+   use hcimpact_impact_model, only : contact_type, outcome_type
+   use hcimpact_scene_system, only : output_file, create_file, write_file, flush_file, &
+      & close_file, rename_path, remove_path, file_exists
+   implicit none
+   private
+
+   public :: per_impact, packed, unpack
+   public :: checkpoint_type, checkpoint_start, checkpoint_record, checkpoint_finish
+
+   !> Doubles of one impact's outcome and status (`packed`)
+   integer, parameter :: per_impact = 13
+   !> The first words of a checkpoint file (its format's version)
+   character(len=*), parameter :: signature = "hcimpact-checkpoint 1"
+   !> Characters of one impact's line: the index, the doubles, the new line
+   integer, parameter :: record_length = 10 + 17 * per_impact + 1
+
+   !> The checkpoint of one sweep being written
+   type :: checkpoint_type
+      !> Whether there is one (files are written, and the file could be created)
+      logical :: active = .false.
+      !> The file, and its path
+      type(output_file) :: file
+      character(len=:), allocatable :: path
+   end type checkpoint_type
+
+contains
+
+   !> Start the checkpoint `path` of the sweep of `contact` over `speeds` (none if
+   !> `path` is empty): the impacts a checkpoint of the same sweep holds are put into
+   !> `out` and `stats` and marked `done`; `resumed` counts them.
+   subroutine checkpoint_start(path, contact, speeds, out, stats, done, resumed, ck, error)
+      !> The checkpoint file, or "" for none
+      character(len=*), intent(in) :: path
+      !> The contact (its velocity is not used)
+      type(contact_type), intent(in) :: contact
+      !> The speeds of the sweep
+      real(wp), intent(in) :: speeds(:)
+      !> Outcomes and statuses: those of the checkpoint filled in
+      type(outcome_type), intent(inout) :: out(:)
+      integer, intent(inout) :: stats(:)
+      !> Which impacts the checkpoint held
+      logical, intent(out) :: done(:)
+      !> How many
+      integer, intent(out) :: resumed
+      !> The checkpoint being written
+      type(checkpoint_type), intent(out) :: ck
+      character(len=:), allocatable, intent(out) :: error
+      character(len=:), allocatable :: key, reason
+      logical :: ok
+      integer :: i
+
+      done = .false.
+      resumed = 0
+      if (len(path) == 0) return
+      key = sweep_key(contact, speeds)
+      if (file_exists(path)) call read_checkpoint(path, key, out, stats, done)
+      resumed = count(done)
+      ck%path = path
+      call remove_path(path // ".new")
+      call create_file(path // ".new", ck%file, ok, reason)
+      if (.not. ok) then
+         error = path // ".new: cannot create the checkpoint: " // reason
+         return
+      end if
+      ck%active = .true.
+      call write_file(ck%file, key // new_line("a"), ok, reason)
+      do i = 1, size(done)
+         if (.not. ok) exit
+         if (done(i)) call write_file(ck%file, record(i, out(i), stats(i)), ok, reason)
+      end do
+      if (ok) call flush_file(ck%file, ok, reason)
+      if (ok) then
+         call rename_path(path // ".new", path, ok)
+         if (.not. ok) reason = "cannot rename it to " // path
+      end if
+      if (.not. ok) then
+         error = path // ".new: writing failed: " // reason
+         call close_file(ck%file, ok, reason)
+         ck%active = .false.
+      end if
+   end subroutine checkpoint_start
+
+   !> Record the impacts first, first + 1, ... of the sweep (given in out, stats) and
+   !> flush them to the file. An error is kept in `error` unless it holds one already.
+   subroutine checkpoint_record(ck, first, out, stats, error)
+      type(checkpoint_type), intent(inout) :: ck
+      integer, intent(in) :: first
+      type(outcome_type), intent(in) :: out(:)
+      integer, intent(in) :: stats(:)
+      character(len=:), allocatable, intent(inout) :: error
+      character(len=:), allocatable :: text, reason
+      logical :: ok
+      integer :: i
+      if (.not. ck%active) return
+      allocate(character(len=record_length * size(out)) :: text)
+      do i = 1, size(out)
+         text(record_length * (i - 1) + 1:record_length * i) = record(first + i - 1, out(i), &
+            & stats(i))
+      end do
+      call write_file(ck%file, text, ok, reason)
+      if (ok) call flush_file(ck%file, ok, reason)
+      if (ok) return
+      if (.not. allocated(error)) error = ck%path // ": writing failed: " &
+         & // reason
+      call close_file(ck%file, ok, reason)
+      ck%active = .false.
+   end subroutine checkpoint_record
+
+   !> Close the checkpoint (it stays until the run's files are committed or abandoned).
+   subroutine checkpoint_finish(ck, error)
+      type(checkpoint_type), intent(inout) :: ck
+      character(len=:), allocatable, intent(inout) :: error
+      character(len=:), allocatable :: reason
+      logical :: ok
+      if (.not. ck%active) return
+      call close_file(ck%file, ok, reason)
+      ck%active = .false.
+      if (.not. ok .and. .not. allocated(error)) error = ck%path &
+         & // ": writing failed: " // reason
+   end subroutine checkpoint_finish
+
+   !> The impacts of a checkpoint file whose first line is `key`; a line that does not
+   !> read whole ends the reading.
+   subroutine read_checkpoint(path, key, out, stats, done)
+      character(len=*), intent(in) :: path, key
+      type(outcome_type), intent(inout) :: out(:)
+      integer, intent(inout) :: stats(:)
+      logical, intent(inout) :: done(:)
+      character(len=2048) :: line
+      integer(int64) :: bits(per_impact)
+      integer :: unit, stat, i, j
+      open(newunit=unit, file=path, status="old", action="read", iostat=stat)
+      if (stat /= 0) return
+      read(unit, '(a)', iostat=stat) line
+      if (stat /= 0 .or. trim(line) /= key) then
+         close(unit)
+         return
+      end if
+      do
+         read(unit, '(a)', iostat=stat) line
+         if (stat /= 0) exit
+         read(line, '(i10, *(1x, z16))', iostat=stat) i, bits
+         if (stat /= 0) exit
+         if (i < 1 .or. i > size(done)) exit
+         if (len_trim(line) /= record_length - 1) exit
+         call unpack([(transfer(bits(j), 1.0_wp), j = 1, per_impact)], out(i), stats(i))
+         done(i) = .true.
+      end do
+      close(unit)
+   end subroutine read_checkpoint
+
+   !> One line of a checkpoint: the index and the outcome's doubles as bit patterns.
+   function record(i, out, stat) result(line)
+      integer, intent(in) :: i
+      type(outcome_type), intent(in) :: out
+      integer, intent(in) :: stat
+      character(len=:), allocatable :: line
+      real(wp) :: values(per_impact)
+      integer :: j
+      values = packed(out, stat)
+      allocate(character(len=record_length) :: line)
+      write(line, '(i10, *(1x, z16.16))') i, [(transfer(values(j), 1_int64), j = 1, per_impact)]
+      line(len(line):) = new_line("a")
+   end function record
+
+   !> The first line of a sweep's checkpoint: the number of speeds, the contact's
+   !> parameters and a checksum of the speeds (their bit patterns rotated by their
+   !> index and combined by exclusive or), in hexadecimal.
+   function sweep_key(contact, speeds) result(key)
+      type(contact_type), intent(in) :: contact
+      real(wp), intent(in) :: speeds(:)
+      character(len=:), allocatable :: key
+      character(len=16 * 5 + 40) :: buffer
+      integer(int64) :: sum
+      integer :: i
+      sum = 0_int64
+      do i = 1, size(speeds)
+         sum = ieor(sum, ishftc(transfer(speeds(i), 1_int64), modulo(i, 64)))
+      end do
+      write(buffer, '(i0, 5(1x, z16.16))') size(speeds), transfer(contact%mass, 1_int64), &
+         & transfer(contact%stiffness, 1_int64), transfer(contact%exponent, 1_int64), &
+         & transfer(contact%damping, 1_int64), sum
+      key = signature // " " // trim(buffer)
+   end function sweep_key
+
+   !> One impact's outcome and status as doubles (the counts are far below 2^53, so
+   !> exact).
+   pure function packed(out, stat) result(values)
+      type(outcome_type), intent(in) :: out
+      integer, intent(in) :: stat
+      real(wp) :: values(per_impact)
+      values = [out%restitution, out%energy_loss_ratio, out%rebound_velocity, &
+         & out%max_compression, out%peak_force, out%compression_at_peak_force, &
+         & out%time_at_peak_force, out%compression_time, out%contact_time, &
+         & real(out%evaluations, wp), real(stat, wp)]
+   end function packed
+
+   !> The inverse of `packed`.
+   pure subroutine unpack(values, out, stat)
+      real(wp), intent(in) :: values(per_impact)
+      type(outcome_type), intent(out) :: out
+      integer, intent(out) :: stat
+      out%restitution = values(1)
+      out%energy_loss_ratio = values(2)
+      out%rebound_velocity = values(3)
+      out%max_compression = values(4)
+      out%peak_force = values(5)
+      out%compression_at_peak_force = values(6)
+      out%time_at_peak_force = values(7)
+      out%compression_time = values(8)
+      out%contact_time = values(9)
+      out%evaluations = int(values(10:12), ik)
+      stat = nint(values(13))
+   end subroutine unpack
+
+end module hcimpact_scene_checkpoint

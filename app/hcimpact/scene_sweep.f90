@@ -1,0 +1,110 @@
+! SPDX-License-Identifier: Apache-2.0
+!> The impacts of a sweep (the outputs summary and sweep) in a build without MPI (fpm,
+!> or CMake without MPI or with HCIMPACT_WITH_MPI=OFF): every impact on this process,
+!> shared among OpenMP threads where the program is built with OpenMP, in blocks whose
+!> outcomes go to the sweep's checkpoint as each block ends
+!> (hcimpact_scene_checkpoint). CMake builds with MPI compile app/mpi/scene_sweep.f90
+!> instead, a module of the same name and interface that hands the impacts out to the
+!> ranks of `mpirun` (doc/mpi.md).
+module hcimpact_scene_sweep
+   use hcimpact_kinds, only : wp
+   !$ use hcimpact_parallel, only : min_parallel_impact
+   !$ use omp_lib, only : omp_get_thread_num
+   use hcimpact_impact_model, only : contact_type, outcome_type, impact
+   use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
+   use hcimpact_scene_checkpoint, only : checkpoint_type, checkpoint_start, &
+      & checkpoint_record, checkpoint_finish
+   implicit none
+   private
+
+   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts
+
+   !> Impacts of a block: what a killed run loses at most
+   integer, parameter :: block = 1024
+
+contains
+
+   !> Start: this process is the one that runs the scene (there are no others).
+   subroutine sweep_begin(leader)
+      !> Whether this process runs the scene (always, here)
+      logical, intent(out) :: leader
+      leader = .true.
+   end subroutine sweep_begin
+
+   !> The work of a process that does not run the scene: none here.
+   subroutine sweep_serve(code)
+      !> Exit code of the process
+      integer, intent(out) :: code
+      code = 0
+   end subroutine sweep_serve
+
+   !> The end of the program: nothing to release here.
+   subroutine sweep_end()
+   end subroutine sweep_end
+
+   !> How the impacts of a sweep are computed, for the plan.
+   function sweep_description() result(text)
+      character(len=:), allocatable :: text
+      text = "on this process"
+      !$ text = "on this process, shared among OpenMP threads"
+   end function sweep_description
+
+   !> The impacts of `contact` at each of `speeds` (its velocity replaced), with the
+   !> progress shown under `label`; those the checkpoint holds are taken from it.
+   subroutine sweep_impacts(contact, speeds, label, checkpoint, out, stats, resumed, error)
+      !> The contact (masses, law, damping); its velocity is not used
+      type(contact_type), intent(in) :: contact
+      !> The approach speeds in m/s
+      real(wp), intent(in) :: speeds(:)
+      !> The progress line's label
+      character(len=*), intent(in) :: label
+      !> The checkpoint file, or "" for none
+      character(len=*), intent(in) :: checkpoint
+      !> The outcome at each speed
+      type(outcome_type), intent(out) :: out(:)
+      !> The status of each impact
+      integer, intent(out) :: stats(:)
+      !> How many impacts came from the checkpoint
+      integer, intent(out) :: resumed
+      !> Why the checkpoint could not be written (the impacts are all computed)
+      character(len=:), allocatable, intent(out) :: error
+      type(checkpoint_type) :: ck
+      type(contact_type) :: at_speed
+      logical, allocatable :: done(:)
+      integer :: i, first, last, finished, mine
+
+      allocate(done(size(speeds)))
+      call checkpoint_start(checkpoint, contact, speeds, out, stats, done, resumed, ck, error)
+      if (allocated(error)) return
+      finished = resumed
+      call progress_begin(label, size(speeds))
+      do first = 1, size(speeds), block
+         last = min(first + block - 1, size(speeds))
+         ! a block the checkpoint holds whole is skipped, one it holds in part computed
+         ! again (the same doubles)
+         if (all(done(first:last))) cycle
+         finished = finished - count(done(first:last))
+         ! The impacts are independent: in parallel when the program is built with
+         ! OpenMP (the library's array threshold and schedule); the progress line is
+         ! drawn by the first thread alone.
+         !$omp parallel do if (last - first + 1 >= min_parallel_impact) &
+         !$omp & private(mine, at_speed) schedule(dynamic, 4)
+         do i = first, last
+            at_speed = contact
+            at_speed%velocity = speeds(i)
+            call impact(at_speed, out(i), stats(i))
+            !$omp atomic capture
+            finished = finished + 1
+            mine = finished
+            !$omp end atomic
+            !$ if (omp_get_thread_num() /= 0) cycle
+            call progress_step(mine)
+         end do
+         !$omp end parallel do
+         call checkpoint_record(ck, first, out(first:last), stats(first:last), error)
+      end do
+      call checkpoint_finish(ck, error)
+      call progress_end()
+   end subroutine sweep_impacts
+
+end module hcimpact_scene_sweep
