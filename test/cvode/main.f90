@@ -13,6 +13,7 @@ program tester_cvode
    use test_cvode_law, only : collect_law
    use test_cvode_stability, only : collect_stability
    use test_cvode_threads, only : collect_threads
+   use test_cvode_chain, only : collect_chain
    implicit none
    type(testsuite_type), allocatable :: testsuites(:)
 
@@ -21,7 +22,8 @@ program tester_cvode
       new_testsuite("input", collect_input), &
       new_testsuite("law", collect_law), &
       new_testsuite("stability", collect_stability), &
-      new_testsuite("threads", collect_threads) &
+      new_testsuite("threads", collect_threads), &
+      new_testsuite("chain", collect_chain) &
       ]
 
    call run_tester(testsuites)
