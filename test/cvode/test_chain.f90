@@ -525,19 +525,25 @@ contains
             & size(result%contacts) == 1, "two bodies: one contact, by the closed forms")
          if (allocated(error)) return
          ! the engine's effective mass and approach speed, and the one impact
+         ! (under gravity the approach speed is a difference of velocities that
+         ! both changed by g t: within rounding of v1 - v2)
          mu = m(1) * (m(2) / (m(1) + m(2)))
          rate = v(1) - v(2)
+         call check(error, abs(result%contacts(1)%approach_speed - rate) <= &
+            & 4 * spacing(maxval(abs(v)) + abs(g) * result%contacts(1)%t_start), &
+            & "two bodies: approach speed " // format_real(result%contacts(1)%approach_speed))
+         if (allocated(error)) return
+         rate = result%contacts(1)%approach_speed
          call impact(contact_type(mass=mu, stiffness=c, exponent=n, damping=b, &
             & velocity=rate), out, stat)
          associate (rec => result%contacts(1))
-            call check(error, rec%approach_speed == rate .and. &
-               & rec%peak_force == out%peak_force .and. &
+            call check(error, rec%peak_force == out%peak_force .and. &
                & rec%max_deformation == out%max_compression .and. &
                & rec%separation_speed == -out%rebound_velocity, &
                & "two bodies: the record holds the closed forms")
             if (allocated(error)) return
-            t_start = gap / rate
-            call check_close(error, rec%t_start, t_start, rel=2 * epsilon(1.0_wp), &
+            t_start = gap / (v(1) - v(2))
+            call check_close(error, rec%t_start, t_start, rel=4 * epsilon(1.0_wp), &
                & message="two bodies: start of contact")
             if (allocated(error)) return
             call check_close(error, rec%t_end - rec%t_start, out%contact_time, &
@@ -627,13 +633,6 @@ contains
                   worst(1) = max(worst(1), abs(result%velocities(i) - exact%velocities(i)) &
                      & / vmax / rtol)
                end do
-               associate (a => result%contacts(1), e => exact%contacts(1))
-                  print '(i3, i2, es9.1, 4es10.2)', trial, integrator, rtol, &
-                     & abs(result%velocities(1) - exact%velocities(1)) / vmax / rtol, &
-                     & abs(a%t_end - e%t_end) / (e%t_end - e%t_start) / rtol, &
-                     & abs(a%peak_force / e%peak_force - 1) / rtol, &
-                     & abs(a%max_deformation / e%max_deformation - 1) / rtol
-               end associate
                associate (a => result%contacts(1), e => exact%contacts(1))
                   worst(2) = max(worst(2), abs(a%t_end - e%t_end) / (e%t_end - e%t_start) &
                      & / rtol)
