@@ -105,7 +105,11 @@ function(hcimpact_library_lto target)
     set_property(TARGET ${target} PROPERTY INTERPROCEDURAL_OPTIMIZATION_${config} TRUE)
   endforeach()
   get_target_property(type ${target} TYPE)
-  if(type STREQUAL "STATIC_LIBRARY" AND CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
+  # Fat objects (machine code next to the compiler's IR) for a static library, which
+  # a program may link without LTO, and for the benchmarks' renamed static copy of
+  # the shared library's objects (bench/lambertw/prefix_symbols.cmake)
+  if((type STREQUAL "STATIC_LIBRARY" OR HCIMPACT_BUILD_BENCH)
+     AND CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
     target_compile_options(${target} PRIVATE
       "$<$<CONFIG:Release,RelWithDebInfo,MinSizeRel>:-ffat-lto-objects>")
   endif()
@@ -129,6 +133,19 @@ function(hcimpact_shared_link_flags target)
   endif()
   if(HCIMPACT_LINKER_BSYMBOLIC_FUNCTIONS)
     target_link_options(${target} PRIVATE "-Wl,-Bsymbolic-functions")
+    # The calls inside the library are then bound to its own procedures; let the
+    # compiler know, so that it may inline one module's procedures into another's
+    # (with -fPIC and default visibility it otherwise assumes they may be interposed,
+    # and link-time optimisation keeps every call: bit_exponent, two_prod, ...).
+    if(NOT DEFINED CACHE{HCIMPACT_FORTRAN_NO_SEMANTIC_INTERPOSITION})
+      include(CheckCompilerFlag)
+      check_compiler_flag(Fortran "-fno-semantic-interposition"
+        HCIMPACT_FORTRAN_NO_SEMANTIC_INTERPOSITION)
+    endif()
+    if(HCIMPACT_FORTRAN_NO_SEMANTIC_INTERPOSITION)
+      target_compile_options(${target} PRIVATE
+        "$<$<COMPILE_LANGUAGE:Fortran>:-fno-semantic-interposition>")
+    endif()
   endif()
 endfunction()
 

@@ -17,7 +17,10 @@
  *    nothing is written. On any other error every output is NaN.
  *  - Array ("_array") forms take the number of elements n and plain arrays of n
  *    elements; an output array may be the input array itself (computed in place),
- *    other overlaps are not allowed.
+ *    other overlaps are not allowed. In a library built with OpenMP, large arrays
+ *    are shared among OMP_NUM_THREADS threads (hcimpact_array_threads()); the
+ *    results and the status (that of the lowest failing index) are those of a
+ *    serial run, bit for bit.
  *  - The library keeps no state: every function may be called from several threads
  *    at once, and no function allocates memory that the caller must free.
  *
@@ -104,6 +107,11 @@ HCIMPACT_API const char *hcimpact_version(void);
 /** Version of the library as 10000*major + 100*minor + patch; compare it with the
  *  header's HCIMPACT_VERSION to detect a mismatch between header and library. */
 HCIMPACT_API int hcimpact_version_number(void);
+
+/** Number of threads the array forms share a large array among when called here and
+ *  now: OpenMP's (OMP_NUM_THREADS; 1 inside a parallel region of the caller's unless
+ *  nesting is enabled), 1 in a library built without OpenMP. */
+HCIMPACT_API int hcimpact_array_threads(void);
 
 /* ------------------------------------------------------------------------
  * Lambert W, real branches
@@ -192,9 +200,13 @@ HCIMPACT_API int hcimpact_restitution_derivative_array(int n, const double *beta
  *  approach speed velocity (m/s, >= 0): b = beta(e)/max(velocity, min_velocity).
  *  Below min_velocity (m/s, > 0; HCIMPACT_DEFAULT_MIN_VELOCITY is 1e-3) b is that of
  *  min_velocity, so that it stays finite as the speed tends to 0.
+ *  Every b that is a double is returned (b = 1/(e V) for tiny e, formed without
+ *  overflow on the way).
  *  Returns HCIMPACT_OK; HCIMPACT_ERR_NOT_FINITE (NaN or infinite argument),
  *  HCIMPACT_ERR_RESTITUTION (e outside (0, 1]), HCIMPACT_ERR_VELOCITY (velocity < 0
- *  or min_velocity <= 0): *damping = NaN; HCIMPACT_ERR_NULL (damping is NULL). */
+ *  or min_velocity <= 0), HCIMPACT_ERR_DOMAIN (the exact b exceeds the largest
+ *  double, e.g. e = 1e-310 at 1 m/s): *damping = NaN; HCIMPACT_ERR_NULL (damping is
+ *  NULL). */
 HCIMPACT_API int hcimpact_damping_for_restitution(double e, double velocity, double min_velocity,
                                                   double *damping);
 
@@ -270,8 +282,9 @@ typedef struct {
  *  HCIMPACT_ERR_DAMPING (6)      damping < 0,
  *  HCIMPACT_ERR_DOMAIN (8)       b V above 1e40 (HCIMPACT_MAX_BETA), or a result
  *                                would leave the double range,
- *  HCIMPACT_ERR_NO_CONVERGENCE (9) a quadrature did not converge (not seen for
- *                                b V up to 1e6),
+ *  HCIMPACT_ERR_NO_CONVERGENCE (9) exponent above 100 (the times are not
+ *                                integrated beyond), or a quadrature did not
+ *                                converge (not seen for b V up to 1e40),
  *  HCIMPACT_ERR_NULL (10)        contact or outcome is NULL (nothing written). */
 HCIMPACT_API int hcimpact_impact(const hcimpact_contact *contact, hcimpact_outcome *outcome);
 
@@ -295,7 +308,10 @@ typedef struct {
  *  bodies), damping b in s/m, approach speed in m/s. Same outcome and statuses as
  *  hcimpact_impact (mass, damping, velocity checked alike); a NULL law, outcome or
  *  callback gives HCIMPACT_ERR_NULL (nothing written), and a callback returning a
- *  value that is not finite, or a law that is not increasing, HCIMPACT_ERR_ELASTIC_LAW. */
+ *  value that is not finite, or a law that is not increasing, HCIMPACT_ERR_ELASTIC_LAW.
+ *  HCIMPACT_ERR_DOMAIN where the law's values the method needs leave the double range
+ *  (energies m V^2 h(bV)/(bV)^2 near the bottom of the range, f or f' infinite or
+ *  subnormal where the peak's sign is decided), rather than a wrong number. */
 HCIMPACT_API int hcimpact_impact_law(const hcimpact_elastic_law *law, double mass, double damping,
                                      double velocity, hcimpact_outcome *outcome);
 
@@ -314,8 +330,10 @@ HCIMPACT_API int hcimpact_impact_array(int n, const hcimpact_contact *contacts,
 /** Velocity x' in m/s at the compression x (m, 0 <= x <= x_max) on the branch
  *  HCIMPACT_COMPRESSION_BRANCH (x' >= 0) or HCIMPACT_RESTITUTION_BRANCH (x' <= 0):
  *  V(x) = u(h(b V) (1 - (x/x_max)^(n+1)))/b through Lambert W (MODEL.md), smooth as
- *  b -> 0. At x = 0 it is V resp. -k V, at x = x_max 0.
- *  Returns HCIMPACT_OK; the statuses of hcimpact_impact for the contact;
+ *  b -> 0. At x = 0 it is exactly V resp. the rebound velocity -k V of
+ *  hcimpact_impact, at x = x_max 0. No quadrature: any exponent up to about 6e299.
+ *  Returns HCIMPACT_OK; the statuses of hcimpact_impact for the contact (not those
+ *  of its times and force);
  *  HCIMPACT_ERR_NOT_FINITE (x NaN or infinite), HCIMPACT_ERR_DOMAIN (x < 0,
  *  x > x_max by more than 4 ulp, or another branch): *velocity = NaN;
  *  HCIMPACT_ERR_NULL. */
@@ -331,15 +349,20 @@ HCIMPACT_API int hcimpact_velocity_at_depth_array(const hcimpact_contact *contac
 /** The time law at n >= 1 times t[i] (s from the start of contact, any order):
  *  compression x[i] (m), velocity v[i] = x' (m/s) and contact force
  *  f[i] = c x^n (1 + b x') (N). Before the contact (t <= 0): x = 0, x' = V, F = 0;
- *  after it: x = 0, x' = -k V, F = 0. Each time costs a few quadratures.
+ *  from the contact time of hcimpact_impact on: x = 0, x' = -k V, F = 0 exactly.
+ *  Each time costs a few quadratures.
  *  Returns HCIMPACT_OK; the statuses of hcimpact_impact; HCIMPACT_ERR_NOT_FINITE (a
- *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE. */
+ *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE (also
+ *  when the library cannot allocate its copy of the n values: out of memory, outputs
+ *  NaN). */
 HCIMPACT_API int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
                                    double *x, double *v, double *f);
 
 /** The time law on n >= 2 equally spaced times t[i] = contact_time i/(n - 1), written
- *  to t, with x, v and f as in hcimpact_time_law (x[0] = x[n-1] = 0).
- *  Returns as hcimpact_time_law; n < 2 gives HCIMPACT_ERR_SIZE. */
+ *  to t, with x, v and f as in hcimpact_time_law (x[0] = x[n-1] = 0 and
+ *  f[0] = f[n-1] = 0 exactly, t[n-1] the contact time of hcimpact_impact).
+ *  Returns as hcimpact_time_law; n < 2, or n samples beyond the memory available,
+ *  give HCIMPACT_ERR_SIZE (every output NaN). */
 HCIMPACT_API int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
                                            double *x, double *v, double *f);
 

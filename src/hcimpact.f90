@@ -29,6 +29,7 @@ module hcimpact
    use hcimpact_chain, only : chain_exact, contact_law, chain_type, chain_options, &
       & contact_record, chain_result, chain_counters, chain_switch
    use hcimpact_legacy_damping, only : n_damping_rules, damping_rule_names, legacy_damping
+   use hcimpact_parallel, only : array_threads
    implicit none
    public
 

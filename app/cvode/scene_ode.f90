@@ -5,11 +5,13 @@ module hcimpact_scene_ode
    use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact_kinds, only : wp
    use hcimpact_impact_model, only : contact_type, outcome_type
-   use hcimpact_cvode, only : simulate, simulation_type, cvode_options, cvode_bdf
+   use hcimpact_cvode, only : simulate, simulation_type, cvode_options, cvode_bdf, &
+      & chain_simulate
+   use hcimpact_chain, only : chain_type, chain_options, chain_result
    implicit none
    private
 
-   public :: ode_available, ode_description, ode_missing, ode_run_type, ode_impact
+   public :: ode_available, ode_description, ode_missing, ode_run_type, ode_impact, ode_chain
 
    !> Whether this build can integrate the impact with CVODE
    logical, parameter :: ode_available = .true.
@@ -46,5 +48,15 @@ contains
       run%root_evals = sim%counters%root_evals
       run%message = sim%message
    end subroutine ode_impact
+
+   !> A system of bodies: the closed forms where contacts are isolated, CVODE for the
+   !> clusters (chain_simulate).
+   subroutine ode_chain(chain, options, result, stat)
+      type(chain_type), intent(in) :: chain
+      type(chain_options), intent(in) :: options
+      type(chain_result), intent(out) :: result
+      integer, intent(out) :: stat
+      call chain_simulate(chain, result, stat, options)
+   end subroutine ode_chain
 
 end module hcimpact_scene_ode

@@ -1,26 +1,41 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> A scene: what the runner is asked to compute (bodies, contact, damping, approach
-!> speeds and the outputs wanted), after reading and validation.
+!> A scene: what the runner is asked to compute, after reading and validation: one
+!> impact (bodies, contact, damping, approach speeds), or a system of bodies on a line
+!> (the `&bodies` group: masses, velocities, gaps, laws, walls, gravity); and the
+!> outputs wanted.
 !>
 !> The outputs are named in scene files and on the command line by the words of
-!> `output_names`; `figures` and `all` stand for sets of them.
+!> `output_names`; `figures` and `all` stand for sets of them. Each output belongs to
+!> one kind of scene (`system_outputs`).
 module hcimpact_scene_model
    use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact_kinds, only : wp
+   use hcimpact_chain_types, only : contact_law, method_auto, integrator_bdf
    use hcimpact_scene_text, only : lower
    implicit none
    private
 
-   public :: body_type, scene_type, nan
+   public :: body_type, scene_type, wall_type, system_type, nan
    public :: n_outputs, output_names, output_files, output_descriptions, output_index
    public :: add_outputs, output_choices
    public :: out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
-      & out_lambertw, out_legacy, out_cvode
-   public :: figure_outputs, default_scene_lines, max_speeds, scene_line_length
-   public :: max_scene_lines
+      & out_lambertw, out_legacy, out_cvode, out_contacts, out_final, out_motion
+   public :: figure_outputs, system_outputs, default_scene_lines, max_speeds
+   public :: scene_line_length, max_scene_lines, max_bodies
+   public :: unset_bits, is_unset
 
    !> Quiet NaN
    real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
+
+   !> The bits that mark a real a scene file did not set: a quiet NaN with a payload of
+   !> its own, told apart from any value a file can hold (also "nan", whose payload
+   !> differs) by its bits, never by a floating-point comparison. (The integer is
+   !> exported: a NaN parameter may lose its payload on its way through a module file,
+   !> so each module makes its real from these bits.)
+   integer(int64), parameter :: unset_bits = int(z'7FF80000DEADBEEF', int64)
+
+   !> Most bodies of a system in a scene file (the library takes any number)
+   integer, parameter :: max_bodies = 100000
 
    !> Most approach speeds a scene may list
    integer, parameter :: max_speeds = 1000
@@ -32,9 +47,9 @@ module hcimpact_scene_model
    !> The outputs a scene can ask for
    integer, parameter :: out_summary = 1, out_sweep = 2, out_histories = 3, &
       & out_phase = 4, out_loops = 5, out_restitution = 6, out_lambertw = 7, &
-      & out_legacy = 8, out_cvode = 9
+      & out_legacy = 8, out_cvode = 9, out_contacts = 10, out_final = 11, out_motion = 12
    !> Number of outputs
-   integer, parameter :: n_outputs = 9
+   integer, parameter :: n_outputs = 12
 
    !> The built-in default scene, as the text of a scene file: the seed's steel ball
    !> (MODEL.md). example/scenes/steel_ball.nml holds the same text.
@@ -61,12 +76,12 @@ module hcimpact_scene_model
    !> Their names in scene files and on the command line
    character(len=*), parameter :: output_names(n_outputs) = [character(len=11) :: &
       & "summary", "sweep", "histories", "phase", "loops", "restitution", "lambertw", &
-      & "legacy", "cvode"]
+      & "legacy", "cvode", "contacts", "final", "motion"]
    !> The files each writes in the results directory
    character(len=*), parameter :: output_files(n_outputs) = [character(len=44) :: &
       & "summary.csv", "sweep.csv", "histories.csv", "phase.csv", "loops.csv", &
       & "restitution.csv", "lambertw.csv velocity_z.csv motion_z.csv", "legacy.csv", &
-      & "cvode.csv"]
+      & "cvode.csv", "contacts.csv", "final.csv", "motion.csv forces.csv"]
    !> What each is
    character(len=*), parameter :: output_descriptions(n_outputs) = [character(len=100) :: &
       & "per speed: k, energy lost, x_max, peak force and its time, the times", &
@@ -77,10 +92,17 @@ module hcimpact_scene_model
       & "restitution k and energy loss 1 - k^2 against beta = b V", &
       & "both real branches of Lambert W; V(z) = -(1 + W(z))/b (seed eq. 14)", &
       & "damping rules of multibody codes against the exact beta(e), per speed", &
-      & "SUNDIALS CVODE against the closed form: errors, time, counters"]
-   !> The outputs behind the seed's figures 1-8 (`figures`)
+      & "SUNDIALS CVODE against the closed form: errors, time, counters", &
+      & "a system: every contact (pair, times, speeds, peak force, how computed)", &
+      & "a system: every body's state at the start and at the end", &
+      & "a system: positions, velocities and pair forces against time"]
+   !> The outputs behind the figures (`figures`): the seed's figures 1-8 of one
+   !> impact, figures 11-13 of a system of bodies
    logical, parameter :: figure_outputs(n_outputs) = [.true., .true., .true., .true., &
-      & .true., .true., .true., .false., .false.]
+      & .true., .true., .true., .false., .false., .true., .true., .true.]
+   !> The outputs of a system of bodies (the others are those of one impact)
+   logical, parameter :: system_outputs(n_outputs) = [.false., .false., .false., .false., &
+      & .false., .false., .false., .false., .false., .true., .true., .true.]
 
    !> One body. Unset reals are NaN.
    type :: body_type
@@ -99,6 +121,46 @@ module hcimpact_scene_model
       !> Whether the mass was computed from radius and density
       logical :: mass_from_density = .false.
    end type body_type
+
+   !> A wall at one end of a system of bodies
+   type :: wall_type
+      !> Whether there is one
+      logical :: present = .false.
+      !> Its contact law with the end body, and the gap between them (m)
+      type(contact_law) :: law
+      real(wp) :: gap = 0.0_wp
+      !> Material (young in Pa, poisson), for Hertz's constant with the end body
+      real(wp) :: young = nan, poisson = nan
+      !> Target restitution and its speed (m/s), when b was derived from them
+      real(wp) :: target_restitution = nan, reference_speed = nan
+      !> How c and b were obtained
+      character(len=:), allocatable :: law_origin, damping_origin
+   end type wall_type
+
+   !> A system of bodies on a line (the &bodies group; doc/scenes.md)
+   type :: system_type
+      !> Number of bodies
+      integer :: n = 0
+      !> Masses (kg), initial velocities (m/s), gaps between neighbours (m, n - 1)
+      real(wp), allocatable :: mass(:), velocity(:), gap(:)
+      !> Spheres: radius (m), density (kg/m^3), material (Pa, -); NaN when not given
+      real(wp), allocatable :: radius(:), density(:), young(:), poisson(:)
+      !> Whether the masses came from radius and density
+      logical :: mass_from_density = .false.
+      !> The laws of the neighbouring pairs (n - 1) and how they were obtained
+      type(contact_law), allocatable :: law(:)
+      character(len=:), allocatable :: law_origin, damping_origin
+      !> Target restitution and its speed (m/s), when b was derived from them
+      real(wp) :: target_restitution = nan, reference_speed = nan
+      !> The walls
+      type(wall_type) :: left, right
+      !> Constant acceleration along the line, m/s^2
+      real(wp) :: gravity = 0.0_wp
+      !> End time in s (<= 0: until no contact can happen again), CVODE's tolerance
+      real(wp) :: t_end = -1.0_wp, rtol = 1.0e-10_wp
+      !> hcimpact_chain_types' method and integrator codes
+      integer :: method = method_auto, integrator = integrator_bdf
+   end type system_type
 
    !> A validated scene
    type :: scene_type
@@ -140,9 +202,19 @@ module hcimpact_scene_model
       real(wp) :: beta_max = 10.0_wp
       !> Relative tolerances of the CVODE runs
       real(wp), allocatable :: tolerances(:)
+      !> Whether the scene is a system of bodies (&bodies), and the system
+      logical :: is_system = .false.
+      type(system_type) :: system
    end type scene_type
 
 contains
+
+   !> Whether a real is the mark of a value the file did not set (by its bits).
+   elemental function is_unset(x) result(yes)
+      real(wp), intent(in) :: x
+      logical :: yes
+      yes = transfer(x, 0_int64) == unset_bits
+   end function is_unset
 
    !> Index of an output name, or 0.
    pure function output_index(name) result(k)
@@ -158,14 +230,17 @@ contains
 
    !> Add the outputs named in `text` to `wanted`: words separated by commas or blanks
    !> ("summary,phase", "summary, phase"), `figures` and `all` standing for their sets.
-   !> `unknown` is the first word that names no output ("" if none).
-   pure subroutine add_outputs(text, wanted, unknown)
+   !> `unknown` is the first word that names no output ("" if none); `named` gets the
+   !> outputs named by their own words (not through a set).
+   pure subroutine add_outputs(text, wanted, unknown, named)
       !> The list
       character(len=*), intent(in) :: text
       !> The outputs wanted so far
       logical, intent(inout) :: wanted(n_outputs)
       !> The first unknown word, or ""
       character(len=:), allocatable, intent(out) :: unknown
+      !> The outputs named so far by their own words
+      logical, intent(inout), optional :: named(n_outputs)
       integer :: start, finish, k
       unknown = ""
       finish = 0
@@ -185,6 +260,7 @@ contains
          k = output_index(text(start:finish))
          if (k > 0) then
             wanted(k) = .true.
+            if (present(named)) named(k) = .true.
          else if (lower(text(start:finish)) == "figures") then
             wanted = wanted .or. figure_outputs
          else if (lower(text(start:finish)) == "all") then

@@ -7,11 +7,13 @@ module hcimpact_scene_ode
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_err_unavailable
    use hcimpact_impact_model, only : contact_type, outcome_type
+   use hcimpact_chain, only : chain_exact, chain_type, chain_options, chain_result, &
+      & method_integrated
    use hcimpact_scene_text, only : real_str
    implicit none
    private
 
-   public :: ode_available, ode_description, ode_missing, ode_run_type, ode_impact
+   public :: ode_available, ode_description, ode_missing, ode_run_type, ode_impact, ode_chain
 
    !> Whether this build can integrate the impact with CVODE
    logical, parameter :: ode_available = .false.
@@ -43,5 +45,22 @@ contains
          & // " m/s with rtol = " // real_str(rtol, 3) // ": " // ode_missing
       stat = hcimpact_err_unavailable
    end subroutine ode_impact
+
+   !> A system of bodies with the core alone: the closed forms of one impact for every
+   !> contact (chain_exact). A cluster of overlapping contacts, a wall contact under
+   !> gravity, or the method 'integrated' needs CVODE: hcimpact_err_unavailable, and the
+   !> message says why.
+   subroutine ode_chain(chain, options, result, stat)
+      type(chain_type), intent(in) :: chain
+      type(chain_options), intent(in) :: options
+      type(chain_result), intent(out) :: result
+      integer, intent(out) :: stat
+      if (options%method == method_integrated) then
+         stat = hcimpact_err_unavailable
+         result%message = "the method 'integrated' needs the CVODE component"
+         return
+      end if
+      call chain_exact(chain, result, stat, options)
+   end subroutine ode_chain
 
 end module hcimpact_scene_ode

@@ -32,10 +32,11 @@ module hcimpact_scene_output
    public :: all_result_files
 
    !> Every file name this program writes into a results directory
-   character(len=*), parameter :: all_result_files(14) = [character(len=20) :: &
+   character(len=*), parameter :: all_result_files(19) = [character(len=20) :: &
       & "summary.csv", "sweep.csv", "histories.csv", "phase.csv", "loops.csv", &
       & "restitution.csv", "lambertw.csv", "velocity_z.csv", "motion_z.csv", &
-      & "legacy.csv", "cvode.csv", "parameters.csv", "scene.nml", "log.txt"]
+      & "legacy.csv", "cvode.csv", "contacts.csv", "final.csv", "motion.csv", &
+      & "forces.csv", "pairs.csv", "parameters.csv", "scene.nml", "log.txt"]
 
    !> Most files of one run
    integer, parameter :: max_files = 32

@@ -25,11 +25,22 @@ module hcimpact_scene_reader
    use hcimpact_status, only : hcimpact_ok, status_message
    use hcimpact_hertz, only : hertz_constant, effective_mass
    use hcimpact_impact_model, only : damping_for_restitution
-   use hcimpact_scene_model, only : scene_type, body_type, nan, n_outputs, output_names, &
+   use hcimpact_scene_model, only : scene_type, body_type, wall_type, system_type, nan, n_outputs, output_names, &
       & add_outputs, output_choices, out_summary, out_sweep, out_histories, out_phase, &
       & out_loops, out_legacy, out_cvode, max_speeds, default_scene_lines, &
-      & scene_line_length, max_scene_lines
-   use hcimpact_scene_text, only : lower, str, real_str, join, printable
+      & scene_line_length, max_scene_lines, unset_bits, is_unset, max_bodies, system_outputs, &
+      & out_contacts, out_final
+   use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
+      & body_radius => radius, body_density => density, body_young => young, &
+      & body_poisson => poisson, body_velocity => velocity, body_gap => gap, &
+      & body_stiffness => stiffness, body_exponent => exponent, body_b => b, &
+      & body_restitution => restitution, body_at_speed => at_speed, &
+      & body_gravity => gravity, body_t_end => t_end, body_rtol => rtol, &
+      & body_method => method, body_integrator => integrator
+   use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
+      & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
+      & integrator_adams
+   use hcimpact_scene_text, only : lower, str, real_str, join, printable, count_str
    use hcimpact_scene_system, only : directory_exists
    use hcimpact_scene_numbers, only : power_product, quotient_of, decimal_exponent
    use hcimpact_restitution_law, only : restitution_inverse
@@ -39,35 +50,43 @@ module hcimpact_scene_reader
    public :: read_scene_file, read_scene_lines, read_default_scene
    public :: group_names, group_variables
 
+   !> The mark of a real not given (hcimpact_scene_model's unset_bits)
+   real(wp), parameter :: unset = transfer(unset_bits, 1.0_wp)
+
    !> Most outputs and tolerances one list may hold
    integer, parameter :: max_list = 32
 
    integer, parameter :: g_scene = 1, g_body1 = 2, g_body2 = 3, g_wall = 4, g_contact = 5, &
-      & g_damping = 6, g_sampling = 7, n_groups = 7
+      & g_damping = 6, g_sampling = 7, g_bodies = 8, g_left_wall = 9, g_right_wall = 10, &
+      & n_groups = 10
    !> The groups of a scene file
-   character(len=*), parameter :: group_names(n_groups) = [character(len=8) :: "scene", &
-      & "body1", "body2", "wall", "contact", "damping", "sampling"]
+   character(len=*), parameter :: group_names(n_groups) = [character(len=10) :: "scene", &
+      & "body1", "body2", "wall", "contact", "damping", "sampling", "bodies", "left_wall", &
+      & "right_wall"]
    !> The variables each group takes
-   character(len=*), parameter :: group_variables(n_groups) = [character(len=96) :: &
+   character(len=*), parameter :: group_variables(n_groups) = [character(len=160) :: &
       & "title, speeds, outputs", &
       & "mass, radius, density, young, poisson, flat", &
       & "mass, radius, density, young, poisson, flat", &
       & "young, poisson", &
       & "stiffness, exponent", &
       & "b, restitution, at_speed", &
-      & "samples, sweep_from, sweep_to, sweep_count, sweep_spacing, beta_max, tolerances"]
+      & "samples, sweep_from, sweep_to, sweep_count, sweep_spacing, beta_max, tolerances", &
+      & "mass, radius, density, young, poisson, velocity, gap, stiffness, exponent, b, " &
+      & // "restitution, at_speed, gravity, t_end, rtol, method, integrator", &
+      & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
+      & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson"]
    !> Names that take a list of values
    character(len=*), parameter :: array_variables(3) = [character(len=10) :: "speeds", &
       & "outputs", "tolerances"]
+   !> Names of &bodies that take a list (one value per body or per pair)
+   character(len=*), parameter :: body_lists(12) = [character(len=11) :: "mass", "radius", &
+      & "density", "young", "poisson", "velocity", "gap", "stiffness", "exponent", "b", &
+      & "restitution", "at_speed"]
    !> Names whose values are text (they need quotes)
-   character(len=*), parameter :: text_variables(3) = [character(len=13) :: "title", &
-      & "outputs", "sweep_spacing"]
+   character(len=*), parameter :: text_variables(5) = [character(len=13) :: "title", &
+      & "outputs", "sweep_spacing", "method", "integrator"]
 
-   !> Marks a real the file did not set: a quiet NaN with a payload of its own, told
-   !> apart from any value a file can hold (also "nan", whose payload differs) by its
-   !> bits, never by a floating-point comparison
-   integer(int64), parameter :: unset_bits = int(z'7FF80000DEADBEEF', int64)
-   real(wp), parameter :: unset = transfer(unset_bits, 1.0_wp)
    !> Marks an integer the file did not set (a file that writes this value is caught by
    !> looking for the name in the text, `given`)
    integer, parameter :: unset_int = -huge(1)
@@ -103,7 +122,7 @@ module hcimpact_scene_reader
    real(wp) :: mass, radius, density, young, poisson
    logical :: flat
    real(wp) :: stiffness, exponent
-   real(wp) :: b, restitution, at_speed
+   real(wp) :: b, restitution, at_speed, gap
    integer :: samples, sweep_count
    real(wp) :: sweep_from, sweep_to, beta_max
    character(len=text_length) :: sweep_spacing
@@ -117,6 +136,8 @@ module hcimpact_scene_reader
    namelist /damping/ b, restitution, at_speed
    namelist /sampling/ samples, sweep_from, sweep_to, sweep_count, sweep_spacing, beta_max, &
       & tolerances
+   namelist /left_wall/ stiffness, exponent, b, restitution, at_speed, gap, young, poisson
+   namelist /right_wall/ stiffness, exponent, b, restitution, at_speed, gap, young, poisson
 
 contains
 
@@ -350,10 +371,33 @@ contains
       if (allocated(error)) return
       call load_scene_group(src, sc, error)
       if (allocated(error)) return
+      ! the command line's outputs, as far as they are of this scene's kind
       if (present(replace)) then
-         if (any(replace)) sc%wanted = replace
+         if (any(replace)) then
+            if (.not. any(replace .and. (system_outputs .eqv. sc%is_system))) then
+               if (sc%is_system) then
+                  error = source_name // ": --outputs: none of these outputs is for a" &
+                     & // " system of bodies (" // kind_choices(.true.) // ")"
+               else
+                  error = source_name // ": --outputs: none of these outputs is for one" &
+                     & // " impact (" // kind_choices(.false.) // ")"
+               end if
+               return
+            end if
+            sc%wanted = replace .and. (system_outputs .eqv. sc%is_system)
+         end if
       end if
-      if (present(add)) sc%wanted = sc%wanted .or. add
+      if (present(add)) sc%wanted = sc%wanted .or. (add .and. (system_outputs .eqv. sc%is_system))
+      if (sc%is_system) then
+         call load_system(src, sc, error)
+         return
+      end if
+      do i = g_bodies, g_right_wall
+         if (.not. src%groups(i)%present) cycle
+         error = at(src, i, "") // "&" // trim(group_names(i)) // " belongs to a system of" &
+            & // " bodies: give the bodies in &bodies (doc/scenes.md)"
+         return
+      end do
       call load_body(src, g_body1, sc%body1, error)
       if (allocated(error)) return
       call load_body(src, g_body2, sc%body2, error)
@@ -645,6 +689,7 @@ contains
       b = unset
       restitution = unset
       at_speed = unset
+      gap = unset
       samples = unset_int
       sweep_count = unset_int
       sweep_from = unset
@@ -682,6 +727,12 @@ contains
          read(rec, nml=contact, iostat=ios, iomsg=msg)
       case (g_damping)
          read(rec, nml=damping, iostat=ios, iomsg=msg)
+      case (g_bodies)
+         call read_bodies(rec, ios, msg)
+      case (g_left_wall)
+         read(rec, nml=left_wall, iostat=ios, iomsg=msg)
+      case (g_right_wall)
+         read(rec, nml=right_wall, iostat=ios, iomsg=msg)
       case default
          read(rec, nml=sampling, iostat=ios, iomsg=msg)
       end select
@@ -827,7 +878,11 @@ contains
             return
          end if
          owner = assigned_name(context, token)
-         if (len(owner) > 0 .and. any(lower(owner) == array_variables) &
+         if (len(owner) > 0 .and. gid == g_bodies .and. any(lower(owner) == body_lists) &
+            & .and. is_number(token)) then
+            text = "too many values for " // owner // " (at most " // str(max_bodies) &
+               & // " bodies)"
+         else if (len(owner) > 0 .and. any(lower(owner) == array_variables) &
             & .and. (is_number(token) .or. token(1:1) == '"' .or. token(1:1) == "'")) then
             text = "too many values for " // owner // " (at most " // str(max_speeds) &
                & // " speeds, " // str(max_list) // " outputs or tolerances)"
@@ -848,6 +903,13 @@ contains
       end if
       p = index(msg, "Bad data for namelist object ")
       if (p > 0) then
+         ! a list that reads on into the next line's name: that name is unknown
+         owner = unknown_name(line, gid)
+         if (len(owner) > 0) then
+            text = "unknown name '" // owner // "' (&" // trim(group_names(gid)) // " takes " &
+               & // trim(group_variables(gid)) // ")"
+            return
+         end if
          token = trim(msg(p + len("Bad data for namelist object "):))
          text = "a value of " // token // " is not of the right kind: " // clip(adjustl(line))
          return
@@ -865,7 +927,8 @@ contains
       end if
       if (index(msg, "out of range") > 0) then
          text = "too many values, or an index out of range (at most " // str(max_speeds) &
-            & // " speeds and " // str(max_list) // " outputs or tolerances)"
+            & // " speeds, " // str(max_list) // " outputs or tolerances, " // str(max_bodies) &
+            & // " bodies)"
          return
       end if
       if (index(msg, "End of file") > 0) then
@@ -874,6 +937,32 @@ contains
       end if
       text = "cannot read this line: " // clip(adjustl(line))
    end function explain
+
+   !> The first name assigned on the line (name = ...) that group gid does not take, or
+   !> "".
+   function unknown_name(line, gid) result(name)
+      character(len=*), intent(in) :: line
+      integer, intent(in) :: gid
+      character(len=:), allocatable :: name
+      character(len=len(line)) :: bare
+      character(len=len(group_variables(gid)) + 2) :: known
+      integer :: i, first, last
+      name = ""
+      bare = lower(line)
+      call blank_quotes(bare)
+      i = index(bare, "!")
+      if (i > 0) bare(i:) = " "
+      known = ", " // lower(group_variables(gid))
+      do i = 1, len_trim(bare)
+         if (bare(i:i) /= "=") cycle
+         call name_before(bare(1:i - 1), first, last)
+         if (last < first) cycle
+         if (index(trim(known) // ",", ", " // bare(first:last) // ",") == 0) then
+            name = trim(line(first:last))
+            return
+         end if
+      end do
+   end function unknown_name
 
    !> Lines first..last of the source joined by blanks, comments and quoted text kept
    !> apart from `!` comments, which are dropped.
@@ -960,13 +1049,6 @@ contains
       out = value
    end subroutine take
 
-   !> Whether a real is the mark of a value the file did not set (by its bits).
-   elemental function is_unset(x) result(yes)
-      real(wp), intent(in) :: x
-      logical :: yes
-      yes = transfer(x, 0_int64) == unset_bits
-   end function is_unset
-
    !> Whether the group assigns `name` in the text (for integers, whose mark of "not
    !> given" a file could write).
    function given(src, gid, name) result(yes)
@@ -1013,6 +1095,7 @@ contains
       character(len=:), allocatable, intent(out) :: error
       integer :: i, n
       character(len=:), allocatable :: unknown
+      logical :: named(n_outputs)
 
       call read_group(src, g_scene, error)
       if (allocated(error)) return
@@ -1040,13 +1123,14 @@ contains
       sc%speeds = speeds(1:n)
       ! outputs: a list of texts, each a name or names separated by commas
       sc%wanted = .false.
+      named = .false.
       do i = 1, max_list
          if (len_trim(outputs(i)) == len(outputs(i))) then
             error = at(src, g_scene, "outputs") // "output text " // str(i) // " is longer than " &
                & // str(len(outputs(i)) - 1) // " characters"
             return
          end if
-         call add_outputs(outputs(i), sc%wanted, unknown)
+         call add_outputs(outputs(i), sc%wanted, unknown, named)
          if (len(unknown) > 0) then
             error = at(src, g_scene, "outputs") // "unknown output '" // unknown &
                & // "' (outputs: " // output_choices() // "; outputs = ""summary"", ""phase""" &
@@ -1054,8 +1138,49 @@ contains
             return
          end if
       end do
-      if (.not. any(sc%wanted)) sc%wanted(out_summary) = .true.
+      ! each output belongs to one kind of scene: one impact, or a system (&bodies)
+      sc%is_system = src%groups(g_bodies)%present
+      do i = 1, n_outputs
+         if (.not. named(i) .or. (system_outputs(i) .eqv. sc%is_system)) cycle
+         if (sc%is_system) then
+            error = at(src, g_scene, "outputs") // "the output '" // trim(output_names(i)) &
+               & // "' is for one impact: a system of bodies (&bodies) has the outputs " &
+               & // kind_choices(.true.)
+         else
+            error = at(src, g_scene, "outputs") // "the output '" // trim(output_names(i)) &
+               & // "' is for a system of bodies (&bodies): one impact has the outputs " &
+               & // kind_choices(.false.)
+         end if
+         return
+      end do
+      sc%wanted = sc%wanted .and. (system_outputs .eqv. sc%is_system)
+      call default_outputs(sc)
    end subroutine load_scene_group
+
+   !> The outputs of one kind of scene, for messages: "contacts, final, motion".
+   pure function kind_choices(system) result(text)
+      logical, intent(in) :: system
+      character(len=:), allocatable :: text
+      integer :: i
+      text = ""
+      do i = 1, n_outputs
+         if (system_outputs(i) .neqv. system) cycle
+         if (len(text) > 0) text = text // ", "
+         text = text // trim(output_names(i))
+      end do
+   end function kind_choices
+
+   !> The default outputs of a scene that asks for none: the summary of one impact, the
+   !> contacts and final state of a system.
+   pure subroutine default_outputs(sc)
+      type(scene_type), intent(inout) :: sc
+      if (any(sc%wanted)) return
+      if (sc%is_system) then
+         sc%wanted([out_contacts, out_final]) = .true.
+      else
+         sc%wanted(out_summary) = .true.
+      end if
+   end subroutine default_outputs
 
    !> &body1, &body2 or &wall: masses and materials.
    subroutine load_body(src, gid, body, error)
@@ -1456,5 +1581,476 @@ contains
          end do
       end if
    end subroutine load_sampling
+
+   ! ------------------------------------------------------------------------------
+   ! A system of bodies on a line
+   ! ------------------------------------------------------------------------------
+
+   !> A system of bodies (&bodies, &left_wall, &right_wall, and &sampling's samples);
+   !> the groups of one impact are refused. The library's validator has the last word
+   !> (check_chain), after the checks that name a line.
+   subroutine load_system(src, sc, error)
+      type(scene_source), intent(in) :: src
+      type(scene_type), intent(inout) :: sc
+      character(len=:), allocatable, intent(out) :: error
+      real(wp), parameter :: pi = acos(-1.0_wp)
+      type(system_type) :: sys
+      type(chain_type) :: chain
+      type(chain_options) :: options
+      character(len=max_message) :: message
+      real(wp), allocatable :: c(:), e(:), v(:)
+      integer :: gid, n, count_mass, count_radius, count_density, i, stat
+
+      do gid = g_body1, g_damping
+         if (.not. src%groups(gid)%present) cycle
+         error = at(src, gid, "") // "&" // trim(group_names(gid)) // " is for one impact:" &
+            & // " a system of bodies has everything in &bodies (and its walls in" &
+            & // " &left_wall, &right_wall): give one kind of scene or the other"
+         return
+      end do
+      if (size(sc%speeds) > 0) then
+         error = at(src, g_scene, "speeds") // "speeds are the approach speeds of one impact:" &
+            & // " the bodies of &bodies have their own velocities"
+         return
+      end if
+      call read_group(src, g_bodies, error)
+      if (allocated(error)) return
+
+      ! how many bodies: the longest list of one value per body (one value stands for
+      ! every body, except velocity); the masses, or the radii with the density
+      call count_list(src, g_bodies, "mass", body_mass, count_mass, error)
+      if (allocated(error)) return
+      call count_list(src, g_bodies, "radius", body_radius, count_radius, error)
+      if (allocated(error)) return
+      call count_list(src, g_bodies, "density", body_density, count_density, error)
+      if (allocated(error)) return
+      n = max(count_mass, count_radius, count_density)
+      call count_list(src, g_bodies, "young", body_young, i, error)
+      if (allocated(error)) return
+      n = max(n, i)
+      call count_list(src, g_bodies, "poisson", body_poisson, i, error)
+      if (allocated(error)) return
+      n = max(n, i)
+      call count_list(src, g_bodies, "velocity", body_velocity, i, error)
+      if (allocated(error)) return
+      n = max(n, i)
+      if (count_mass > 0) then
+         if (count_density > 0) then
+            error = at(src, g_bodies, "density") // "give mass, or radius and density, not both"
+            return
+         end if
+      else if (.not. (count_radius > 0 .and. count_density > 0)) then
+         error = at(src, g_bodies, "") // "no masses: give mass = 0.1, 0.1, 0.1 (kg, one per" &
+            & // " body, left to right), or radius (m) and density (kg/m^3)"
+         return
+      end if
+      sys%n = n
+      call per_body("radius", body_radius, sys%radius, 0.0_wp, .false.)
+      call per_body("density", body_density, sys%density, 0.0_wp, .false.)
+      call per_body("young", body_young, sys%young, 0.0_wp, .false.)
+      call per_body("poisson", body_poisson, sys%poisson, -1.0_wp, .false.)
+      if (allocated(error)) return
+      if (count_mass > 0) then
+         call per_body("mass", body_mass, sys%mass, 0.0_wp, .false.)
+         if (allocated(error)) return
+      else
+         allocate(sys%mass(n))
+         do i = 1, n
+            ! without overflow or underflow on the way
+            sys%mass(i) = power_product([4.0_wp / 3.0_wp * pi, sys%radius(i), &
+               & sys%density(i)], [1.0_wp, 3.0_wp, 1.0_wp])
+            if (.not. (sys%mass(i) >= tiny(1.0_wp) .and. sys%mass(i) <= huge(1.0_wp))) then
+               error = at(src, g_bodies, "density") // "the mass of sphere " // str(i) &
+                  & // ", 4/3 pi R^3 rho, lies outside the range of doubles: check radius" &
+                  & // " and density"
+               return
+            end if
+         end do
+         sys%mass_from_density = .true.
+      end if
+      do i = 1, n
+         ! (NaN where not given: no ordered comparison with it, which would trap)
+         if (ieee_is_nan(sys%poisson(i))) cycle
+         if (sys%poisson(i) > 0.5_wp) then
+            error = at(src, g_bodies, "poisson") // "Poisson's ratio must lie in (-1, 0.5]"
+            return
+         end if
+      end do
+      call per_body("velocity", body_velocity, sys%velocity, -huge(1.0_wp), .true.)
+      if (allocated(error)) return
+
+      ! the neighbouring pairs: gaps and laws
+      call per_pair(src, g_bodies, "gap", body_gap, n - 1, 0.0_wp, .true., sys%gap, error)
+      if (allocated(error)) return
+      call per_pair(src, g_bodies, "exponent", body_exponent, n - 1, 1.5_wp, .false., e, error)
+      if (allocated(error)) return
+      call per_pair(src, g_bodies, "stiffness", body_stiffness, n - 1, nan, .false., c, &
+         & error)
+      if (allocated(error)) return
+      if (n > 1) then
+         if (all(ieee_is_nan(c))) then
+            ! Hertz's constants of neighbouring spheres from their radii and materials
+            if (any(ieee_is_nan(sys%radius)) .or. any(ieee_is_nan(sys%young)) .or. &
+               & any(ieee_is_nan(sys%poisson))) then
+               error = at(src, g_bodies, "") // "no stiffness given, and Hertz's constants" &
+                  & // " need every body's radius, young and poisson"
+               return
+            end if
+            if (any(e /= 1.5_wp)) then
+               error = at(src, g_bodies, "exponent") // "without a stiffness, c is Hertz's" &
+                  & // " constant, which is for n = 1.5: give the stiffness for other exponents"
+               return
+            end if
+            c = hertz_constant(sys%young(1:n - 1), sys%poisson(1:n - 1), sys%radius(1:n - 1), &
+               & sys%young(2:n), sys%poisson(2:n), sys%radius(2:n))
+            sys%law_origin = "Hertz's constants from the radii and materials"
+         else
+            sys%law_origin = "given"
+         end if
+      end if
+      call pair_damping(src, g_bodies, body_b, body_restitution, body_at_speed, n - 1, v, &
+         & sys%damping_origin, sys%target_restitution, sys%reference_speed, error)
+      if (allocated(error)) return
+      allocate(sys%law(n - 1))
+      do i = 1, n - 1
+         sys%law(i) = contact_law(stiffness=c(i), exponent=e(i), damping=v(i))
+      end do
+
+      ! the whole system
+      call take(src, g_bodies, "gravity", body_gravity, sys%gravity, error)
+      call take(src, g_bodies, "t_end", body_t_end, sys%t_end, error)
+      call take(src, g_bodies, "rtol", body_rtol, sys%rtol, error)
+      if (allocated(error)) return
+      if (ieee_is_nan(sys%gravity)) sys%gravity = 0.0_wp
+      if (ieee_is_nan(sys%t_end)) then
+         sys%t_end = -1.0_wp
+      else if (.not. sys%t_end > 0.0_wp) then
+         error = at(src, g_bodies, "t_end") // "t_end = " // real_str(sys%t_end, 6) &
+            & // " s: must be positive (leave it out to run until no contact can happen again)"
+         return
+      end if
+      if (ieee_is_nan(sys%rtol)) then
+         sys%rtol = 1.0e-10_wp
+      else if (.not. (sys%rtol >= 1.0e-14_wp .and. sys%rtol <= 0.1_wp)) then
+         error = at(src, g_bodies, "rtol") // "rtol = " // real_str(sys%rtol, 6) &
+            & // ": relative tolerances lie in [1e-14, 0.1]"
+         return
+      end if
+      call choose(src, "method", body_method, [character(len=10) :: "auto", "exact", &
+         & "integrated"], [method_auto, method_exact, method_integrated], sys%method, error)
+      if (allocated(error)) return
+      call choose(src, "integrator", body_integrator, [character(len=10) :: "bdf", "adams"], &
+         & [integrator_bdf, integrator_adams], sys%integrator, error)
+      if (allocated(error)) return
+
+      call load_wall(src, g_left_wall, sys, 1, sys%left, error)
+      if (allocated(error)) return
+      call load_wall(src, g_right_wall, sys, n, sys%right, error)
+      if (allocated(error)) return
+      call system_sampling(src, sc, error)
+      if (allocated(error)) return
+
+      ! the library's own check of what will be computed
+      chain%mass = sys%mass
+      chain%velocity = sys%velocity
+      chain%gap = sys%gap
+      chain%law = sys%law
+      chain%left_wall = sys%left%present
+      chain%left_law = sys%left%law
+      chain%left_gap = sys%left%gap
+      chain%right_wall = sys%right%present
+      chain%right_law = sys%right%law
+      chain%right_gap = sys%right%gap
+      chain%gravity = sys%gravity
+      options%t_end = sys%t_end
+      options%rtol = sys%rtol
+      options%method = sys%method
+      options%integrator = sys%integrator
+      call check_chain(chain, options, stat, message)
+      if (stat /= hcimpact_ok) then
+         error = at(src, g_bodies, "") // trim(message) // " (" // status_message(stat) // ")"
+         return
+      end if
+      sc%system = sys
+
+   contains
+
+      !> One value per body (or one for all) of the list `values`, each above `lowest`
+      !> (finite); NaN for every body when the list is not given. `required`: the list
+      !> must be given, one value per body.
+      subroutine per_body(name, values, out, lowest, required)
+         character(len=*), intent(in) :: name
+         real(wp), intent(in) :: values(:)
+         real(wp), allocatable, intent(out) :: out(:)
+         real(wp), intent(in) :: lowest
+         logical, intent(in) :: required
+         integer :: count, j
+         if (allocated(error)) return
+         call count_list(src, g_bodies, name, values, count, error)
+         if (allocated(error)) return
+         allocate(out(n))
+         if (required .and. count /= n) then
+            error = at(src, g_bodies, name) // name // ": " // count_str(count, "value") &
+               & // " for " // str(n) // " bodies: give one per body, left to right (a repeat count" &
+               & // " helps: " // name // " = 1, " // str(max(n - 1, 1)) // "*0)"
+            return
+         end if
+         if (count == 0) then
+            out = nan
+            return
+         end if
+         if (count /= 1 .and. count /= n) then
+            error = at(src, g_bodies, name) // name // ": " // count_str(count, "value") &
+               & // " for " // str(n) // " bodies: give one per body, or one for all"
+            return
+         end if
+         do j = 1, count
+            if (.not. ieee_is_finite(values(j))) then
+               error = at(src, g_bodies, name) // name // " value " // str(j) &
+                  & // " is not a finite number" // finite_hint
+               return
+            end if
+            if (.not. values(j) > lowest) then
+               error = at(src, g_bodies, name) // name // " value " // str(j) // " = " &
+                  & // real_str(values(j), 6) // ": must be above " // real_str(lowest, 6)
+               return
+            end if
+         end do
+         if (count == 1) then
+            out = values(1)
+         else
+            out = values(1:n)
+         end if
+      end subroutine per_body
+
+   end subroutine load_system
+
+   !> One value per neighbouring pair (or one for all) of the list `values` of group
+   !> gid: `default` for every pair when not given; every value finite and positive
+   !> (or not negative when `zero_ok`).
+   subroutine per_pair(src, gid, name, values, pairs, default, zero_ok, out, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: values(:)
+      integer, intent(in) :: pairs
+      real(wp), intent(in) :: default
+      logical, intent(in) :: zero_ok
+      real(wp), allocatable, intent(out) :: out(:)
+      character(len=:), allocatable, intent(out) :: error
+      integer :: count, j
+      call count_list(src, gid, name, values, count, error)
+      if (allocated(error)) return
+      allocate(out(pairs))
+      out = default
+      if (count == 0) return
+      if (pairs == 0) then
+         error = at(src, gid, name) // name // " is given, but a single body has no" &
+            & // " neighbouring pair"
+         return
+      end if
+      if (count /= 1 .and. count /= pairs) then
+         error = at(src, gid, name) // name // ": " // count_str(count, "value") // " for " &
+            & // str(pairs) // " neighbouring pairs: give one per pair, or one for all"
+         return
+      end if
+      do j = 1, count
+         if (.not. ieee_is_finite(values(j))) then
+            error = at(src, gid, name) // name // " value " // str(j) &
+               & // " is not a finite number" // finite_hint
+            return
+         end if
+         if (values(j) < 0.0_wp .or. (values(j) == 0.0_wp .and. .not. zero_ok)) then
+            error = at(src, gid, name) // name // " value " // str(j) // " = " &
+               & // real_str(values(j), 6) // ": must be " // trim(merge("not negative", &
+               & "positive    ", zero_ok))
+            if (name == "gap") error = error // " (bodies may touch, gap 0, not overlap)"
+            return
+         end if
+      end do
+      if (count == 1) then
+         out = values(1)
+      else
+         out = values(1:pairs)
+      end if
+   end subroutine per_pair
+
+   !> The damping of `pairs` contacts: b given (one per pair or one for all), or the
+   !> b that gives the restitution e at the speed V (b = beta(e)/V).
+   subroutine pair_damping(src, gid, b_values, e_values, v_values, pairs, damping, origin, &
+         & target, speed, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      real(wp), intent(in) :: b_values(:), e_values(:), v_values(:)
+      integer, intent(in) :: pairs
+      real(wp), allocatable, intent(out) :: damping(:)
+      character(len=:), allocatable, intent(out) :: origin
+      real(wp), intent(out) :: target, speed
+      character(len=:), allocatable, intent(out) :: error
+      real(wp), allocatable :: e(:), v(:)
+      integer :: j, stat
+      target = nan
+      speed = nan
+      call per_pair(src, gid, "b", b_values, pairs, nan, .true., damping, error)
+      if (allocated(error)) return
+      call per_pair(src, gid, "restitution", e_values, pairs, nan, .false., e, error)
+      if (allocated(error)) return
+      call per_pair(src, gid, "at_speed", v_values, pairs, nan, .false., v, error)
+      if (allocated(error)) return
+      if (pairs == 0) return
+      if (.not. ieee_is_nan(damping(1))) then
+         if (.not. (ieee_is_nan(e(1)) .and. ieee_is_nan(v(1)))) then
+            error = at(src, gid, "restitution") // "give b, or restitution and at_speed," &
+               & // " not both"
+            return
+         end if
+         origin = "given"
+         return
+      end if
+      if (ieee_is_nan(e(1)) .or. ieee_is_nan(v(1))) then
+         error = at(src, gid, "") // "missing damping: give b (s/m, 0 for elastic contacts), or" &
+            & // " restitution and at_speed (m/s)"
+         return
+      end if
+      if (any(e > 1.0_wp)) then
+         error = at(src, gid, "restitution") // "a coefficient of restitution lies in (0, 1]"
+         return
+      end if
+      do j = 1, pairs
+         ! b = beta(e)/V must be a double (the library raises overflow before it says so)
+         if (.not. quotient_of(restitution_inverse(e(j)), v(j)) <= huge(1.0_wp)) then
+            error = at(src, gid, "at_speed") // "the damping for restitution " &
+               & // real_str(e(j), 10) // " at " // real_str(v(j), 6) // " m/s exceeds the" &
+               & // " largest double: a larger at_speed or restitution"
+            return
+         end if
+         call damping_for_restitution(e(j), v(j), damping(j), stat, min_velocity=tiny(1.0_wp))
+         if (stat /= hcimpact_ok) then
+            error = at(src, gid, "restitution") // "no damping for this restitution: " &
+               & // status_message(stat)
+            return
+         end if
+      end do
+      if (all(e == e(1)) .and. all(v == v(1))) then
+         target = e(1)
+         speed = v(1)
+         origin = "the exact damping for the restitution e = " // real_str(e(1), 6) &
+            & // " at V = " // real_str(v(1), 6) // " m/s: b = beta(e)/V"
+      else
+         origin = "the exact damping for each pair's restitution at its speed: b = beta(e)/V"
+      end if
+   end subroutine pair_damping
+
+   !> A text choice of &bodies (method, integrator): its code, `codes(1)` when not given.
+   subroutine choose(src, name, text, words, codes, code, error)
+      type(scene_source), intent(in) :: src
+      character(len=*), intent(in) :: name, text
+      character(len=*), intent(in) :: words(:)
+      integer, intent(in) :: codes(:)
+      integer, intent(out) :: code
+      character(len=:), allocatable, intent(out) :: error
+      integer :: k
+      code = codes(1)
+      if (len_trim(text) == len(text)) then
+         error = at(src, g_bodies, name) // name // ": the text is longer than " &
+            & // str(bodies_text_length - 1) // " characters"
+         return
+      end if
+      if (len_trim(text) == 0) return
+      do k = 1, size(words)
+         if (lower(trim(adjustl(text))) == trim(words(k))) then
+            code = codes(k)
+            return
+         end if
+      end do
+      error = at(src, g_bodies, name) // name // " = '" // trim(text) // "': use " &
+         & // join(words, ", ")
+   end subroutine choose
+
+   !> &left_wall or &right_wall: the law with the end body `end_body` (stiffness, or
+   !> Hertz's constant of the body's sphere on the flat wall from young and poisson),
+   !> the damping and the gap (default 0: touching).
+   subroutine load_wall(src, gid, sys, end_body, wall, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      type(system_type), intent(in) :: sys
+      integer, intent(in) :: end_body
+      type(wall_type), intent(out) :: wall
+      character(len=:), allocatable, intent(out) :: error
+      real(wp), allocatable :: c(:), e(:), g(:), v(:)
+      real(wp) :: radius_flat
+      wall%present = src%groups(gid)%present
+      if (.not. wall%present) return
+      call read_group(src, gid, error)
+      if (allocated(error)) return
+      call per_pair(src, gid, "stiffness", [stiffness, unset], 1, nan, .false., c, error)
+      if (allocated(error)) return
+      call per_pair(src, gid, "exponent", [exponent, unset], 1, 1.5_wp, .false., e, error)
+      if (allocated(error)) return
+      call per_pair(src, gid, "gap", [gap, unset], 1, 0.0_wp, .true., g, error)
+      if (allocated(error)) return
+      call take(src, gid, "young", young, wall%young, error)
+      call take(src, gid, "poisson", poisson, wall%poisson, error)
+      if (allocated(error)) return
+      if (ieee_is_nan(c(1))) then
+         if (ieee_is_nan(wall%young) .or. ieee_is_nan(wall%poisson) .or. &
+            & ieee_is_nan(sys%radius(end_body)) .or. ieee_is_nan(sys%young(end_body)) .or. &
+            & ieee_is_nan(sys%poisson(end_body))) then
+            error = at(src, gid, "") // "no stiffness given, and Hertz's constant needs the" &
+               & // " wall's young and poisson, and the radius, young and poisson of body " &
+               & // str(end_body)
+            return
+         end if
+         if (e(1) /= 1.5_wp) then
+            error = at(src, gid, "exponent") // "without a stiffness, c is Hertz's constant," &
+               & // " which is for n = 1.5"
+            return
+         end if
+         if (.not. (wall%young > 0.0_wp .and. wall%poisson > -1.0_wp .and. &
+            & wall%poisson <= 0.5_wp)) then
+            error = at(src, gid, "young") // "young must be positive and poisson in (-1, 0.5]"
+            return
+         end if
+         radius_flat = ieee_value(1.0_wp, ieee_positive_inf)
+         c(1) = hertz_constant(sys%young(end_body), sys%poisson(end_body), &
+            & sys%radius(end_body), wall%young, wall%poisson, radius_flat)
+         wall%law_origin = "Hertz's constant of body " // str(end_body) // " on the flat wall"
+      else
+         wall%law_origin = "given"
+      end if
+      call pair_damping(src, gid, [b, unset], [restitution, unset], [at_speed, unset], 1, v, &
+         & wall%damping_origin, wall%target_restitution, wall%reference_speed, error)
+      if (allocated(error)) return
+      wall%law = contact_law(stiffness=c(1), exponent=e(1), damping=v(1))
+      wall%gap = g(1)
+   end subroutine load_wall
+
+   !> &sampling of a system: only the number of samples of the motion.
+   subroutine system_sampling(src, sc, error)
+      type(scene_source), intent(in) :: src
+      type(scene_type), intent(inout) :: sc
+      character(len=:), allocatable, intent(out) :: error
+      character(len=*), parameter :: others(6) = [character(len=13) :: "sweep_from", &
+         & "sweep_to", "sweep_count", "sweep_spacing", "beta_max", "tolerances"]
+      integer :: k
+      call read_group(src, g_sampling, error)
+      if (allocated(error)) return
+      do k = 1, size(others)
+         if (.not. given(src, g_sampling, trim(others(k)))) cycle
+         error = at(src, g_sampling, trim(others(k))) // trim(others(k)) // " is for one" &
+            & // " impact: a system of bodies takes only samples (times of the motion output)"
+         return
+      end do
+      if (samples /= unset_int .or. given(src, g_sampling, "samples")) then
+         if (samples < 2 .or. samples > 100001) then
+            error = at(src, g_sampling, "samples") // "samples = " // str(samples) &
+               & // ": between 2 and 100001 times of the motion"
+            return
+         end if
+         sc%samples = samples
+      end if
+      allocate(sc%sweep(0))
+      sc%tolerances = [real(wp) ::]
+   end subroutine system_sampling
 
 end module hcimpact_scene_reader

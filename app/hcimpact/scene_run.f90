@@ -19,9 +19,11 @@
 !> - cvode: SUNDIALS CVODE at each tolerance against the closed forms [hcimpact::cvode,
 !>   through hcimpact_scene_ode].
 module hcimpact_scene_run
-   use, intrinsic :: iso_fortran_env, only : error_unit, int64
+   use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp
+   !$ use hcimpact_parallel, only : min_parallel_impact
+   !$ use omp_lib, only : omp_get_thread_num
    use hcimpact_status, only : hcimpact_ok, status_message
    use hcimpact_version_info, only : hcimpact_version_string
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, velocity_at_depth, &
@@ -32,14 +34,20 @@ module hcimpact_scene_run
    use hcimpact_lambertw, only : lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1
    use hcimpact_scene_model, only : scene_type, n_outputs, output_names, output_files, &
       & out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
-      & out_lambertw, out_legacy, out_cvode, nan
+      & out_lambertw, out_legacy, out_cvode, out_contacts, out_final, out_motion, &
+      & system_outputs, nan
+   use hcimpact_scene_chain, only : system_method, system_needs_ode, describe_system, &
+      & write_system_parameters, run_system
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
       & abandon_results, csv_open, csv_row, csv_line, csv_close
    use hcimpact_scene_ode, only : ode_available, ode_description, ode_missing, ode_run_type, &
       & ode_impact
    use hcimpact_legacy_damping, only : n_rules => n_damping_rules, &
       & rule_names => damping_rule_names, legacy_chi => legacy_damping
-   use hcimpact_scene_system, only : wall_clock, write_standard_output, last_system_error
+   use hcimpact_scene_system, only : wall_clock
+   use hcimpact_scene_console, only : console_begin, console_log, console_failed, &
+      & console_reason, say, emit, say_wrapped, say_text, shout, files_note, pad, str_int64, &
+      & progress_begin, progress_step, progress_clear, progress_end
    use hcimpact_scene_numbers, only : power_product, quotient_of
    use hcimpact_scene_text, only : str, real_str, duration_str, join, count_str, csv_real
    implicit none
@@ -67,23 +75,11 @@ module hcimpact_scene_run
 
    !> The components an output can need
    integer, parameter :: c_impact = 1, c_velocity = 2, c_timelaw = 3, c_klaw = 4, &
-      & c_lambertw = 5, c_ode = 6, n_components = 6
+      & c_lambertw = 5, c_ode = 6, c_system = 7, n_components = 7
    character(len=*), parameter :: component_names(n_components) = [character(len=44) :: &
       & "closed forms + quadrature of the times", "closed-form V(x) (Lambert W)", &
       & "time law (quadrature inverted by Newton)", "restitution law k(beta)", &
-      & "Lambert W curves", "ODE solver (CVODE)"]
-
-   !> Log of the run (also written to log.txt)
-   character(len=:), allocatable :: log_text
-   !> Console settings of the run
-   logical :: quiet_mode = .false., progress_mode = .false.
-   !> Whether a write to the standard output failed (the run then fails), and why
-   logical :: console_failed = .false.
-   character(len=:), allocatable :: console_reason
-   !> Progress state
-   character(len=:), allocatable :: progress_label
-   integer :: progress_total = 0, progress_shown = -1
-   real(wp) :: progress_start = 0.0_wp
+      & "Lambert W curves", "ODE solver (CVODE)", "a system of bodies on a line"]
 
 contains
 
@@ -111,6 +107,8 @@ contains
          uses(c_lambertw) = .true.
       case (out_cvode)
          uses([c_impact, c_ode]) = .true.
+      case (out_contacts, out_final, out_motion)
+         uses(c_system) = .true.
       end select
    end function needs
 
@@ -149,6 +147,8 @@ contains
       case (out_cvode)
          text = "CVODE at " // count_str(size(sc%tolerances), "tolerance") // " x " &
             & // count_str(ns, "speed") // ", against the closed forms"
+      case (out_contacts, out_final, out_motion)
+         text = system_method(sc, k)
       case default
          text = ""
       end select
@@ -166,18 +166,19 @@ contains
       integer, intent(out) :: code
       type(results_type) :: res
       type(csv_type) :: csv
-      character(len=:), allocatable :: error
-      logical :: used(n_components)
+      character(len=:), allocatable :: error, log_text
+      logical :: used(n_components), unavailable, system_done
       integer :: k, i
       real(wp) :: t0
 
-      quiet_mode = opts%quiet
-      progress_mode = opts%progress .and. .not. opts%quiet
-      console_failed = .false.
-      log_text = ""
+      call console_begin(opts%quiet, opts%progress)
       code = exit_ok
       t0 = wall_clock()
-      call describe_scene(sc)
+      if (sc%is_system) then
+         call describe_system(sc)
+      else
+         call describe_scene(sc)
+      end if
 
       ! the plan
       used = .false.
@@ -196,9 +197,19 @@ contains
          end if
          call say_text("  ODE solver: ", ode_description)
       end if
+      if (sc%is_system) then
+         if (system_needs_ode(sc) .and. .not. ode_available) then
+            call shout("error: the method 'integrated' needs the CVODE component: " &
+               & // ode_missing)
+            code = exit_unavailable
+            return
+         end if
+         call say_text("  ODE solver: ", trim(ode_description) // " (for clusters of" &
+            & // " overlapping contacts)")
+      end if
       if (opts%plan_only) then
-         if (console_failed) then
-            call shout("error: the standard output: writing failed: " // console_reason)
+         if (console_failed()) then
+            call shout("error: the standard output: writing failed: " // console_reason())
             code = exit_failure
          end if
          return
@@ -213,10 +224,18 @@ contains
          end if
       end if
 
-      call write_parameters(sc, res, error)
+      if (sc%is_system) then
+         call write_system_parameters(sc, res, error)
+      else
+         call write_parameters(sc, res, error)
+      end if
+      system_done = .false.
+      unavailable = .false.
       do k = 1, n_outputs
          if (allocated(error)) exit
          if (.not. sc%wanted(k)) cycle
+         ! one run of a system gives all its outputs
+         if (system_outputs(k) .and. system_done) cycle
          select case (k)
          case (out_summary)
             call run_summary(sc, sc%speeds, "summary", res, .true., error)
@@ -236,12 +255,16 @@ contains
             call run_legacy(sc, res, error)
          case (out_cvode)
             call run_cvode(sc, res, error)
+         case (out_contacts, out_final, out_motion)
+            call run_system(sc, res, error, unavailable)
+            system_done = .true.
          end select
          if (allocated(error)) then
             call shout("error: " // trim(output_names(k)) // ": " // error)
             call abandon_results(res)
             if (res%active) call shout("nothing written: the partial results were removed")
             code = exit_failure
+            if (unavailable) code = exit_unavailable
             return
          end if
       end do
@@ -259,13 +282,14 @@ contains
             call csv_open(res, "log.txt", [character(len=1) ::], csv, error)
          end if
          if (.not. allocated(error)) then
+            log_text = console_log()
             if (len(log_text) > 0) call csv_line(csv, log_text(1:len(log_text) - 1))
             call csv_close(csv, error)
          end if
       end if
       ! the console is part of the results: a table that did not reach it fails the run
-      if (console_failed .and. .not. allocated(error)) error = "the standard output:" &
-         & // " writing failed: " // console_reason
+      if (console_failed() .and. .not. allocated(error)) error = "the standard output:" &
+         & // " writing failed: " // console_reason()
       if (.not. allocated(error)) call commit_results(res, error)
       if (allocated(error)) then
          call shout("error: " // error)
@@ -404,20 +428,36 @@ contains
       real(wp), allocatable :: after(:, :)
       real(wp) :: t0, elapsed, row(15)
       integer(int64) :: evaluations
-      integer :: i, stat, ncol
+      integer :: i, stat, ncol, done, mine
+      integer, allocatable :: stats(:)
       character(len=40), allocatable :: header(:)
 
-      allocate(out(size(speeds)), after(2, size(speeds)))
+      allocate(out(size(speeds)), after(2, size(speeds)), stats(size(speeds)))
       after = nan
       evaluations = 0
+      done = 0
       t0 = wall_clock()
       call progress_begin(name, size(speeds))
+      ! The impacts are independent: in parallel when the program is built with OpenMP
+      ! (the library's array threshold and schedule); the progress line is drawn by
+      ! the first thread alone.
+      !$omp parallel do if (size(speeds) >= min_parallel_impact) private(mine) &
+      !$omp & schedule(dynamic, 4)
       do i = 1, size(speeds)
-         call impact(contact_at(sc, speeds(i)), out(i), stat)
-         if (stat /= hcimpact_ok) then
-            call progress_end()
+         call impact(contact_at(sc, speeds(i)), out(i), stats(i))
+         !$omp atomic capture
+         done = done + 1
+         mine = done
+         !$omp end atomic
+         !$ if (omp_get_thread_num() /= 0) cycle
+         call progress_step(mine)
+      end do
+      !$omp end parallel do
+      call progress_end()
+      do i = 1, size(speeds)
+         if (stats(i) /= hcimpact_ok) then
             error = "the impact at V = " // real_str(speeds(i), 8) // " m/s: " &
-               & // status_message(stat)
+               & // status_message(stats(i))
             return
          end if
          evaluations = evaluations + sum(int(out(i)%evaluations, int64))
@@ -425,9 +465,7 @@ contains
             call two_body_velocities(sc%body1%mass, sc%body2%mass, speeds(i), 0.0_wp, &
                & out(i)%restitution, after(1, i), after(2, i), stat)
          end if
-         call progress_step(i)
       end do
-      call progress_end()
       elapsed = wall_clock() - t0
 
       header = [character(len=40) :: "speed [m/s]", "beta [-]", "restitution [-]", &
@@ -993,145 +1031,5 @@ contains
       if (ieee_is_nan(a) .or. ieee_is_nan(b)) return
       if (b /= 0.0_wp) r = quotient_of(a - b, b)
    end function signed_rel
-
-   ! ------------------------------------------------------------------------------
-   ! Console
-   ! ------------------------------------------------------------------------------
-
-   !> A log line: on the console unless quiet, and in log.txt.
-   subroutine say(text)
-      character(len=*), intent(in) :: text
-      log_text = log_text // text // new_line("a")
-      if (quiet_mode) return
-      call progress_clear()
-      call emit(text)
-   end subroutine say
-
-   !> A line on the standard output (not in the log); a failure is remembered and fails
-   !> the run at its end.
-   subroutine emit(text)
-      character(len=*), intent(in) :: text
-      logical :: ok
-      call write_standard_output(text // new_line("a"), ok)
-      if (ok .or. console_failed) return
-      console_failed = .true.
-      console_reason = last_system_error()
-   end subroutine emit
-
-   !> A list after a lead text, wrapped at 88 columns.
-   subroutine say_wrapped(lead, items)
-      character(len=*), intent(in) :: lead
-      character(len=*), intent(in) :: items(:)
-      character(len=:), allocatable :: line
-      integer :: i
-      line = lead
-      do i = 1, size(items)
-         if (len(line) + len_trim(items(i)) + 2 > 88 .and. len(line) > len(lead)) then
-            call say(line // ",")
-            line = repeat(" ", len(lead))
-         else if (i > 1) then
-            line = line // ", "
-         end if
-         line = line // trim(items(i))
-      end do
-      call say(line)
-   end subroutine say_wrapped
-
-   !> A text after a lead, wrapped at 88 columns at blanks, continuation lines indented
-   !> like the text.
-   subroutine say_text(lead, text)
-      character(len=*), intent(in) :: lead, text
-      character(len=:), allocatable :: rest, line
-      integer :: width, cut
-      width = max(88 - len(lead), 30)
-      rest = text
-      line = lead
-      do while (len(rest) > width)
-         cut = index(rest(1:width + 1), " ", back=.true.)
-         if (cut <= 1) cut = width + 1
-         call say(line // rest(1:cut - 1))
-         rest = adjustl(rest(cut:))
-         rest = trim(rest)
-         line = repeat(" ", len(lead))
-      end do
-      call say(line // rest)
-   end subroutine say_text
-
-   !> An error line: on standard error always, and in the log.
-   subroutine shout(text)
-      character(len=*), intent(in) :: text
-      log_text = log_text // text // new_line("a")
-      call progress_clear()
-      write(error_unit, '(a)') text
-      flush(error_unit)
-   end subroutine shout
-
-   !> " -> file" when files are written.
-   function files_note(res, names) result(text)
-      type(results_type), intent(in) :: res
-      character(len=*), intent(in) :: names
-      character(len=:), allocatable :: text
-      if (res%active) then
-         text = " -> " // names
-      else
-         text = ""
-      end if
-   end function files_note
-
-   !> The text padded with blanks to n characters.
-   pure function pad(text, n) result(out)
-      character(len=*), intent(in) :: text
-      integer, intent(in) :: n
-      character(len=max(n, len_trim(text) + 1)) :: out
-      out = text
-   end function pad
-
-   !> An int64 without blanks.
-   pure function str_int64(i) result(text)
-      integer(int64), intent(in) :: i
-      character(len=:), allocatable :: text
-      character(len=24) :: buffer
-      write(buffer, '(i0)') i
-      text = trim(buffer)
-   end function str_int64
-
-   !> Start showing the progress of `total` steps (only on a terminal, and only once
-   !> the work has taken a moment).
-   subroutine progress_begin(label, total)
-      character(len=*), intent(in) :: label
-      integer, intent(in) :: total
-      progress_label = label
-      progress_total = total
-      progress_shown = -1
-      progress_start = wall_clock()
-   end subroutine progress_begin
-
-   !> Step `done` of the total is finished.
-   subroutine progress_step(done)
-      integer, intent(in) :: done
-      integer :: percent
-      if (.not. progress_mode .or. progress_total <= 1) return
-      if (wall_clock() - progress_start < 0.2_wp) return
-      percent = int(100.0_wp * real(done, wp) / real(progress_total, wp))
-      if (percent == progress_shown) return
-      progress_shown = percent
-      write(error_unit, '(a, a, a, i0, a, i0, a, i0, a)', advance="no") achar(13), &
-         & progress_label, ": ", done, "/", progress_total, " (", percent, "%)   "
-      flush(error_unit)
-   end subroutine progress_step
-
-   !> Remove the progress line, if one is shown.
-   subroutine progress_clear()
-      if (progress_shown < 0) return
-      write(error_unit, '(a, a, a)', advance="no") achar(13), repeat(" ", 60), achar(13)
-      flush(error_unit)
-      progress_shown = -1
-   end subroutine progress_clear
-
-   !> The work is done.
-   subroutine progress_end()
-      call progress_clear()
-      progress_total = 0
-   end subroutine progress_end
 
 end module hcimpact_scene_run

@@ -30,7 +30,10 @@ if(count EQUAL 0)
   message(FATAL_ERROR "prefix_symbols.cmake: no global symbols defined in ${INPUT}")
 endif()
 file(WRITE "${OUTPUT}.map" "${map}")
-execute_process(COMMAND "${OBJCOPY}" "--redefine-syms=${OUTPUT}.map" "${INPUT}" "${OUTPUT}"
+# (the link-time optimiser's sections go: their symbols would keep the old names, and
+# a linker with the LTO plugin would take them instead of the renamed machine code)
+execute_process(COMMAND "${OBJCOPY}" "--redefine-syms=${OUTPUT}.map" "--remove-section=.gnu.lto_*"
+    "--remove-section=.gnu.debuglto_*" "${INPUT}" "${OUTPUT}"
   RESULT_VARIABLE rc ERROR_VARIABLE err)
 if(NOT rc EQUAL 0)
   message(FATAL_ERROR "prefix_symbols.cmake: ${OBJCOPY} failed: ${err}")

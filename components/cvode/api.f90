@@ -21,7 +21,7 @@ module hcimpact_cvode_api
    implicit none
    private
 
-   public :: c_simulate, c_simulate_message
+   public :: c_simulate, c_simulate_message, copy_message
 
 contains
 
@@ -75,17 +75,9 @@ contains
       !> Status
       integer(c_int) :: stat
       character(len=:), allocatable :: text
-      character(kind=c_char), pointer :: buffer(:)
-      integer(c_size_t) :: i, count
 
       stat = simulate_to_c(contact, rtol, outcome, text)
-      if (.not. c_associated(message) .or. message_size < 1_c_size_t) return
-      call c_f_pointer(message, buffer, [message_size])
-      count = min(int(len(text), c_size_t), message_size - 1_c_size_t)
-      do i = 1_c_size_t, count
-         buffer(i) = text(i:i)
-      end do
-      buffer(count + 1_c_size_t) = c_null_char
+      call copy_message(text, message, message_size)
    end function c_simulate_message
 
    !> The common body: checks, the integration and the copy to *outcome; `message`
@@ -138,5 +130,26 @@ contains
       c_out = from_outcome(result)
       stat = int(status, c_int)
    end function simulate_to_c
+
+   !> A text into the caller's buffer of message_size bytes: cut to fit and
+   !> NUL-terminated when message_size >= 1; nothing is written to a NULL buffer. (The
+   !> buffer belongs to the caller: no state is kept between calls.)
+   subroutine copy_message(text, message, message_size)
+      !> The text
+      character(len=*), intent(in) :: text
+      !> char *: the caller's buffer, or NULL
+      type(c_ptr), intent(in) :: message
+      !> Size of the buffer in bytes
+      integer(c_size_t), intent(in) :: message_size
+      character(kind=c_char), pointer :: buffer(:)
+      integer(c_size_t) :: i, count
+      if (.not. c_associated(message) .or. message_size < 1_c_size_t) return
+      call c_f_pointer(message, buffer, [message_size])
+      count = min(int(len(text), c_size_t), message_size - 1_c_size_t)
+      do i = 1_c_size_t, count
+         buffer(i) = text(i:i)
+      end do
+      buffer(count + 1_c_size_t) = c_null_char
+   end subroutine copy_message
 
 end module hcimpact_cvode_api

@@ -80,7 +80,7 @@ module hcimpact_cvode_chain
    !> CVODE on a region of a chain
    type, extends(cluster_integrator) :: cvode_chain_integrator
       type(chain_region), pointer :: region => null()
-      real(c_double), pointer :: y(:) => null(), atol(:) => null()
+      real(c_double), pointer, contiguous :: y(:) => null(), atol(:) => null()
       type(c_ptr) :: ctx = c_null_ptr, mem = c_null_ptr
       type(N_Vector), pointer :: y_vec => null(), atol_vec => null()
       type(SUNMatrix), pointer :: jac_mat => null()
@@ -137,6 +137,7 @@ contains
       type(contact_force_type) :: e
       type(contact_law) :: law
       character(len=40) :: where
+      real(c_double), pointer, contiguous :: y(:), atol(:)
 
       stat = hcimpact_ok
       call release_all(self)
@@ -273,8 +274,12 @@ contains
          if (ierr /= 0) exit setup
          where = "N_VMake_Serial"
          ierr = -1
-         self%y_vec => FN_VMake_Serial(int(n_state, c_int64_t), self%y, self%ctx)
-         self%atol_vec => FN_VMake_Serial(int(n_state, c_int64_t), self%atol, self%ctx)
+         ! Through contiguous local pointers: passed as components of the polymorphic
+         ! self, gfortran 12 packs them at run time (a copy the vectors would keep).
+         y => self%y
+         atol => self%atol
+         self%y_vec => FN_VMake_Serial(int(n_state, c_int64_t), y, self%ctx)
+         self%atol_vec => FN_VMake_Serial(int(n_state, c_int64_t), atol, self%ctx)
          if (.not. (associated(self%y_vec) .and. associated(self%atol_vec))) exit setup
          where = "CVodeCreate"
          if (engine%options%integrator == integrator_adams) then
@@ -612,7 +617,7 @@ contains
       type(cvode_chain_integrator), intent(inout) :: self
       type(chain_engine), intent(inout) :: engine
       real(wp), intent(in) :: t
-      real(c_double), pointer :: dky(:)
+      real(c_double), pointer, contiguous :: dky(:)
       type(N_Vector), pointer :: dky_vec
       integer(c_int) :: ierr
       allocate(dky(size(self%y)))
@@ -753,7 +758,7 @@ contains
       type(chain_engine), intent(in) :: engine
       real(wp), intent(in) :: t
       real(wp), intent(out) :: u(:), v(:)
-      real(c_double), pointer :: dky(:)
+      real(c_double), pointer, contiguous :: dky(:)
       type(N_Vector), pointer :: dky_vec
       integer(c_int) :: ierr
       integer :: m
@@ -915,7 +920,7 @@ contains
       type(c_ptr), value :: user_data
       integer(c_int) :: ierr
       type(chain_region), pointer :: region
-      real(c_double), pointer :: yv(:), data(:), band(:, :)
+      real(c_double), pointer, contiguous :: yv(:), data(:), band(:, :)
       integer :: ldim, smu, n
       logical :: flags(3)
       call c_f_pointer(user_data, region)

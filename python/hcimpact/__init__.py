@@ -12,6 +12,9 @@ found (``HCIMPACT_LIBRARY``, ``HCIMPACT_PREFIX``, a build tree; see ``python/REA
 ...                     velocity=5.0)
 >>> r.contact_time                                  # s
 7.765538404326971e-05
+>>> c = 1.7135e10 / 2**0.5                          # two steel balls (Hertz)
+>>> hcimpact.chain([0.1] * 3, [1.0, 0, 0], stiffness=c).velocities   # a cradle
+array([-0.07095235,  0.07640303,  0.99454932])
 
 The package imports lazily: ``import hcimpact`` (or ``import hcimpact.plot``) neither
 loads the library nor imports NumPy; the first call of a function does.
@@ -32,15 +35,17 @@ _API = (
     "impact", "impact_law", "velocity_at_depth", "time_law", "time_law_samples", "simulate",
     "has_simulate", "FitResult", "fit_damping", "fit_damping_linear", "fit_static",
     "fit_elastic", "fit_impact",
-    "status_message", "version", "version_number", "library_path",
+    "status_message", "version", "version_number", "library_path", "array_threads",
     "COMPRESSION", "RESTITUTION", "DEFAULT_MIN_VELOCITY",
 )
 _TYPES = ("ImpactResult", "HcimpactError", "InputError", "ComputationError",
           "UnavailableError", "STATUS_NAMES")
 _LIBRARY = ("LibraryNotFoundError",)
 _FORCE = ("contact_force", "ContactForce")
+_CHAIN = ("chain", "ChainResult", "has_chain", "BY_CLOSED_FORMS", "BY_INTEGRATION",
+          "CONTACT_DTYPE")
 
-__all__ = list(_API + _TYPES + _LIBRARY + _FORCE)
+__all__ = list(_API + _TYPES + _LIBRARY + _FORCE + _CHAIN)
 
 
 def __getattr__(name: str) -> Any:
@@ -52,6 +57,8 @@ def __getattr__(name: str) -> Any:
         module = importlib.import_module("._library", __name__)
     elif name in _FORCE:
         module = importlib.import_module("._force", __name__)
+    elif name in _CHAIN:
+        module = importlib.import_module("._chain", __name__)
     else:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
     value = getattr(module, name)

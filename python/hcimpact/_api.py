@@ -35,7 +35,7 @@ __all__ = [
     "impact", "velocity_at_depth", "time_law", "time_law_samples", "simulate",
     "has_simulate", "FitResult", "fit_damping", "fit_damping_linear", "fit_static",
     "fit_elastic", "fit_impact",
-    "status_message", "version", "version_number", "library_path",
+    "status_message", "version", "version_number", "library_path", "array_threads",
     "COMPRESSION", "RESTITUTION", "DEFAULT_MIN_VELOCITY",
 ]
 
@@ -226,41 +226,64 @@ def u_minus_log1p(u: Any) -> Any:
     return np.array([function(float(v)) for v in a.reshape(-1)]).reshape(a.shape)
 
 
-def damping_for_restitution(e: float, velocity: float,
-                            min_velocity: float = DEFAULT_MIN_VELOCITY) -> float:
+def damping_for_restitution(e: Any, velocity: Any,
+                            min_velocity: Any = DEFAULT_MIN_VELOCITY) -> Any:
     """Damping b (s/m) that gives the restitution e at the approach speed ``velocity``.
 
     b = beta(e)/max(velocity, min_velocity): below ``min_velocity`` (m/s) b is that of
-    min_velocity, so that it stays finite as the speed tends to 0.
-    Raises InputError for e outside (0, 1], velocity < 0, min_velocity <= 0, NaN.
+    min_velocity, so that it stays finite as the speed tends to 0. Scalars give a
+    float; arrays (e.g. one target per pair of a :func:`chain`) broadcast together and
+    give an array.
+    Raises InputError for e outside (0, 1], velocity < 0, min_velocity <= 0, NaN (with
+    the ``index`` of the first bad element for arrays).
     """
-    damping = c_double()
     where = "hcimpact_damping_for_restitution"
-    status = _lib().hcimpact_damping_for_restitution(
-        _scalar(e, "e", where), _scalar(velocity, "velocity", where),
-        _scalar(min_velocity, "min_velocity", where), byref(damping))
-    if status != 0:
-        _raise(status, "hcimpact_damping_for_restitution")
-    return damping.value
+    args = [(e, "e"), (velocity, "velocity"), (min_velocity, "min_velocity")]
+    if all(_is_scalar(a) for a, _ in args):
+        damping = c_double()
+        status = _lib().hcimpact_damping_for_restitution(
+            *[_scalar(a, name, where) for a, name in args], byref(damping))
+        if status != 0:
+            _raise(status, where)
+        return damping.value
+    arrays = _broadcast([_real(a, name, where) for a, name in args], where)
+    out = np.empty(arrays[0].shape)
+    for index in np.ndindex(out.shape):
+        damping = c_double()
+        status = _lib().hcimpact_damping_for_restitution(
+            *[float(a[index]) for a in arrays], byref(damping))
+        if status != 0:
+            _raise(status, where, index if len(index) > 1 else index[0])
+        out[index] = damping.value
+    return out
 
 
 # ---------------------------------------------------------------------------
 # Two bodies
 # ---------------------------------------------------------------------------
 
-def hertz_constant(young1: float, poisson1: float, radius1: float, young2: float,
-                   poisson2: float, radius2: float = math.inf) -> float:
+def hertz_constant(young1: Any, poisson1: Any, radius1: Any, young2: Any,
+                   poisson2: Any, radius2: Any = math.inf) -> Any:
     """Hertz's contact constant c (N/m**1.5) of two elastic spheres.
 
     1/c = (3/4) ((1 - nu1**2)/E1 + (1 - nu2**2)/E2) sqrt(1/R1 + 1/R2). Young's moduli in
     Pa, radii in m (``math.inf``: a flat body; the default for body 2). NaN outside the
-    domain (E > 0, -1 < nu <= 1/2, R > 0, not both flat).
+    domain (E > 0, -1 < nu <= 1/2, R > 0, not both flat). Scalars give a float; arrays
+    broadcast together and give an array, e.g. the constants of the neighbouring pairs
+    of a chain of spheres: ``hertz_constant(E[:-1], nu[:-1], R[:-1], E[1:], nu[1:],
+    R[1:])``.
     """
     where = "hcimpact_hertz_constant"
-    return float(_lib().hcimpact_hertz_constant(
-        *[_scalar(v, n, where) for v, n in ((young1, "young1"), (poisson1, "poisson1"),
-                                            (radius1, "radius1"), (young2, "young2"),
-                                            (poisson2, "poisson2"), (radius2, "radius2"))]))
+    args = [(young1, "young1"), (poisson1, "poisson1"), (radius1, "radius1"),
+            (young2, "young2"), (poisson2, "poisson2"), (radius2, "radius2")]
+    function = _lib().hcimpact_hertz_constant
+    if all(_is_scalar(a) for a, _ in args):
+        return float(function(*[_scalar(a, name, where) for a, name in args]))
+    arrays = _broadcast([_real(a, name, where) for a, name in args], where)
+    out = np.empty(arrays[0].shape)
+    for index in np.ndindex(out.shape):
+        out[index] = function(*[float(a[index]) for a in arrays])
+    return out
 
 
 def effective_mass(mass1: float, mass2: float = math.inf) -> float:
@@ -788,6 +811,13 @@ def version() -> str:
 def version_number() -> int:
     """Version of the loaded library as 10000 major + 100 minor + patch."""
     return int(_lib().hcimpact_version_number())
+
+
+def array_threads() -> int:
+    """Threads the library shares a large array call among (OpenMP's OMP_NUM_THREADS
+    as read when the library was loaded; 1 in a library built without OpenMP). The
+    results are the same bit for bit whatever the number."""
+    return int(_lib().hcimpact_array_threads())
 
 
 def library_path() -> str:

@@ -19,7 +19,8 @@ The search order (first hit wins; see ``python/README.md``):
 
 When nothing loads, :class:`LibraryNotFoundError` lists every place tried and why each
 failed. The optional components live in libraries of their own next to the core:
-``libhcimpact_cvode`` provides ``hcimpact_simulate`` and ``libhcimpact_lapack`` the fits.
+``libhcimpact_cvode`` provides ``hcimpact_simulate`` and ``hcimpact_chain_simulate``,
+``libhcimpact_lapack`` the fits.
 They are looked up in the directory of the core library (and, for a library that was
 linked with everything inside, in the core library itself). A wheel records which
 components it was built with, and why one is missing, in ``hcimpact/_build.json``.
@@ -126,6 +127,7 @@ def _declare(lib: ctypes.CDLL) -> None:
         "hcimpact_status_message": (c_char_p, [i]),
         "hcimpact_version": (c_char_p, []),
         "hcimpact_version_number": (i, []),
+        "hcimpact_array_threads": (i, []),
         "hcimpact_damping_for_restitution": (i, [d, d, d, pd]),
         "hcimpact_hertz_constant": (d, [d] * 6),
         "hcimpact_effective_mass": (d, [d, d]),
@@ -151,10 +153,16 @@ def _declare(lib: ctypes.CDLL) -> None:
 
 
 def _declare_components(lib: ctypes.CDLL) -> None:
-    from ._types import Contact, ElasticLaw, Outcome
+    from ._types import (ChainContact, ChainLaw, ChainOptions, ChainOutcome, ChainSamples,
+                         ChainWall, Contact, Outcome)
 
     d, i, pd = c_double, c_int, POINTER(c_double)
     signatures = {
+        "hcimpact_chain_simulate": (i, [i, pd, pd, pd, POINTER(ChainLaw), POINTER(ChainWall),
+                                        POINTER(ChainWall), d, POINTER(ChainOptions),
+                                        POINTER(ChainOutcome), pd, pd, i,
+                                        POINTER(ChainContact), POINTER(ChainSamples),
+                                        c_char_p, c_size_t]),
         "hcimpact_simulate": (i, [POINTER(Contact), d, POINTER(Outcome)]),
         "hcimpact_simulate_message": (i, [POINTER(Contact), d, POINTER(Outcome), c_char_p,
                                           c_size_t]),

@@ -9,7 +9,8 @@ from typing import Any
 
 __all__ = [
     "Contact", "Outcome", "ImpactResult", "HcimpactError", "InputError", "ComputationError",
-    "UnavailableError", "STATUS_NAMES",
+    "UnavailableError", "STATUS_NAMES", "ChainLaw", "ChainWall", "ChainOptions",
+    "ChainOutcome", "ChainContact", "ChainSamples",
 ]
 
 
@@ -47,6 +48,64 @@ class ElasticLaw(ctypes.Structure):
 
     _fields_ = [("force", LawFunction), ("potential", LawFunction),
                 ("force_derivative", LawFunction), ("data", ctypes.c_void_p)]
+
+
+# The structures of a system of bodies on a line (include/hcimpact_cvode.h); the same
+# test compares them with that header.
+
+class ChainLaw(ctypes.Structure):
+    """``hcimpact_chain_law``: stiffness (N/m^n), exponent, damping (s/m) of a pair."""
+
+    _fields_ = [(name, ctypes.c_double) for name in ("stiffness", "exponent", "damping")]
+
+
+class ChainWall(ctypes.Structure):
+    """``hcimpact_chain_wall``: a wall's law and its gap (m) to the end body."""
+
+    _fields_ = [(name, ctypes.c_double)
+                for name in ("stiffness", "exponent", "damping", "gap")]
+
+
+class ChainOptions(ctypes.Structure):
+    """``hcimpact_chain_options`` (zeros: the defaults)."""
+
+    _fields_ = [("t_end", ctypes.c_double), ("rtol", ctypes.c_double),
+                ("max_steps", ctypes.c_int64), ("max_events", ctypes.c_int64),
+                ("method", ctypes.c_int), ("integrator", ctypes.c_int)]
+
+
+#: The counts of ``hcimpact_chain_result``, in its order
+CHAIN_COUNTS = ("n_contacts", "contacts_recorded", "closed_form_contacts",
+                "integrated_contacts", "steps", "rhs_evals", "jacobian_evals", "roots",
+                "clusters")
+
+
+class ChainOutcome(ctypes.Structure):
+    """``hcimpact_chain_result``, field by field."""
+
+    _fields_ = ([(name, ctypes.c_double) for name in
+                 ("time", "rest_time", "initial_energy", "energy_error", "dissipated",
+                  "momentum_error")]
+                + [(name, ctypes.c_int64) for name in CHAIN_COUNTS]
+                + [("method_used", ctypes.c_int), ("rested", ctypes.c_int)])
+
+
+class ChainContact(ctypes.Structure):
+    """``hcimpact_chain_contact``: one contact from its start to its end."""
+
+    _fields_ = ([(name, ctypes.c_double) for name in
+                 ("t_start", "t_end", "approach_speed", "separation_speed", "peak_force",
+                  "max_deformation", "dissipated")]
+                + [("pair", ctypes.c_int), ("method", ctypes.c_int)])
+
+
+class ChainSamples(ctypes.Structure):
+    """``hcimpact_chain_samples``: the sample times and the caller's arrays."""
+
+    _fields_ = [("count", ctypes.c_int), ("times", ctypes.POINTER(ctypes.c_double)),
+                ("positions", ctypes.POINTER(ctypes.c_double)),
+                ("velocities", ctypes.POINTER(ctypes.c_double)),
+                ("forces", ctypes.POINTER(ctypes.c_double))]
 
 
 @dataclass(frozen=True, repr=False)

@@ -24,6 +24,10 @@ figure  what (the seed's caption)                     from
 8       the two real branches of Lambert W            lambertw.csv
 9       work-precision: CVODE against closed form     cvode.csv
 10      damping rules of multibody codes              legacy.csv
+11      a system of bodies: velocities against time   motion.csv
+12      a struck chain: the force in space and time   forces.csv (3 pairs or more)
+13      a bouncing ball: rebound heights per bounce   contacts.csv (wall contacts and
+                                                      gravity, from parameters.csv)
 ======  ============================================  ==================================
 """
 
@@ -51,7 +55,15 @@ FIGURES = {
     8: "fig8_lambertw",
     9: "fig9_work_precision",
     10: "fig10_legacy",
+    11: "fig11_velocities",
+    12: "fig12_force_spacetime",
+    13: "fig13_rebounds",
 }
+
+
+class NotApplicable(Exception):
+    """A figure whose files are there but whose data it does not fit (a chain of two
+    bodies has no wave to draw): skipped with the reason."""
 
 
 def _load():
@@ -503,6 +515,120 @@ def fig_legacy(d, params, plt):
     return fig
 
 
+def _long_table(data, key, value):
+    """A long table (time, key, value) as (times, keys, matrix[time, key])."""
+    times = np.array(unique(list(data["time"])))
+    keys = np.array(unique(list(data[key])))
+    matrix = np.full((times.size, keys.size), np.nan)
+    row = {t: i for i, t in enumerate(times)}
+    col = {k: j for j, k in enumerate(keys)}
+    for t, k, v in zip(data["time"], data[key], data[value]):
+        matrix[row[t], col[k]] = v
+    return times, keys, matrix
+
+
+def _active_window(times, matrix, margin=0.08):
+    """The time window where the matrix changes by more than a thousandth of its
+    largest value (with a margin at both ends), as a mask."""
+    size = np.nanmax(np.abs(matrix)) if matrix.size else 0.0
+    step = np.abs(np.diff(matrix, axis=0))
+    changing = np.flatnonzero(np.any(step > 1e-3 * size, axis=1))
+    if changing.size == 0:
+        return np.ones(times.size, dtype=bool)
+    first, last = times[changing[0]], times[min(changing[-1] + 1, times.size - 1)]
+    pad = margin * (last - first)
+    return (times >= first - pad) & (times <= last + pad)
+
+
+def fig_velocities(d, params, plt):
+    data = read_csv(os.path.join(d, "motion.csv"))
+    times, bodies, v = _long_table(data, "body", "velocity")
+    window = _active_window(times, v)
+    kt, ut = scale(times[window], "s")
+    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    cmap = matplotlib.colormaps["viridis"]
+    shown = bodies if bodies.size <= 12 else bodies[np.linspace(0, bodies.size - 1,
+                                                                12).astype(int)]
+    for j, body in enumerate(bodies):
+        if body not in shown:
+            continue
+        color = cmap(0.9 * j / max(bodies.size - 1, 1))
+        ax.plot(times[window] * kt, v[window, j], lw=1.6, color=color,
+                label=f"body {int(body)}")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_xlabel(f"time ({ut})")
+    ax.set_ylabel("velocity (m/s, positive to the right)")
+    ax.set_title("Velocities of the bodies against time\n" + title_of(params), fontsize=11)
+    ax.legend(fontsize=8, ncol=2 if len(shown) > 6 else 1)
+    ax.grid(alpha=0.3)
+    fig.subplots_adjust(bottom=0.14)
+    caption(fig, "Bodies numbered from the left; the time axis shows where the velocities "
+                 "change.")
+    return fig
+
+
+def fig_force_spacetime(d, params, plt):
+    data = read_csv(os.path.join(d, "forces.csv"))
+    times, pairs, force = _long_table(data, "pair", "force")
+    n = int(params.get("bodies", pairs.max() + 1))
+    inner = (pairs >= 1) & (pairs <= n - 1)
+    if np.count_nonzero(inner) < 3:
+        raise NotApplicable("fewer than 3 pairs of neighbours: no wave to draw")
+    pairs, force = pairs[inner], force[:, inner]
+    window = _active_window(times, force, margin=0.02)
+    kt, ut = scale(times[window], "s")
+    kf, uf = scale(force[window], "N")
+    fig, ax = plt.subplots(figsize=(7.5, 5.2))
+    mesh = ax.pcolormesh(times[window] * kt, pairs, (force[window] * kf).T,
+                         shading="nearest", cmap="magma_r")
+    bar = fig.colorbar(mesh, ax=ax)
+    bar.set_label(f"contact force ({uf})")
+    ax.set_xlabel(f"time ({ut})")
+    ax.set_ylabel("pair (bodies p and p + 1)")
+    ax.set_title("The force along the chain in space and time\n" + title_of(params),
+                 fontsize=11)
+    fig.subplots_adjust(bottom=0.14)
+    caption(fig, "Each pair of neighbours is a row; a solitary wave is a band of constant "
+                 "width and slope (its speed).")
+    return fig
+
+
+def fig_rebounds(d, params, plt):
+    data = read_csv(os.path.join(d, "contacts.csv"))
+    g = params.get("gravity", 0.0)
+    if not isinstance(g, float) or g == 0.0:
+        raise NotApplicable("no gravity: no rebound heights")
+    wall = 0 if g < 0 else int(params.get("bodies", 1))
+    mask = np.asarray(data["pair"]) == wall
+    if np.count_nonzero(mask) < 2:
+        raise NotApplicable("fewer than two contacts with the wall below")
+    v_in = data["approach_speed"][mask]
+    v_out = data["separation_speed"][mask]
+    k = data["closed_form_restitution"][mask]
+    bounce = np.arange(1, v_out.size + 1)
+    height = v_out**2 / (2.0 * abs(g))
+    predicted = (k * v_in)**2 / (2.0 * abs(g))
+    fig, (top, bottom) = plt.subplots(2, 1, figsize=(7.5, 7.0), sharex=True,
+                                      gridspec_kw={"height_ratios": [3, 2]})
+    top.semilogy(bounce, height, "o", ms=3.5, label="rebound height V_out²/(2g)")
+    top.semilogy(bounce, predicted, "-", lw=1.0, color="C1",
+                 label="closed forms: (k(b V_in) V_in)²/(2g)")
+    top.set_ylabel("rebound height (m)")
+    top.set_title("Rebound heights of a bouncing ball\n" + title_of(params), fontsize=11)
+    top.legend(fontsize=8)
+    top.grid(alpha=0.3, which="both")
+    bottom.plot(bounce, v_out / v_in, "o", ms=3.5, label="e = V_out/V_in")
+    bottom.plot(bounce, k, "-", lw=1.0, color="C1", label="k(b V_in), no gravity in contact")
+    bottom.set_xlabel("bounce number")
+    bottom.set_ylabel("restitution")
+    bottom.legend(fontsize=8)
+    bottom.grid(alpha=0.3)
+    fig.subplots_adjust(bottom=0.11)
+    caption(fig, "The gap between e and k(b V) is gravity acting during the contact; it "
+                 "grows as the bounces get slower, until the ball rests.")
+    return fig
+
+
 PLOTTERS = [
     (1, ("phase.csv",), fig_phase),
     (2, ("velocity_z.csv",), fig_velocity_z),
@@ -514,6 +640,9 @@ PLOTTERS = [
     (8, ("lambertw.csv",), fig_lambertw),
     (9, ("cvode.csv",), fig_work_precision),
     (10, ("legacy.csv",), fig_legacy),
+    (11, ("motion.csv",), fig_velocities),
+    (12, ("forces.csv",), fig_force_spacetime),
+    (13, ("contacts.csv",), fig_rebounds),
 ]
 
 
@@ -640,6 +769,7 @@ def plot_results(directory, out_dir=None, figures=None, dpi=150, fmt="png", log=
     out_dir = out_dir or directory
     os.makedirs(out_dir, exist_ok=True)
     params = read_parameters(directory)
+    system = params.get("kind") == "system"
     written = []
     plt.rcParams.update({"figure.dpi": dpi, "savefig.dpi": dpi, "font.size": 10})
     for number, requirements, function in PLOTTERS:
@@ -648,12 +778,17 @@ def plot_results(directory, out_dir=None, figures=None, dpi=150, fmt="png", log=
         missing = [r for r in requirements if not _have(directory, r)]
         name = FIGURES[number]
         if missing:
-            # the seed's figures 1-8 are expected; 9 and 10 only when asked for
-            if number <= 8 or figures:
+            # the seed's figures 1-8 are expected of one impact, 11 of a system; the
+            # others only when asked for
+            if (number <= 8 and not system) or (number == 11 and system) or figures:
                 log(f"  skipped {name}: no "
                     f"{', '.join(m.replace('|', ' or ') for m in missing)}")
             continue
-        fig = function(directory, params, plt)
+        try:
+            fig = function(directory, params, plt)
+        except NotApplicable as why:
+            log(f"  skipped {name}: {why}")
+            continue
         path = os.path.join(out_dir, f"{name}.{fmt}")
         partial = path + ".partial." + fmt
         fig.savefig(partial, bbox_inches="tight")
@@ -668,8 +803,9 @@ def main(argv=None):
     parser = argparse.ArgumentParser(
         prog="plot_results",
         description="Draw the figures of an hcimpact results directory (the seed's "
-                    "figures 1-8, and the CVODE and legacy figures when their data are "
-                    "there). Reads the CSV files only.")
+                    "figures 1-8, the CVODE and legacy figures when their data are "
+                    "there, and those of a system of bodies: 11-13). Reads the CSV "
+                    "files only.")
     parser.add_argument("results", help="results directory written by hcimpact -o DIR")
     parser.add_argument("-o", "--output", help="directory for the images (default: RESULTS)")
     parser.add_argument("--figures", help="comma-separated figure numbers (default: all)")

@@ -23,6 +23,27 @@ def test_version():
     assert os.path.isfile(hcimpact.library_path())
 
 
+def test_array_threads_same_results():
+    # OMP_NUM_THREADS as the test run sets it (1 without OpenMP); large arrays go through
+    # the parallel array forms and must equal element-wise scalar calls bit for bit
+    threads = hcimpact.array_threads()
+    assert threads >= 1
+    if "OMP_NUM_THREADS" in os.environ and threads > 1:
+        assert threads == int(os.environ["OMP_NUM_THREADS"])
+    rng = np.random.default_rng(17)
+    z = 10.0 ** rng.uniform(-5, 5, 40000)
+    w = hcimpact.lambert_w0(z)
+    assert all(w[i] == hcimpact.lambert_w0(float(z[i])) for i in range(0, z.size, 97))
+    speeds = 10.0 ** rng.uniform(-2, 1, 64)
+    batch = hcimpact.impact(mass=0.1, stiffness=1.7135e10, exponent=1.5, damping=0.1,
+                            velocity=speeds)
+    for i in range(0, speeds.size, 7):
+        one = hcimpact.impact(mass=0.1, stiffness=1.7135e10, exponent=1.5, damping=0.1,
+                              velocity=float(speeds[i]))
+        assert float(batch.contact_time[i]) == float(one.contact_time)
+        assert float(batch.peak_force[i]) == float(one.peak_force)
+
+
 def test_status_messages():
     assert hcimpact.status_message(0) == "success"
     assert "NULL" in hcimpact.status_message(10)

@@ -1,14 +1,17 @@
 # SPDX-License-Identifier: Apache-2.0
-"""Python's view of the C structures against include/hcimpact.h.
+"""Python's view of the C structures against include/hcimpact.h and hcimpact_cvode.h.
 
 ctypes cannot read a header: the package mirrors ``hcimpact_contact``,
-``hcimpact_outcome``, ``hcimpact_elastic_law`` (hcimpact/_types.py) and
-``hcimpact_force`` (hcimpact/_force.py) by hand. These
+``hcimpact_outcome``, ``hcimpact_elastic_law``, the chain structures of
+hcimpact_cvode.h (``hcimpact_chain_law``, ``_wall``, ``_options``, ``_result``,
+``_contact``, ``_samples``; hcimpact/_types.py) and ``hcimpact_force``
+(hcimpact/_force.py) by hand. These
 tests parse the header's declarations and compare them with the mirrors field by field
 (name, order, C type), and the callback type with the header's typedef, so that a field
 added, removed, reordered or retyped in the header fails here instead of silently
 shifting every value that Python reads. They also check that ``ImpactResult`` has the
-outcome's fields. The header is taken from the source tree (or HCIMPACT_HEADER).
+outcome's fields. The headers are taken from the source tree (or the directory of
+HCIMPACT_HEADER).
 """
 
 from __future__ import annotations
@@ -24,9 +27,10 @@ import pytest
 from hcimpact import _force, _types
 
 
-def header_text() -> str:
-    path = Path(os.environ.get("HCIMPACT_HEADER")
+def header_text(name: str = "hcimpact.h") -> str:
+    main = Path(os.environ.get("HCIMPACT_HEADER")
                 or Path(__file__).resolve().parents[2] / "include" / "hcimpact.h")
+    path = main.parent / name
     if not path.is_file():
         pytest.skip(f"{path} not found (set HCIMPACT_HEADER)")
     text = path.read_text(encoding="utf-8")
@@ -54,21 +58,28 @@ def struct_fields(text: str, name: str) -> list[tuple[str, str]]:
 
 # the C types the structures use, and their ctypes counterparts
 C_TYPES = {"double": ctypes.c_double, "void*": ctypes.c_void_p, "int": ctypes.c_int,
-           "hcimpact_law_fn": _types.LawFunction}
+           "int64_t": ctypes.c_int64, "const double*": ctypes.POINTER(ctypes.c_double),
+           "double*": ctypes.POINTER(ctypes.c_double), "hcimpact_law_fn": _types.LawFunction}
 
 
 def python_fields(structure: type[ctypes.Structure]) -> list[tuple[str, object]]:
     return [(name, ctype) for name, ctype in structure._fields_]
 
 
-@pytest.mark.parametrize("c_name, structure", [
-    ("hcimpact_contact", _types.Contact),
-    ("hcimpact_outcome", _types.Outcome),
-    ("hcimpact_elastic_law", _types.ElasticLaw),
-    ("hcimpact_force", _force.Force),
+@pytest.mark.parametrize("header, c_name, structure", [
+    ("hcimpact.h", "hcimpact_contact", _types.Contact),
+    ("hcimpact.h", "hcimpact_outcome", _types.Outcome),
+    ("hcimpact.h", "hcimpact_elastic_law", _types.ElasticLaw),
+    ("hcimpact.h", "hcimpact_force", _force.Force),
+    ("hcimpact_cvode.h", "hcimpact_chain_law", _types.ChainLaw),
+    ("hcimpact_cvode.h", "hcimpact_chain_wall", _types.ChainWall),
+    ("hcimpact_cvode.h", "hcimpact_chain_options", _types.ChainOptions),
+    ("hcimpact_cvode.h", "hcimpact_chain_result", _types.ChainOutcome),
+    ("hcimpact_cvode.h", "hcimpact_chain_contact", _types.ChainContact),
+    ("hcimpact_cvode.h", "hcimpact_chain_samples", _types.ChainSamples),
 ])
-def test_structure_matches_header(c_name, structure):
-    declared = struct_fields(header_text(), c_name)
+def test_structure_matches_header(header, c_name, structure):
+    declared = struct_fields(header_text(header), c_name)
     for ctype, name in declared:
         assert ctype in C_TYPES, f"{c_name}.{name}: C type {ctype!r} has no ctypes mapping here"
     expected = [(name, C_TYPES[ctype]) for ctype, name in declared]
@@ -96,6 +107,20 @@ def test_result_fields_follow_the_outcome():
     assert tuple(f.name for f in dataclasses.fields(_types.ImpactResult)) == _types.OUTCOME_FIELDS
     assert tuple(name for name, _ in _types.Outcome._fields_) == _types.OUTCOME_FIELDS
     assert tuple(name for name, _ in _types.Contact._fields_) == _types.CONTACT_FIELDS
+
+
+def test_contact_records_follow_the_header():
+    """The structured array of hcimpact.chain has the C record's layout: NumPy's view of
+    the mirrored structure (offsets and size included) is what the library writes."""
+    from hcimpact import _chain
+    dtype = _chain.CONTACT_DTYPE
+    declared = struct_fields(header_text("hcimpact_cvode.h"), "hcimpact_chain_contact")
+    assert list(dtype.names) == [name for _, name in declared]
+    assert dtype.itemsize == ctypes.sizeof(_types.ChainContact)
+    for name, _ in _types.ChainContact._fields_:
+        assert dtype.fields[name][1] == getattr(_types.ChainContact, name).offset
+    outcome = [name for name, _ in _types.ChainOutcome._fields_]
+    assert outcome[6:15] == list(_types.CHAIN_COUNTS)
 
 
 def test_the_parser_sees_a_changed_header():

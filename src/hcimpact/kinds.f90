@@ -6,7 +6,7 @@ module hcimpact_kinds
    implicit none
    private
 
-   public :: wp, ik, nan, finite_value
+   public :: wp, ik, nan, finite_value, bit_exponent
 
    !> Real kind of every computation and interface (IEEE binary64)
    integer, parameter :: wp = real64
@@ -29,5 +29,16 @@ contains
       logical :: finite
       finite = ibits(transfer(x, 0_int64), 52, 11) /= 2047_int64
    end function finite_value
+
+   !> The binary exponent e of x = 1.f 2^e read from its bits (one shift, no library
+   !> call as `exponent` makes): -1023 for zero and subnormals, 1024 for Inf and NaN.
+   !> `exponent(x)` is bit_exponent(x) + 1 for normal x.
+   elemental function bit_exponent(x) result(e)
+      !> Any double
+      real(wp), intent(in) :: x
+      !> Unbiased exponent
+      integer :: e
+      e = int(ibits(transfer(x, 0_int64), 52, 11)) - 1023
+   end function bit_exponent
 
 end module hcimpact_kinds

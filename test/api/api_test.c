@@ -292,6 +292,17 @@ static void test_restitution(void)
                hcimpact_damping_for_restitution(NAN, 1.0, 1e-3, &damping), HCIMPACT_ERR_NOT_FINITE);
   check_status("damping_for_restitution(NULL)",
                hcimpact_damping_for_restitution(0.5, 1.0, 1e-3, NULL), HCIMPACT_ERR_NULL);
+  /* issue 13: b beyond DBL_MAX is a status, b = 1/(e V) = 1e300 a double */
+  check_status("damping_for_restitution(1e-310, 1, 1e-3)",
+               hcimpact_damping_for_restitution(1e-310, 1.0, 1e-3, &damping), HCIMPACT_ERR_DOMAIN);
+  check_nan("damping_for_restitution(1e-310, 1, 1e-3) output", damping);
+  check_status("damping_for_restitution(0.5, 0, 1e-320)",
+               hcimpact_damping_for_restitution(0.5, 0.0, 1e-320, &damping), HCIMPACT_ERR_DOMAIN);
+  check_status("damping_for_restitution(1e-310, 1e10, 1e-3)",
+               hcimpact_damping_for_restitution(1e-310, 1e10, 1e-3, &damping), HCIMPACT_OK);
+  /* (1e-310 is a subnormal, 1e-310 * 1e10 a normal double: b = 1/(e V) as one quotient) */
+  check_close("damping_for_restitution(1e-310, 1e10) = 1/(e V)", damping,
+              1.0 / (1e-310 * 1e10), 4e-16);
 }
 
 static void test_two_bodies(void)
@@ -413,6 +424,23 @@ static void test_impact_law(void)
   law.force = cb_nan;
   check_status("impact_law(NaN force)", hcimpact_impact_law(&law, 0.1, 0.1, 2.0, &outcome),
                HCIMPACT_ERR_ELASTIC_LAW);
+  /* issue 13: the peak of a law through callbacks at large and tiny scales (m = 1e300 gave
+     2.0e155 N, b = 1e-300 gave 4.3e-87 N) agrees with the power law */
+  law.force = cb_force;
+  contact.mass = 1e300;
+  contact.velocity = 5.0;
+  check_status("impact(m = 1e300)", hcimpact_impact(&contact, &reference), HCIMPACT_OK);
+  check_status("impact_law(m = 1e300)", hcimpact_impact_law(&law, 1e300, 0.1, 5.0, &outcome),
+               HCIMPACT_OK);
+  check_close("impact_law(m = 1e300) F_max", outcome.peak_force, reference.peak_force, 1e-14);
+  contact.mass = 0.1;
+  contact.damping = 1e-300;
+  check_status("impact(b = 1e-300)", hcimpact_impact(&contact, &reference), HCIMPACT_OK);
+  check_status("impact_law(b = 1e-300)", hcimpact_impact_law(&law, 0.1, 1e-300, 5.0, &outcome),
+               HCIMPACT_OK);
+  check_close("impact_law(b = 1e-300) F_max", outcome.peak_force, reference.peak_force, 1e-14);
+  check_close("impact_law(b = 1e-300) time of the peak", outcome.time_at_peak_force,
+              reference.time_at_peak_force, 1e-14);
 }
 
 static void test_impact(void)
@@ -444,6 +472,16 @@ static void test_impact(void)
   contact = steel_ball(1.0);
   contact.damping = 0.0;
   check_status("impact(b = 0)", hcimpact_impact(&contact, &outcome), HCIMPACT_OK);
+  {
+    /* issue 13: the steel ball at V = 1e40 (beta = 1e39) had a compression time of 0 */
+    hcimpact_contact fast = steel_ball(1e40);
+    hcimpact_outcome o;
+    check_status("impact(V = 1e40)", hcimpact_impact(&fast, &o), HCIMPACT_OK);
+    check_close("impact(V = 1e40) compression time", o.compression_time, 4.270256913017152e-27,
+                1e-15);
+    check_close("impact(V = 1e40) time of the peak", o.time_at_peak_force, 8.95173406821078e-29,
+                1e-15);
+  }
   check_close("impact(b = 0) k", outcome.restitution, 1.0, 0.0);
   check_close("impact(b = 0) x_max", outcome.max_compression, 3.5092181079293274e-5, rel);
   check_close("impact(b = 0) t_contact", outcome.contact_time, 1.0328594573451282e-4, rel);
@@ -539,10 +577,16 @@ static void test_trajectory(void)
   /* velocity at a depth */
   check_status("velocity_at_depth(0, compression)",
                hcimpact_velocity_at_depth(&contact, 0.0, HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_OK);
-  check_close("velocity_at_depth(0, compression) = V", v, 5.0, rel);
+  check_true("velocity_at_depth(0, compression) = V exactly", v == 5.0);
   check_status("velocity_at_depth(0, restitution)",
                hcimpact_velocity_at_depth(&contact, 0.0, HCIMPACT_RESTITUTION_BRANCH, &v), HCIMPACT_OK);
-  check_close("velocity_at_depth(0, restitution) = -k V", v, outcome.rebound_velocity, rel);
+  check_true("velocity_at_depth(0, restitution) = -k V exactly", v == outcome.rebound_velocity);
+  /* issue 13: n = DBL_MAX gave HCIMPACT_OK with NaN */
+  bad.exponent = DBL_MAX;
+  i = hcimpact_velocity_at_depth(&bad, 1e-5, HCIMPACT_COMPRESSION_BRANCH, &v);
+  check_true("velocity_at_depth(n = DBL_MAX): a status or a finite velocity",
+             (i != HCIMPACT_OK && isnan(v)) || (i == HCIMPACT_OK && isfinite(v)));
+  bad.exponent = 0.0;
   check_status("velocity_at_depth(x_max)",
                hcimpact_velocity_at_depth(&contact, outcome.max_compression,
                                           HCIMPACT_COMPRESSION_BRANCH, &v), HCIMPACT_OK);
@@ -620,6 +664,12 @@ static void test_trajectory(void)
   for (i = 1; i < 5; ++i) check_true("time_law_samples increasing", t[i] > t[i - 1]);
   check_true("time_law_samples x[0] = 0", x[0] == 0.0);
   check_close("time_law_samples v[0] = V", xd[0], 5.0, rel);
+  /* issue 13: the contact is over at the contact time of hcimpact_impact */
+  check_true("time_law_samples x[4] = F[4] = 0, v[4] = -k V",
+             x[4] == 0.0 && f[4] == 0.0 && xd[4] == outcome.rebound_velocity);
+  t[0] = outcome.contact_time;
+  check_status("time_law(contact time)", hcimpact_time_law(&contact, 1, t, x, xd, f), HCIMPACT_OK);
+  check_true("time_law(contact time): x = F = 0", x[0] == 0.0 && f[0] == 0.0);
   check_status("time_law_samples (n = 1)", hcimpact_time_law_samples(&contact, 1, t, x, xd, f), HCIMPACT_ERR_SIZE);
   check_status("time_law_samples (bad contact)", hcimpact_time_law_samples(&bad, 5, t, x, xd, f), HCIMPACT_ERR_EXPONENT);
   check_true("time_law_samples (bad contact): NaN", isnan(t[0]) && isnan(x[4]) && isnan(f[2]));

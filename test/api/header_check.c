@@ -73,6 +73,12 @@ int main(void)
   int (*fit_impact)(int, double, const double *, const double *, const double *,
                     const double *, const double *, const double *, const double *, int,
                     const double *, double *, double *, double *) = hcimpact_fit_impact;
+  int (*chain_simulate)(int, const double *, const double *, const double *,
+                        const hcimpact_chain_law *, const hcimpact_chain_wall *,
+                        const hcimpact_chain_wall *, double, const hcimpact_chain_options *,
+                        hcimpact_chain_result *, double *, double *, int,
+                        hcimpact_chain_contact *, hcimpact_chain_samples *, char *, size_t) =
+      hcimpact_chain_simulate;
 #endif
   typedef void (*any_fn)(void);
   const any_fn others[] = {
@@ -84,7 +90,7 @@ int main(void)
 #ifdef HCIMPACT_CHECK_COMPONENTS
       ,
       (any_fn)simulate, (any_fn)simulate_message, (any_fn)fit_damping, (any_fn)fit_damping_linear, (any_fn)fit_static,
-      (any_fn)fit_elastic, (any_fn)fit_impact
+      (any_fn)fit_elastic, (any_fn)fit_impact, (any_fn)chain_simulate
 #endif
   };
   hcimpact_contact contact = {0.1, 1.7135e10, 1.5, 0.1, 5.0};

@@ -684,8 +684,12 @@ def compute_case(args):
         tcont = res["contact_time"]
         trest = tcont - tcomp
         targets = []
-        for f in TL_FRACS_C:
+        # a case may ask for more points early in compression, and for given times
+        for f in TL_FRACS_C + list(case.get("tl_fracs", [])):
             targets.append(to_double(tcomp * f))
+        for t in case.get("tl_times", []):
+            if 0 <= mpf(t) < tcont:
+                targets.append(float(t))
         targets.append(to_double(tcomp))
         for f in TL_FRACS_R:
             targets.append(to_double(tcomp + trest * f))

@@ -25,6 +25,8 @@ module hcimpact_api
       & c_associated, c_f_pointer, c_loc
    use hcimpact_kinds, only : wp
    use hcimpact_version_info, only : hcimpact_version_string, hcimpact_version_compact
+   use hcimpact_parallel, only : array_threads
+   !$ use hcimpact_parallel, only : min_parallel_cheap
    use hcimpact_status, only : status_texts, max_status_code, hcimpact_ok, hcimpact_err_null, hcimpact_err_size
    use hcimpact_lambertw, only : lambert_w0, lambert_wm1, lambert_w0p1, lambert_wm1p1
    use hcimpact_restitution_law, only : u_minus_log1p, restitution, one_minus_restitution, &
@@ -44,7 +46,7 @@ module hcimpact_api
       & c_restitution_derivative_array
    public :: c_damping_for_restitution
    public :: c_hertz_constant, c_effective_mass, c_two_body_velocities
-   public :: c_status_message, c_version, c_version_number
+   public :: c_status_message, c_version, c_version_number, c_array_threads
    public :: message_length, last_status
 
    !> Length of every entry of the message table, the terminating NUL included
@@ -121,9 +123,11 @@ contains
       integer :: i
       stat = array_pair(n, z, w, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = lambert_w0(x(i))
       end do
+      !$omp end parallel do
    end function c_lambert_w0_array
 
    !> int hcimpact_lambert_wm1_array(int n, const double *z, double *w)
@@ -140,9 +144,11 @@ contains
       integer :: i
       stat = array_pair(n, z, w, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = lambert_wm1(x(i))
       end do
+      !$omp end parallel do
    end function c_lambert_wm1_array
 
    !> int hcimpact_lambert_w0p1_array(int n, const double *t, double *v)
@@ -160,9 +166,11 @@ contains
       integer :: i
       stat = array_pair(n, t, v, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = lambert_w0p1(x(i))
       end do
+      !$omp end parallel do
    end function c_lambert_w0p1_array
 
    !> int hcimpact_lambert_wm1p1_array(int n, const double *t, double *v)
@@ -180,9 +188,11 @@ contains
       integer :: i
       stat = array_pair(n, t, v, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = lambert_wm1p1(x(i))
       end do
+      !$omp end parallel do
    end function c_lambert_wm1p1_array
 
    ! ---------------------------------------------------------------------------
@@ -260,9 +270,11 @@ contains
       integer :: i
       stat = array_pair(n, beta, k, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = restitution(x(i))
       end do
+      !$omp end parallel do
    end function c_restitution_array
 
    !> int hcimpact_restitution_inverse_array(int n, const double *e, double *beta)
@@ -280,9 +292,11 @@ contains
       integer :: i
       stat = array_pair(n, e, beta, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = restitution_inverse(x(i))
       end do
+      !$omp end parallel do
    end function c_restitution_inverse_array
 
    !> int hcimpact_one_minus_restitution_array(int n, const double *beta, double *d)
@@ -300,9 +314,11 @@ contains
       integer :: i
       stat = array_pair(n, beta, d, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = one_minus_restitution(x(i))
       end do
+      !$omp end parallel do
    end function c_one_minus_restitution_array
 
    !> int hcimpact_energy_loss_ratio_array(int n, const double *beta, double *r)
@@ -320,9 +336,11 @@ contains
       integer :: i
       stat = array_pair(n, beta, r, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = energy_loss_ratio(x(i))
       end do
+      !$omp end parallel do
    end function c_energy_loss_ratio_array
 
    !> int hcimpact_restitution_derivative_array(int n, const double *beta, double *dk)
@@ -340,9 +358,11 @@ contains
       integer :: i
       stat = array_pair(n, beta, dk, x, y)
       if (stat /= hcimpact_ok) return
+      !$omp parallel do if (size(x) >= min_parallel_cheap) schedule(static)
       do i = 1, size(x)
          y(i) = restitution_derivative(x(i))
       end do
+      !$omp end parallel do
    end function c_restitution_derivative_array
 
    !> int hcimpact_damping_for_restitution(double e, double velocity, double min_velocity,
@@ -474,6 +494,14 @@ contains
       integer(c_int) :: number
       number = int(hcimpact_version_compact, c_int)
    end function c_version_number
+
+   !> int hcimpact_array_threads(void): the number of threads the array forms share
+   !> their elements among when called from here (OpenMP's; 1 without OpenMP).
+   function c_array_threads() result(n) bind(C, name="hcimpact_array_threads")
+      !> Number of threads
+      integer(c_int) :: n
+      n = int(array_threads(), c_int)
+   end function c_array_threads
 
    ! ---------------------------------------------------------------------------
    ! Helpers

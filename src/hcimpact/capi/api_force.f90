@@ -11,6 +11,9 @@ module hcimpact_api_force
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size
    use hcimpact_force_element, only : contact_force_type, contact_force, contact_force_pair, &
       & contact_force_wall
+   use, intrinsic :: iso_fortran_env, only : int64
+   use hcimpact_parallel, only : failure_key, key_status, no_failure
+   !$ use hcimpact_parallel, only : min_parallel_element
    use hcimpact_capi_types, only : hcimpact_force, from_force
    implicit none
    private
@@ -69,6 +72,7 @@ contains
       integer(c_int), pointer :: c_stat(:)
       type(contact_force_type) :: element
       integer :: i, status
+      integer(int64) :: first
       if (.not. (c_associated(stiffness) .and. c_associated(exponent) .and. &
          & c_associated(damping) .and. c_associated(x) .and. c_associated(v) .and. &
          & c_associated(f))) then
@@ -88,13 +92,19 @@ contains
       nullify(c_stat)
       if (c_associated(statuses)) call c_f_pointer(statuses, c_stat, [n])
       stat = int(hcimpact_ok, c_int)
+      ! In parallel; the status returned is that of the lowest failing index.
+      first = no_failure
+      !$omp parallel do if (n >= min_parallel_element) private(element, status) &
+      !$omp & reduction(min: first) schedule(static)
       do i = 1, n
          call contact_force(real(cs(i), wp), real(ns(i), wp), real(bs(i), wp), &
             & real(xs(i), wp), real(vs(i), wp), element, status)
          c_out(i) = from_force(element)
          if (associated(c_stat)) c_stat(i) = int(status, c_int)
-         if (status /= hcimpact_ok .and. stat == hcimpact_ok) stat = int(status, c_int)
+         if (status /= hcimpact_ok) first = min(first, failure_key(i, status))
       end do
+      !$omp end parallel do
+      stat = int(key_status(first), c_int)
    end function c_contact_force_array
 
    !> int hcimpact_contact_force_pair(double stiffness, double exponent, double damping,

@@ -8,6 +8,9 @@
 module hcimpact_api_motion
    use, intrinsic :: iso_c_binding, only : c_double, c_int, c_ptr, c_associated, c_f_pointer
    use hcimpact_kinds, only : wp, nan
+   use, intrinsic :: iso_fortran_env, only : int64
+   use hcimpact_parallel, only : failure_key, key_status, no_failure
+   !$ use hcimpact_parallel, only : min_parallel_cheap, min_parallel_impact
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, velocity_at_depth, &
       & time_law, time_law_samples
@@ -43,6 +46,7 @@ contains
       integer(c_int), pointer :: c_stat(:)
       type(outcome_type) :: outcome
       integer :: i, status
+      integer(int64) :: first
 
       if (.not. (c_associated(contacts) .and. c_associated(outcomes))) then
          stat = hcimpact_err_null
@@ -57,12 +61,19 @@ contains
       c_stat => null()
       if (c_associated(statuses)) call c_f_pointer(statuses, c_stat, [n])
       stat = hcimpact_ok
+      ! The impacts in parallel (their costs differ by some factors: chunks of 4 handed
+      ! out as threads come free); the status returned is that of the lowest failing index.
+      first = no_failure
+      !$omp parallel do if (n >= min_parallel_impact) private(outcome, status) &
+      !$omp & reduction(min: first) schedule(dynamic, 4)
       do i = 1, n
          call impact(to_contact(c_in(i)), outcome, status)
          c_out(i) = from_outcome(outcome)
          if (associated(c_stat)) c_stat(i) = int(status, c_int)
-         if (status /= hcimpact_ok .and. stat == hcimpact_ok) stat = int(status, c_int)
+         if (status /= hcimpact_ok) first = min(first, failure_key(i, status))
       end do
+      !$omp end parallel do
+      stat = int(key_status(first), c_int)
    end function c_impact_array
 
    !> int hcimpact_velocity_at_depth(const hcimpact_contact *contact, double x,
@@ -114,6 +125,7 @@ contains
       real(c_double), pointer :: xs(:), vs(:)
       type(contact_type) :: fcontact
       integer :: i, status
+      integer(int64) :: first
       if (.not. (c_associated(contact) .and. c_associated(x) .and. c_associated(velocity))) then
          stat = hcimpact_err_null
          return
@@ -127,18 +139,25 @@ contains
       call c_f_pointer(velocity, vs, [n])
       fcontact = to_contact(c_in)
       stat = hcimpact_ok
+      first = no_failure
+      !$omp parallel do if (n >= min_parallel_cheap) private(status) &
+      !$omp & reduction(min: first) schedule(static)
       do i = 1, n
          call velocity_at_depth(fcontact, real(xs(i), wp), int(branch), vs(i), status)
-         if (status /= hcimpact_ok) then
-            vs = nan
-            stat = int(status, c_int)
-            return
-         end if
+         if (status /= hcimpact_ok) first = min(first, failure_key(i, status))
       end do
+      !$omp end parallel do
+      if (first /= no_failure) then
+         vs = nan
+         stat = int(key_status(first), c_int)
+      end if
    end function c_velocity_at_depth_array
 
    !> int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
    !>                       double *x, double *v, double *f)
+   !>
+   !> HCIMPACT_ERR_SIZE also when the library cannot allocate its copies of the n
+   !> values (out of memory); x, v, f are then NaN.
    function c_time_law(contact, n, t, x, v, f) result(stat) bind(C, name="hcimpact_time_law")
       !> const hcimpact_contact *
       type(c_ptr), value, intent(in) :: contact
@@ -157,7 +176,7 @@ contains
       type(hcimpact_contact), pointer :: c_in
       real(c_double), pointer :: ts(:), xs(:), vs(:), fs(:)
       real(wp), allocatable :: tt(:), xx(:), vv(:), ff(:)
-      integer :: status
+      integer :: status, alloc_stat
       if (.not. (c_associated(contact) .and. c_associated(t) .and. c_associated(x) &
          & .and. c_associated(v) .and. c_associated(f))) then
          stat = hcimpact_err_null
@@ -172,9 +191,17 @@ contains
       call c_f_pointer(x, xs, [n])
       call c_f_pointer(v, vs, [n])
       call c_f_pointer(f, fs, [n])
-      ! copies: the outputs may be the time array itself
+      ! copies (the outputs may be the time array itself); out of memory for them is
+      ! HCIMPACT_ERR_SIZE with NaN outputs (n too large for the memory available)
+      allocate(tt(n), xx(n), vv(n), ff(n), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         xs = nan
+         vs = nan
+         fs = nan
+         stat = hcimpact_err_size
+         return
+      end if
       tt = ts
-      allocate(xx(n), vv(n), ff(n))
       call time_law(to_contact(c_in), tt, xx, vv, ff, status)
       xs = xx
       vs = vv
@@ -186,6 +213,8 @@ contains
    !>                               double *x, double *v, double *f)
    !>
    !> n >= 2 equally spaced times from 0 to the contact time, both included.
+   !> HCIMPACT_ERR_SIZE also when the n samples cannot be allocated (out of memory);
+   !> every output is then NaN.
    function c_time_law_samples(contact, n, t, x, v, f) result(stat) &
          & bind(C, name="hcimpact_time_law_samples")
       !> const hcimpact_contact *

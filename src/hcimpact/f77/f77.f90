@@ -205,6 +205,7 @@ subroutine hcresa(n, beta, rk, info)
    use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
    use hcimpact_kinds, only : wp
    use hcimpact_restitution_law, only : restitution
+   !$ use hcimpact_parallel, only : min_parallel_cheap
    implicit none
    !> Number of elements, N >= 0
    integer, intent(in) :: n
@@ -215,16 +216,21 @@ subroutine hcresa(n, beta, rk, info)
    !> 0; -1 for N < 0; -2 if some BETA(I) is outside the domain (its RK(I) is NaN, the
    !> others are computed)
    integer, intent(out) :: info
+   logical :: bad
    integer :: i
    info = 0
    if (n < 0) then
       info = -1
       return
    end if
+   bad = .false.
+   !$omp parallel do if (n >= min_parallel_cheap) reduction(.or.: bad) schedule(static)
    do i = 1, n
       rk(i) = restitution(beta(i))
-      if (ieee_is_nan(rk(i))) info = -2
+      bad = bad .or. ieee_is_nan(rk(i))
    end do
+   !$omp end parallel do
+   if (bad) info = -2
 end subroutine hcresa
 
 !> HCRSIA(N, E, BETA, INFO): BETA(I) with k(BETA(I)) = E(I), I = 1..N.
@@ -232,6 +238,7 @@ subroutine hcrsia(n, e, beta, info)
    use, intrinsic :: ieee_arithmetic, only : ieee_is_nan
    use hcimpact_kinds, only : wp
    use hcimpact_restitution_law, only : restitution_inverse
+   !$ use hcimpact_parallel, only : min_parallel_cheap
    implicit none
    !> Number of elements, N >= 0
    integer, intent(in) :: n
@@ -241,16 +248,21 @@ subroutine hcrsia(n, e, beta, info)
    real(wp), intent(inout) :: beta(*)
    !> 0; -1 for N < 0; -2 if some E(I) is outside (0, 1] (its BETA(I) is NaN)
    integer, intent(out) :: info
+   logical :: bad
    integer :: i
    info = 0
    if (n < 0) then
       info = -1
       return
    end if
+   bad = .false.
+   !$omp parallel do if (n >= min_parallel_cheap) reduction(.or.: bad) schedule(static)
    do i = 1, n
       beta(i) = restitution_inverse(e(i))
-      if (ieee_is_nan(beta(i))) info = -2
+      bad = bad .or. ieee_is_nan(beta(i))
    end do
+   !$omp end parallel do
+   if (bad) info = -2
 end subroutine hcrsia
 
 !> HCDAMP(E, V, B, INFO): damping b (s/m) giving the restitution E at the approach
@@ -561,7 +573,8 @@ subroutine hcimpa(ni, m, c, en, b, v, out, istat, info)
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
-   use hcimpact_f77_support, only : nan, outcome_array
+   use hcimpact_f77_support, only : nan, outcome_array, first_failure
+   !$ use hcimpact_parallel, only : min_parallel_impact
    implicit none
    !> Number of impacts, NI >= 0
    integer, intent(in) :: ni
@@ -589,6 +602,7 @@ subroutine hcimpa(ni, m, c, en, b, v, out, istat, info)
       info = -1
       return
    end if
+   !$omp parallel do if (ni >= min_parallel_impact) private(outcome) schedule(dynamic, 4)
    do i = 1, ni
       call impact(contact_type(mass=m(i), stiffness=c(i), exponent=en(i), damping=b(i), &
          & velocity=v(i)), outcome, istat(i))
@@ -596,9 +610,10 @@ subroutine hcimpa(ni, m, c, en, b, v, out, istat, info)
          out(:, i) = outcome_array(outcome, 8)
       else
          out(:, i) = nan
-         if (info == 0) info = i
       end if
    end do
+   !$omp end parallel do
+   info = first_failure(ni, istat)
 end subroutine hcimpa
 
 !> HCVEL(M, C, EN, B, V, X, IBR, XDOT, INFO): velocity XDOT (m/s) at the compression
@@ -814,7 +829,8 @@ subroutine hcfrca(n, c, en, b, x, xdot, f, istat, info)
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_force_element, only : contact_force_type, contact_force
-   use hcimpact_f77_support, only : force_array
+   use hcimpact_f77_support, only : force_array, first_failure
+   !$ use hcimpact_parallel, only : min_parallel_element
    implicit none
    !> Number of contacts, N >= 0
    integer, intent(in) :: n
@@ -835,11 +851,13 @@ subroutine hcfrca(n, c, en, b, x, xdot, f, istat, info)
       info = -1
       return
    end if
+   !$omp parallel do if (n >= min_parallel_element) private(element) schedule(static)
    do i = 1, n
       call contact_force(c(i), en(i), b(i), x(i), xdot(i), element, istat(i))
       f(:, i) = force_array(element)
-      if (istat(i) /= hcimpact_ok .and. info == 0) info = i
    end do
+   !$omp end parallel do
+   info = first_failure(n, istat)
 end subroutine hcfrca
 
 !> HCFRCP(C, EN, B, D, Q1, V1, Q2, V2, F, INFO): the element of two bodies on a line,

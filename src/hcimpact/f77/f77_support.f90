@@ -11,7 +11,7 @@ module hcimpact_f77_support
    private
 
    public :: nan, n_outputs, contact_info, outcome_array, f77_law, f77_law_fn
-   public :: law_info, force_array
+   public :: law_info, force_array, first_failure
 
    abstract interface
       !> A function of a FORTRAN 77 law: DOUBLE PRECISION FUNCTION F(X), X the compression
@@ -36,6 +36,25 @@ module hcimpact_f77_support
    integer, parameter :: n_outputs = 9
 
 contains
+
+   !> INFO of an array routine from its ISTAT(N): the index of the first element whose
+   !> status is not success, else 0.
+   pure function first_failure(n, istat) result(info)
+      !> Number of elements
+      integer, intent(in) :: n
+      !> The library status of each element
+      integer, intent(in) :: istat(*)
+      !> 0 or the first failing index
+      integer :: info
+      integer :: i
+      info = 0
+      do i = 1, n
+         if (istat(i) /= hcimpact_ok) then
+            info = i
+            return
+         end if
+      end do
+   end function first_failure
 
    !> INFO for the contact arguments (M, C, EN, B, V) in this order: -i for the first
    !> that breaks the library's rules for it (hcimpact_contact's `check_parameters`:

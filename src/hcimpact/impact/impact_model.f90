@@ -38,14 +38,15 @@ module hcimpact_impact_model
    use hcimpact_contact, only : contact_type, outcome_type, min_exponent, max_beta
    use hcimpact_damping, only : damping_for_restitution, default_min_velocity
    use hcimpact_power_impact, only : impact_power, velocity_at_depth, time_law_power, &
-      & time_law_samples, compression_branch, restitution_branch
+      & time_law_samples, compression_branch, restitution_branch, max_quadrature_exponent
    use hcimpact_law_impact, only : impact_law, time_law_law
    implicit none
    private
 
    public :: contact_type, outcome_type
    public :: impact, impact_law, velocity_at_depth, time_law, time_law_samples
-   public :: damping_for_restitution, default_min_velocity, min_exponent, max_beta
+   public :: damping_for_restitution, default_min_velocity, min_exponent, max_beta, &
+      & max_quadrature_exponent
    public :: compression_branch, restitution_branch
 
    !> One impact: with the power law (`contact_type`), or with a user's elastic law

@@ -8,24 +8,30 @@ module hcimpact_power_impact
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp, ik, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
-      & hcimpact_err_size
-   use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
+      & hcimpact_err_size, hcimpact_err_no_convergence
+   use hcimpact_double_double, only : dd_real, dd, operator(+), &
       & operator(-), operator(*), operator(/), &
       & dd_exp, dd_log, dd_sqrt
-   use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
    use hcimpact_contact, only : contact_type, outcome_type, check_contact, &
       & reject_unrepresentable
-   use hcimpact_trajectory, only : compression_phase, restitution_phase, phase_duration, &
-      & invert_from_turn, invert_from_end, scaled_velocity, phase_length
+   use hcimpact_trajectory, only : compression_phase, restitution_phase, &
+      & invert_from_turn, invert_from_end, scaled_velocity, phase_length, branch_speed
    use hcimpact_power_model, only : power_model, new_power_model, set_end_times, &
-      & power_peak, turn_sigma, end_sigma
+      & power_peak, turn_log_share, end_log_share
+   use hcimpact_force_element, only : contact_force_type, contact_force
    use hcimpact_power_rules, only : power_phase_times, power_whole_cc, whole_max_beta
    implicit none
    private
 
    public :: impact_power, velocity_at_depth, time_law_power, time_law_samples
-   public :: compression_branch, restitution_branch
+   public :: compression_branch, restitution_branch, max_quadrature_exponent
 
+   !> Largest exponent n for which `impact` and the time law integrate the times
+   !> (hcimpact_err_no_convergence above). Their weight (1 - x^2)^(-n/(n+1)) tends to a
+   !> non-integrable one as n grows: against mpmath the times are within 2.7 ulp up to
+   !> n = 200, 5 ulp at 1e3, 27 at 1e5, and from about 5e16 on (n/(n+1) rounding to 1)
+   !> the rules divide by zero. velocity_at_depth needs no quadrature: any n.
+   real(wp), parameter :: max_quadrature_exponent = 100.0_wp
    !> Branch of `velocity_at_depth`: compression (x' > 0)
    integer, parameter :: compression_branch = compression_phase
    !> Branch of `velocity_at_depth`: restitution (x' < 0)
@@ -54,7 +60,6 @@ contains
       type(dd_real) :: k, t, dur(2), tpeak, q, y, u, lp
       integer(ik) :: ev(3)
       type(dd_real) :: xp
-      logical :: whole
 
       outcome = outcome_type()
       stat = check_contact(contact)
@@ -72,15 +77,8 @@ contains
          model%f%rtol = max(rtol, epsilon(1.0_wp))
       end if
 
-      ev = 0_ik
-      ! the peak: q = u/beta at the peak, y = 1 - (x/x_max)^(n+1), l of the point
-      call power_peak(model, q, y, lp)
-      ! the times: one rule over the whole contact for small beta, else rules on the
-      ! phases (and their pieces)
-      whole = .false.
-      if (model%f%tr%beta%hi <= whole_max_beta) &
-         & call power_whole_cc(model, lp, dur, tpeak, ev(1), whole)
-      if (.not. whole) call power_phase_times(model, lp, dur, tpeak, ev, stat)
+      ! the peak (q = u/beta there, y = 1 - (x/x_max)^(n+1), l of the point), the times
+      call power_times(model, q, y, lp, dur, tpeak, ev, stat)
       if (stat /= hcimpact_ok) return
       u = model%f%tr%beta * q
 
@@ -118,6 +116,31 @@ contains
       call reject_unrepresentable(outcome, stat)
    end subroutine impact_power
 
+   !> The peak of the force and the times of a power-law impact, in the units of the
+   !> integrals: q = u/beta, y = 1 - (x/x_max)^(n+1) and l at the peak; the compression
+   !> and restitution times and the time from the impact to the peak. One rule over the
+   !> whole contact for small beta, else rules on the phases (and their pieces). The
+   !> time law takes the same times, so that its contact time is `impact`'s.
+   pure subroutine power_times(model, q, y, lp, dur, tpeak, ev, stat)
+      type(power_model), intent(inout) :: model
+      type(dd_real), intent(out) :: q, y, lp, dur(2), tpeak
+      !> Evaluations (compression, restitution, peak)
+      integer(ik), intent(out) :: ev(3)
+      integer, intent(out) :: stat
+      logical :: whole
+      stat = hcimpact_ok
+      ev = 0_ik
+      if (model%n > max_quadrature_exponent) then
+         stat = hcimpact_err_no_convergence
+         return
+      end if
+      call power_peak(model, q, y, lp)
+      whole = .false.
+      if (model%f%tr%beta%hi <= whole_max_beta) &
+         & call power_whole_cc(model, lp, dur, tpeak, ev(1), whole)
+      if (.not. whole) call power_phase_times(model, lp, dur, tpeak, ev, stat)
+   end subroutine power_times
+
    !> exp of a double-double number, rounded to a double.
    elemental function dd_exp_hi(a) result(x)
       type(dd_real), intent(in) :: a
@@ -147,7 +170,7 @@ contains
       integer, intent(out) :: stat
       type(power_model) :: model
       type(dd_real) :: yd, t
-      real(wp) :: y, xi, s, b, w
+      real(wp) :: w
 
       v = nan
       stat = check_contact(contact)
@@ -160,42 +183,47 @@ contains
          stat = hcimpact_err_domain
          return
       end if
-      call new_power_model(contact, model, stat)
+      call new_power_model(contact, model, stat, depth_only=.true.)
       if (stat /= hcimpact_ok) return
       if (x > model%x_max%hi * (1.0_wp + 4.0_wp * epsilon(1.0_wp))) then
          stat = hcimpact_err_domain
          return
       end if
-      ! y = 1 - (x/x_max)^(n+1), in double-double
-      if (x > 0.0_wp) then
-         if (.not. model%ln_x_max_dd) model%ln_x_max = dd_log(model%x_max)
-         yd = 1.0_wp - dd_exp((dd_log(dd(x)) - model%ln_x_max) * two_sum(model%n, 1.0_wp))
-      else
+      ! y = 1 - (x/x_max)^(n+1), in double-double: (x/x_max)^(n+1) = exp(r (n+1)) with
+      ! r = ln(x/x_max) <= 0 (r > 0 is x within 4 ulps beyond x_max: y = 0); when
+      ! r (n+1) is below -746 the power is 0 (r (n+1) itself may overflow, n = DBL_MAX)
+      if (x == 0.0_wp) then
          yd = dd(1.0_wp)
+      else
+         if (.not. model%ln_x_max_dd) model%ln_x_max = dd_log(model%x_max)
+         t = dd_log(dd(x)) - model%ln_x_max
+         if (.not. t%hi < 0.0_wp) then
+            yd = dd(0.0_wp)
+         else if (t%hi < -746.0_wp / model%np1) then
+            yd = dd(1.0_wp)
+         else
+            yd = 1.0_wp - dd_exp(t * model%np1_dd)
+         end if
       end if
       if (yd%hi < 0.0_wp) yd = dd(0.0_wp)
-      y = yd%hi
-      b = model%f%tr%beta%hi
-      ! velocity/V = u/beta; with xi = sqrt(2 H y) and s = beta xi = sqrt(2 t):
-      ! u+/beta = xi (1 + s/3 + s^2/36 - s^3/270 + ...),
-      ! u-/beta = -xi (1 - s/3 + s^2/36 + s^3/270 + ...)   (MODEL.md series of 1 + W)
-      xi = sqrt(2.0_wp * model%f%tr%hq%hi * y)
-      s = b * xi
-      if (s < 1.0e-4_wp) then
+      if (yd%hi == 1.0_wp .and. yd%lo == 0.0_wp) then
+         ! the ends of the branches (x = 0, or (x/x_max)^(n+1) below 2^-106), exactly as
+         ! `impact` gives them: V, and -k V
          if (branch == compression_branch) then
-            w = xi * (1.0_wp + s * (1.0_wp / 3.0_wp + s * (1.0_wp / 36.0_wp - s / 270.0_wp)))
+            v = contact%velocity
          else
-            w = -xi * (1.0_wp - s * (1.0_wp / 3.0_wp - s * (1.0_wp / 36.0_wp + s / 270.0_wp)))
+            t = -(model%f%tr%k * contact%velocity)
+            v = t%hi
          end if
-      else
-         t = model%f%tr%hq * model%f%tr%beta * model%f%tr%beta * yd
-         if (branch == compression_branch) then
-            w = -lambert_wm1p1(t%hi) / b
-         else
-            w = -lambert_w0p1(t%hi) / b
-         end if
+         return
       end if
+      w = branch_speed(model%f%tr, yd, branch)
       v = w * contact%velocity
+      ! a successful status never comes with a NaN or an infinity
+      if (.not. ieee_is_finite(v)) then
+         v = nan
+         stat = hcimpact_err_domain
+      end if
    end subroutine velocity_at_depth
 
    !> Compression x(t), velocity x'(t) and contact force F(t) = c x^n (1 + b x') at the
@@ -222,8 +250,9 @@ contains
       !> Status
       integer, intent(out) :: stat
       type(power_model) :: model
-      type(dd_real) :: dur(2)
-      integer(ik) :: ev
+      type(dd_real) :: dur(2), q, y, lp, tpeak, e
+      integer(ik) :: ev(3)
+      real(wp) :: contact_time
       integer :: i
 
       x = nan
@@ -242,12 +271,14 @@ contains
       call new_power_model(contact, model, stat)
       if (stat /= hcimpact_ok) return
       call set_end_times(model)
-      ev = 0_ik
-      call phase_duration(model%f, compression_phase, dur(1), ev, stat)
-      if (stat == hcimpact_ok) call phase_duration(model%f, restitution_phase, dur(2), ev, stat)
+      ! the phases' durations of `impact`, and its contact time: from that double on the
+      ! contact is over (x = 0, F = 0 exactly), as `impact` and the samples say
+      call power_times(model, q, y, lp, dur, tpeak, ev, stat)
       if (stat /= hcimpact_ok) return
+      e = model%time_unit * (dur(1) + dur(2))
+      contact_time = e%hi
       do i = 1, size(t)
-         call power_state(model, dur, t(i), x(i), v(i), f(i), stat)
+         call power_state(model, dur, contact_time, t(i), x(i), v(i), f(i), stat)
          ! A state beyond the range of doubles is not an answer (never NaN with success)
          if (stat == hcimpact_ok .and. .not. (ieee_is_finite(x(i)) .and. ieee_is_finite(v(i)) &
             & .and. ieee_is_finite(f(i)))) stat = hcimpact_err_domain
@@ -263,8 +294,10 @@ contains
    !> The time law on nsamples equally spaced times from 0 to the contact time
    !> (both included): t(i) = contact_time (i - 1)/(nsamples - 1).
    !>
-   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2. The outputs are
-   !> allocated with max(nsamples, 0) elements in every case, NaN on error.
+   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2, or if the four
+   !> arrays of nsamples elements cannot be allocated (out of memory: then none of them
+   !> is allocated). Otherwise the outputs are allocated with max(nsamples, 0) elements
+   !> in every case, NaN on error.
    pure subroutine time_law_samples(contact, nsamples, t, x, v, f, stat)
       !> The contact
       type(contact_type), intent(in) :: contact
@@ -281,10 +314,19 @@ contains
       !> Status
       integer, intent(out) :: stat
       type(outcome_type) :: outcome
-      integer :: i
+      integer :: i, alloc_stat
 
       allocate(t(max(nsamples, 0)), x(max(nsamples, 0)), v(max(nsamples, 0)), &
-         & f(max(nsamples, 0)))
+         & f(max(nsamples, 0)), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         ! out of memory: nothing is allocated, and the size is what was asked too much
+         if (allocated(t)) deallocate(t)
+         if (allocated(x)) deallocate(x)
+         if (allocated(v)) deallocate(v)
+         if (allocated(f)) deallocate(f)
+         stat = hcimpact_err_size
+         return
+      end if
       t = nan
       x = nan
       v = nan
@@ -308,14 +350,16 @@ contains
    !> then located from the turning point (by its l) or from the end of contact (by
    !> rho = d^(1/(n+1)), d its distance in l from the end, which keeps the relative
    !> accuracy of x for t -> 0 and near the end of contact).
-   pure subroutine power_state(model, dur, t, x, v, f, stat)
+   pure subroutine power_state(model, dur, contact_time, t, x, v, f, stat)
       type(power_model), intent(inout) :: model
       type(dd_real), intent(in) :: dur(2)
+      !> The contact time of `impact`, in s
+      real(wp), intent(in) :: contact_time
       real(wp), intent(in) :: t
       real(wp), intent(out) :: x, v, f
       integer, intent(out) :: stat
-      type(dd_real) :: tau, target, l, e, lt, rho, d, length
-      real(wp) :: sigma, sigma_n
+      type(dd_real) :: tau, target, l, e, lt, rho, d, length, ln_share
+      type(contact_force_type) :: element
       integer(ik) :: ev
       integer :: phase
       logical :: from_turn
@@ -331,18 +375,22 @@ contains
       ! time in units of the integrals
       tau = dd(t) / model%time_unit
       e = dur(1) + dur(2)
-      if (tau%hi < 1.0e-20_wp * e%hi) then
+      if (tau%hi < 1.0e-20_wp * dur(1)%hi) then
          ! The start of the motion: x = V t, x' = V, F = c x^n (1 + b V), with relative
-         ! corrections of order (t/T)^(n+1) < 1e-20, below an ulp. (The inversion below
-         ! would lose a time this small, down to subnormal t, in its rounding.)
+         ! corrections of order (t/t_c)^(n+1) < 1e-20, t_c the compression time, below an
+         ! ulp (of the compression, not of the contact: above beta = 1e20 the compression
+         ! is shorter than 1e-20 of the contact, and the whole of it was taken as its
+         ! start before issue 13). (The inversion below
+         ! would lose a time this small, down to subnormal t, in its rounding.) The
+         ! state is the two doubles x and V exactly: its force is the contact-force
+         ! element's (hcimpact_force_element)
          x = model%velocity * t
          v = model%velocity
-         ! F = (c x_max^n) (x/x_max)^n (1 + beta)
-         f = model%force_unit%hi * (x / model%x_max%hi)**model%n &
-            & * (1.0_wp + model%f%tr%beta%hi)
+         call contact_force(model%stiffness, model%n, model%damping, x, v, element)
+         f = element%force
          return
       end if
-      if (.not. tau%hi < e%hi) then
+      if (.not. (t < contact_time .and. tau%hi < e%hi)) then
          e = -(model%f%tr%k * model%velocity)
          x = 0.0_wp
          v = e%hi
@@ -374,20 +422,31 @@ contains
          if (stat /= hcimpact_ok) return
          lt = length - d
       end if
-      ! sigma = x/x_max from the form for the nearer end of the phase (in l)
-      if (lt%hi <= d%hi) then
-         call turn_sigma(model, phase, lt%hi, sigma, sigma_n)
+      ! ln((x/x_max)^(n+1)) from the form of S for the nearer end of the phase (in l),
+      ! in double-double: x and F are each one exponential of it, rounded once. In
+      ! compression the end form R(d) = 1 - (1 + beta) d G2(-beta d) cancels to about
+      ! 1/(beta d) where beta d is large (a large beta, 9 ulps of x at 3.6e28): there the
+      ! turning point's form, whose 1 - q does not cancel (as in power_nodes).
+      if (lt%hi <= d%hi .or. (phase == compression_phase &
+         & .and. model%f%tr%beta%hi * d%hi > 4.0_wp)) then
+         ln_share = turn_log_share(model, phase, lt)
+      else if (from_turn) then
+         ln_share = end_log_share(model, phase, dd_log(d), d%hi)
       else
-         if (from_turn) rho = dd_exp(dd_log(d) / model%np1_dd)
-         call end_sigma(model, phase, rho%hi, d%hi, sigma, sigma_n)
+         ln_share = end_log_share(model, phase, model%np1_dd * dd_log(rho), d%hi)
       end if
       l = lt
       if (phase == restitution_phase) l = -lt
-      e = model%x_max * sigma
+      ! x = x_max (x/x_max)
+      e = dd_exp(model%ln_x_max + ln_share * model%inv_np1_dd)
       x = e%hi
       v = scaled_velocity(model%f%tr, l) * model%velocity
-      ! F = c x^n (1 + u), 1 + u = exp(beta l)
-      e = model%force_unit * sigma_n * dd_exp(model%f%tr%beta * l)
+      ! The force along the trajectory, F = c x^n (1 + u) = c x_max^n (x/x_max)^n
+      ! exp(beta l): from the trajectory's double-double quantities, not from the
+      ! rounded x and x' (the contact-force element at those doubles is exact for them,
+      ! but their roundings would cost F up to about 4.5 ulps)
+      e = dd_exp(model%ln_force_unit + ln_share * dd_real(model%f%alpha_hi, &
+         & model%f%alpha_lo) + model%f%tr%beta * l)
       f = e%hi
    end subroutine power_state
 

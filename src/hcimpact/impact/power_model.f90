@@ -8,20 +8,21 @@
 !> are scheduled in hcimpact_power_rules; the outputs are assembled in
 !> hcimpact_power_impact.
 module hcimpact_power_model
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_domain
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), &
-      & dd_exp, dd_log, dd_sqrt
+      & dd_exp, dd_log, dd_sqrt, dd_scale
    use hcimpact_contact, only : contact_type, max_beta
    use hcimpact_trajectory, only : new_trajectory, phase_integrand, compression_phase, &
-      & restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r
+      & restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, log_form_beta
    implicit none
    private
 
    public :: power_integrand, power_model, new_power_model, set_end_times, power_peak
-   public :: turn_sigma, end_sigma
+   public :: turn_log_share, end_log_share
 
    !> Time integrand of the power law: (x/x_max)^(-n) - 1 per unit l; `flat` = 1.
    type, extends(phase_integrand) :: power_integrand
@@ -50,12 +51,12 @@ module hcimpact_power_model
       !> ln_x_max only its double part (ln_x_max_dd false: dd_log(x_max) where needed)
       type(dd_real) :: ln_x_max, x_max
       logical :: ln_x_max_dd = .true.
-      !> c x_max^n (N), set by set_end_times (the time law only)
-      type(dd_real) :: force_unit
+      !> ln(c x_max^n), c x_max^n in N: set by set_end_times (the time law only)
+      type(dd_real) :: ln_force_unit
       !> Seconds per unit of the integrals: x_max/((n+1) H V)
       type(dd_real) :: time_unit
-      !> Contact constant c
-      real(wp) :: stiffness = 0.0_wp
+      !> Contact constant c and damping b
+      real(wp) :: stiffness = 0.0_wp, damping = 0.0_wp
       !> (n+1) m V^2 H in J, when `energy_ok` (its factors well inside the double range)
       type(dd_real) :: energy
       logical :: energy_ok = .false.
@@ -74,10 +75,14 @@ contains
    !> its factors are well inside the double range (one logarithm then), else as a
    !> sum of logarithms; either way x_max = exp(ln(x_max^(n+1))/(n+1)) in double-double.
    !> c x_max^n = (n+1) m V^2 H / x_max needs no further exponential.
-   pure subroutine new_power_model(contact, model, stat)
+   pure subroutine new_power_model(contact, model, stat, depth_only)
       type(contact_type), intent(in) :: contact
       type(power_model), intent(out) :: model
       integer, intent(out) :: stat
+      !> Only beta, the trajectory and x_max are wanted (velocity_at_depth): the ranges
+      !> of the force and time units, which only the outcome and the time law need, are
+      !> not required
+      logical, intent(in), optional :: depth_only
       ! results beyond exp(+-log_limit) would overflow or lose their precision
       real(wp), parameter :: log_limit = 690.0_wp
       ! a product of factors each within 2**(+-safe_exponent) (about exp(+-120)) cannot
@@ -89,8 +94,9 @@ contains
 
       stat = hcimpact_ok
       ! beta = b V above max_beta: the exponents first, for a product that would overflow
-      ! (b V < 2**(e_b + e_V), exponent(0) = 0), then the product itself
-      if (exponent(contact%damping) + exponent(contact%velocity) > exponent(max_beta) + 1) then
+      ! (b V < 2**(e_b + e_V); b = 0 is beta = 0 whatever V), then the product itself
+      if (contact%damping > 0.0_wp .and. &
+         & exponent(contact%damping) + exponent(contact%velocity) > exponent(max_beta) + 1) then
          stat = hcimpact_err_domain
          return
       end if
@@ -101,12 +107,26 @@ contains
       end if
       model%f%tr = new_trajectory(beta)
       hq = model%f%tr%hq
+      ! (never true for a valid contact; the range tests below read binary exponents,
+      ! and exponent() of a NaN or an infinity is huge(0), which must not be added to)
+      if (.not. ieee_is_finite(hq%hi)) then
+         stat = hcimpact_err_domain
+         return
+      end if
       model%n = contact%exponent
       np1 = two_sum(contact%exponent, 1.0_wp)
+      ! n + 1 above 2^996: 1/(n+1) and the products with it would leave the range of
+      ! the double-double arithmetic (its splitting overflows), and x_max = 1 m to the
+      ! last bit for any contact there anyway
+      if (.not. np1%hi < 2.0_wp**996) then
+         stat = hcimpact_err_domain
+         return
+      end if
       model%np1 = np1%hi
       model%np1_dd = np1
       model%velocity = contact%velocity
       model%stiffness = contact%stiffness
+      model%damping = contact%damping
       ! 1/(n+1) once: ln x_max and the compression at the peak divide by n + 1 too
       model%inv_np1_dd = 1.0_wp / np1
       alpha = contact%exponent * model%inv_np1_dd
@@ -125,7 +145,8 @@ contains
       ev = exponent(contact%velocity)
       ec = exponent(contact%stiffness)
       eh = exponent(hq%hi)
-      model%energy_ok = max(abs(em), abs(ev), abs(ec), abs(eh)) < safe_exponent
+      model%energy_ok = max(abs(em), abs(ev), abs(ec), abs(eh)) < safe_exponent &
+         & .and. np1%hi < 2.0_wp**safe_exponent
       if (model%energy_ok) then
          ! (n+1) m V^2 H (J), the energy unit of the peak force too
          energy = ((np1 * contact%mass) * contact%velocity) * contact%velocity * hq
@@ -145,42 +166,57 @@ contains
          model%ln_x_max = (dd_log(np1) + dd_log(dd(contact%mass)) + ln_v + ln_v &
             & + dd_log(hq) - dd_log(dd(contact%stiffness))) * model%inv_np1_dd
       end if
-      if (abs(model%ln_x_max%hi) > log_limit) then
+      ! (written so that a NaN fails the tests too: for n near DBL_MAX, 1/(n+1) leaves
+      ! the normal range and the scales are not formed)
+      if (.not. abs(model%ln_x_max%hi) <= log_limit) then
          stat = hcimpact_err_domain
          return
       end if
       if (model%ln_x_max_dd) model%x_max = dd_exp(model%ln_x_max)
-      ! c x_max^n (force_unit) only serves the time law: set_end_times forms it; ln c to
+      if (present(depth_only)) then
+         if (depth_only) return
+      end if
+      ! c x_max^n (the force unit) only serves the time law: set_end_times forms it; ln c to
       ! within ln 2 (the margin from log_limit to overflow is 19)
-      if (abs(ec * ln2 + contact%exponent * model%ln_x_max%hi) > log_limit) then
+      if (.not. abs(ec * ln2 + contact%exponent * model%ln_x_max%hi) <= log_limit) then
          stat = hcimpact_err_domain
          return
       end if
       ! dt = x_max/((n+1) H V) (x/x_max)^(-n) dl; its unit must be representable too
-      if (abs(model%ln_x_max%hi - (exponent(np1%hi) + eh + ev) * ln2) > log_limit) then
+      if (.not. abs(model%ln_x_max%hi - (exponent(np1%hi) + eh + ev) * ln2) <= log_limit) then
          stat = hcimpact_err_domain
          return
       end if
       ! x_max/((n+1) H V): products with 1/(n+1) and 1/H (both to 2**-104), one quotient
-      ! by the double V
-      model%time_unit = (model%x_max * model%inv_np1_dd &
-         & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
+      ! by the double V. Above x_max = 2^800 the product with 1/H (up to 2^134) could
+      ! overflow before the quotient brings it back into the range: x_max and V are
+      ! scaled to [1/2, 1) first and the result back (exact)
+      if (model%x_max%hi < 2.0_wp**800) then
+         model%time_unit = (model%x_max * model%inv_np1_dd &
+            & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
+      else
+         em = exponent(model%x_max%hi)
+         model%time_unit = dd_scale((dd_scale(model%x_max, -em) * model%inv_np1_dd &
+            & * dd_real(model%inv_hq(1), model%inv_hq(2))) / fraction(contact%velocity), &
+            & em - ev)
+      end if
    end subroutine new_power_model
 
    !> The constants only the time law needs: those of `power_end_time` (only the time
-   !> law inverts from an end) and the force unit c x_max^n (a quotient or an
-   !> exponential `impact` need not pay for).
+   !> law inverts from an end) and the logarithm of the force unit c x_max^n (the time
+   !> law's force is one exponential of a sum: no product of it can overflow on the way;
+   !> two logarithms `impact` need not pay for). ln x_max in double-double first, where
+   !> new_power_model kept only its double part (n = 1).
    pure subroutine set_end_times(model)
       type(power_model), intent(inout) :: model
       type(dd_real) :: t, alpha
       real(wp) :: r0
       integer :: phase
-      if (model%energy_ok) then
-         model%force_unit = model%energy / model%x_max
-      else
-         t = dd_log(dd(model%stiffness)) + model%n * model%ln_x_max
-         model%force_unit = dd_exp(t)
+      if (.not. model%ln_x_max_dd) then
+         model%ln_x_max = dd_log(model%x_max)
+         model%ln_x_max_dd = .true.
       end if
+      model%ln_force_unit = dd_log(dd(model%stiffness)) + model%n * model%ln_x_max
       ! time of the last d in l before an end, in units of the integral, to first order:
       ! integral of (d R(0)/H)^(-alpha) from 0 to d = (n+1) (H/R(0))^alpha d^(1/(n+1))
       alpha = dd_real(model%f%alpha_hi, model%f%alpha_lo)
@@ -201,7 +237,7 @@ contains
       real(wp), intent(in) :: dend
       !> Density
       real(wp) :: rate
-      real(wp) :: q, s, p
+      real(wp) :: q, s, p, r
       if (dturn <= dend) then
          ! (x/x_max)^(n+1) = 1 - q: delta = exp(-alpha ln(1 - q)) - 1, small near the turn
          q = turn_q(self%tr, self%phase, dturn)
@@ -209,7 +245,15 @@ contains
          rate = expm1(-(self%alpha_hi * s + self%alpha_lo * s))
       else
          ! (x/x_max)^(n+1) = d R(d)/H, singular like d^(-alpha) at the end
-         p = dend * end_r(self%tr, self%phase, dend) / self%tr%hq%hi
+         r = end_r(self%tr, self%phase, dend)
+         p = dend * r
+         if (p < tiny(1.0_wp)) then
+            ! (d R below the normal range, d next to the end at large beta, where R(0) = k
+            ! and H are both about 1/beta: their quotient first, which does not underflow)
+            p = dend * (r / self%tr%hq%hi)
+         else
+            p = p / self%tr%hq%hi
+         end if
          p = p - p * (self%tr%hq%lo / self%tr%hq%hi)
          rate = p**(-self%alpha_hi) * (1.0_wp - self%alpha_lo * log(p)) - 1.0_wp
       end if
@@ -285,33 +329,49 @@ contains
       hd = hd - hprime * (b * dq)
       ! /H as the product with 1/H = inv_hq (2**-104 relative: far below what y needs)
       y = q * q * hd * dd_real(model%inv_hq(1), model%inv_hq(2))
-      lp = q - beta * q * q * hd
+      if (b > log_form_beta) then
+         ! l = (u - h(u))/beta = ln(1 + u)/beta, the first form cancelling (trajectory)
+         lp = dd_log(u + 1.0_wp) / beta
+      else
+         lp = q - beta * q * q * hd
+      end if
    end subroutine power_peak
 
-   !> sigma = x/x_max and sigma^n near the turning point: sigma^(n+1) = 1 - q.
-   pure subroutine turn_sigma(model, phase, lt, sigma, sigma_n)
+   !> ln((x/x_max)^(n+1)) near the turning point, at |l| = lt: (x/x_max)^(n+1) = 1 - q,
+   !> formed exactly from q (double-double; accurate relative to itself near the turn).
+   !> q at lt%hi, moved by the trailing part: dq/d|l| = |x'/V|/H = |expm1(beta l)|/(beta H),
+   !> which for large beta |l| is beta q, so that the rounding of |l| would cost
+   !> beta |l| times an ulp of q (9 ulps of x at beta = 4e28).
+   pure function turn_log_share(model, phase, lt) result(ln_share)
       type(power_model), intent(in) :: model
       integer, intent(in) :: phase
-      real(wp), intent(in) :: lt
-      real(wp), intent(out) :: sigma, sigma_n
-      real(wp) :: s
-      s = log1p(-turn_q(model%f%tr, phase, lt)) / model%np1
-      sigma = exp(s)
-      sigma_n = exp(model%n * s)
-   end subroutine turn_sigma
+      type(dd_real), intent(in) :: lt
+      type(dd_real) :: ln_share
+      real(wp) :: q, slope, beta, l
+      beta = model%f%tr%beta%hi
+      q = turn_q(model%f%tr, phase, lt%hi)
+      l = lt%hi
+      if (phase == restitution_phase) l = -lt%hi
+      if (beta > 0.0_wp) then
+         slope = abs(expm1(beta * l) / beta) / model%f%tr%hq%hi
+      else
+         slope = lt%hi / model%f%tr%hq%hi
+      end if
+      ln_share = dd_log(two_sum(1.0_wp, -q) - slope * lt%lo)
+   end function turn_log_share
 
-   !> sigma = x/x_max and sigma^n near an end: sigma^(n+1) = d R(d)/H, d = rho^(n+1),
-   !> so sigma = rho (R/H)^(1/(n+1)) keeps its relative accuracy for tiny rho.
-   pure subroutine end_sigma(model, phase, rho, d, sigma, sigma_n)
+   !> ln((x/x_max)^(n+1)) near an end of contact: (x/x_max)^(n+1) = d R(d)/H, given
+   !> ln d (double-double: from rho = d^(1/(n+1)) it is (n+1) ln rho, which keeps x's
+   !> relative accuracy for tiny d, even where d itself would underflow).
+   pure function end_log_share(model, phase, ln_d, d) result(ln_share)
       type(power_model), intent(in) :: model
       integer, intent(in) :: phase
-      real(wp), intent(in) :: rho, d
-      real(wp), intent(out) :: sigma, sigma_n
-      real(wp) :: ratio
-      ratio = end_r(model%f%tr, phase, d) / model%f%tr%hq%hi
-      ratio = ratio - ratio * (model%f%tr%hq%lo / model%f%tr%hq%hi)
-      sigma = rho * ratio**model%f%inv_np1
-      sigma_n = rho**model%n * ratio**(model%n * model%f%inv_np1)
-   end subroutine end_sigma
+      !> ln d and d (the latter only for R(d))
+      type(dd_real), intent(in) :: ln_d
+      real(wp), intent(in) :: d
+      type(dd_real) :: ln_share
+      ln_share = ln_d + dd_log(end_r(model%f%tr, phase, d) &
+         & * dd_real(model%inv_hq(1), model%inv_hq(2)))
+   end function end_log_share
 
 end module hcimpact_power_model

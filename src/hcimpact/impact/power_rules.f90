@@ -75,10 +75,11 @@ contains
    !> Clenshaw-Curtis rule (weight 1). Each node takes the form of S for its nearer end
    !> (turn_q or end_r). Degrees 12, 24, 48 (nested) until the last two coefficients
    !> meet `tol`; `converged` false when even 48 does not. `f_turn` is the density at
-   !> the end of the piece facing the turning point, `f_far` at the other end.
+   !> the end of the piece facing the turning point, `f_far` at the other end (plain
+   !> pieces), `f_middle` (weighted pieces, if asked for) in the middle.
    pure subroutine power_piece_cc(model, phase, offset, length, gap, e0, weighted, tol, &
          & moment, moment_degree, degree, a, lin, duration, f_turn, f_far, evaluations, &
-         & converged)
+         & converged, f_middle)
       type(power_model), intent(in) :: model
       integer, intent(in) :: phase
       !> Distance of the piece from the turning point, its length, and the shift of its
@@ -101,6 +102,7 @@ contains
       real(wp), intent(out) :: a(0:cc_max_degree), lin(2)
       type(dd_real), intent(out) :: duration
       real(wp), intent(out) :: f_turn, f_far
+      real(wp), intent(out), optional :: f_middle
       integer(ik), intent(inout) :: evaluations
       logical, intent(out) :: converged
       real(wp) :: f(0:cc_max_degree), g(0:cc_max_degree), fmax
@@ -171,6 +173,9 @@ contains
             duration = sum * (0.5_wp * length)
             if (weighted) then
                f_turn = f(0)
+               ! the density (d/D)^(-alpha) F in the middle, d = D/2 (node 24)
+               if (present(f_middle)) f_middle = exp(model%f%alpha_hi * log(2.0_wp)) &
+                  & * f(cc_max_degree / 2)
             else
                f_turn = f(0)
                f_far = f(cc_max_degree)
@@ -432,7 +437,7 @@ contains
       type(dd_real), intent(out) :: duration
       integer(ik), intent(inout) :: evaluations
       logical, intent(out) :: converged
-      real(wp) :: cut(0:max_pieces), bound, e0, tol, width, resid, f_turn, f_far
+      real(wp) :: cut(0:max_pieces), bound, e0, tol, width, resid, f_turn, f_far, f_middle
       real(wp) :: plain(0:cc_max_degree), a_p(0:cc_max_degree), lin_p(2), gap_end, prev_far
       real(wp) :: end_length
       type(dd_real) :: part, s
@@ -474,13 +479,27 @@ contains
       else
          tol = max(tol * bound / end_length, model%f%rtol)
       end if
-      e0 = -1.0_wp
-      if (phase == compression_phase) e0 = 0.0_wp
-      call power_piece_cc(model, phase, cut(np), end_length, gap_end, e0, .true., &
-         & tol, moment, moment_degree, deg_p, a_p, lin_p, part, f_turn, f_far, evaluations, &
-         & converged)
-      if (.not. converged) return
-      duration = duration + part + gap_end * prev_far
+      if (phase == compression_phase) then
+         call power_piece_cc(model, phase, cut(np), end_length, gap_end, 0.0_wp, .true., &
+            & tol, moment, moment_degree, deg_p, a_p, lin_p, part, f_turn, f_far, &
+            & evaluations, converged)
+         if (.not. converged) return
+         duration = duration + part + gap_end * prev_far
+      else
+         ! The restitution's end piece is about 1 long in l, gap_end about an ulp of
+         ! that, while next to the cut the density varies on the scale 1/beta in l:
+         ! shifted by gap_end, the nodes next to the cut would move by beta gap_end in L
+         ! (past the turning point from beta = 1e17 on). Its nodes on the turning point's
+         ! side are placed from the cut, those on the other side from the end of
+         ! contact, and the sliver gap_end between the two halves is added at the
+         ! density in the middle, which is flat on the scale of gap_end there (as the
+         ! tanh-sinh parts do, hcimpact_trajectory's integrate_part).
+         call power_piece_cc(model, phase, cut(np), end_length, 0.0_wp, -1.0_wp, .true., &
+            & tol, moment, moment_degree, deg_p, a_p, lin_p, part, f_turn, f_far, &
+            & evaluations, converged, f_middle)
+         if (.not. converged) return
+         duration = duration + part + gap_end * f_middle
+      end if
       ! from the impact to the peak: a weighted rule of its own on [lp, |l_end|] (a
       ! complete integral; the end piece's interpolant with incomplete moments up to
       ! the peak saves its 13 to 25 evaluations but was up to 2.2 ulp off where this

@@ -52,7 +52,7 @@ module hcimpact_trajectory
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), dd_exp, dd_log
-   use hcimpact_lambertw, only : lambert_w0p1
+   use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
    use hcimpact_quadrature, only : integrand_type, quadrature_result, tanh_sinh, &
       & quadrature_success, tanh_sinh_max_levels
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_no_convergence
@@ -64,13 +64,18 @@ module hcimpact_trajectory
    public :: compression_phase, restitution_phase
    public :: h_over_square_dd, h_over_square, g2, turn_q, end_r
    public :: phase_duration, duration_from_turn, duration_from_end
-   public :: invert_from_turn, invert_from_end, scaled_velocity, phase_length
+   public :: invert_from_turn, invert_from_end, scaled_velocity, phase_length, branch_speed
 
    !> Index of the compression phase (impact to turning point)
    integer, parameter :: compression_phase = 1
    !> Index of the restitution phase (turning point to end of contact)
    integer, parameter :: restitution_phase = 2
 
+   !> Above this beta, l = ln(1 + u)/beta of the compression's end (and of the peak)
+   !> is formed from the logarithm, not as (u - h(u))/beta = 1 - beta H, which cancels:
+   !> its relative error 2**-105 beta/ln(1 + beta) is below 1e-21 up to here (1e-5 of
+   !> an ulp), but exceeds 1e-16 from beta = 1e19 on and is all of it above 4e33
+   real(wp), parameter, public :: log_form_beta = 2.0_wp**40
    !> Below this beta, k(beta) is its Taylor series (MODEL.md): the first omitted term,
    !> 40 beta^5/189, is below 3e-26
    real(wp), parameter :: k_series_max = 1.0e-5_wp
@@ -83,6 +88,12 @@ module hcimpact_trajectory
    !> term cost more than the sum)
    integer, private :: jj_
    real(wp), parameter :: inv_integer(58) = 1.0_wp / real([(jj_, jj_ = 1, 58)], wp)
+   !> Above this beta the tanh-sinh rules cut the restitution into graded pieces
+   !> (integrate_span)
+   real(wp), parameter :: graded_beta = 8.0_wp
+   !> Below this share of the phase, the time from the turning point is the distance
+   !> times the rate there (duration_from_turn; the rate's change is second order)
+   real(wp), parameter :: first_order_turn = 2.0_wp**(-30)
    !> Bound on every Newton iteration of this module
    integer, parameter :: max_newton = 60
    !> A Newton step below this share of the variable is at the noise of the quadrature
@@ -133,6 +144,9 @@ module hcimpact_trajectory
       real(wp) :: flat = 0.0_wp
       !> Relative tolerance of the quadratures (epsilon: full precision)
       real(wp) :: rtol = epsilon(1.0_wp)
+      !> Width in l of one unit of the quadrature's variable, a power of two
+      !> (integrate_part)
+      real(wp) :: unit = 1.0_wp
    contains
       !> Integrand at a node, from its distances to the interval ends
       procedure :: eval => phase_eval
@@ -396,7 +410,13 @@ contains
          tr%k = kb / beta
       end if
 
-      tr%l_end(compression_phase) = 1.0_wp - beta * tr%hq
+      if (b > log_form_beta) then
+         ! l_e = ln(1 + beta)/beta: 1 - beta H is that difference, which keeps only
+         ! about 2**-105 beta/ln(beta) of it (nothing above beta = 4e33)
+         tr%l_end(compression_phase) = dd_log(tr%one_plus_beta) / beta
+      else
+         tr%l_end(compression_phase) = 1.0_wp - beta * tr%hq
+      end if
       tr%l_end(restitution_phase) = -(tr%k + beta * tr%hq)
       if (b > 0.0_wp) then
          ea = beta * tr%l_end(restitution_phase)
@@ -410,6 +430,44 @@ contains
       tr%end_speed(compression_phase) = 1.0_wp
       tr%end_speed(restitution_phase) = tr%k%hi
    end function new_trajectory
+
+   !> x'/V = u/beta on a branch at the point where the elastic energy is the share
+   !> 1 - y of its largest value: h(u) = h(beta) y (the first integral, MODEL.md), so
+   !> u = -(1 + W(-exp(-1 - h(beta) y))), W_-1 in compression and W_0 in restitution
+   !> (seed eq. 14). For small s = beta xi, xi = sqrt(2 H y) (h(beta) y = s^2/2), the
+   !> series of 1 + W about the branch point divided by beta: u+/beta = xi (1 + s/3 +
+   !> s^2/36 - s^3/270 + ...), u-/beta = -xi (1 - s/3 + s^2/36 + s^3/270 + ...), so that
+   !> beta -> 0 is smooth (x'/V -> +-sqrt(y)) and a tiny beta does not underflow.
+   elemental function branch_speed(tr, y, phase) result(w)
+      !> The trajectory
+      type(trajectory_type), intent(in) :: tr
+      !> y = 1 - Pi(x)/Pi(x_max), in [0, 1]
+      type(dd_real), intent(in) :: y
+      !> compression_phase or restitution_phase
+      integer, intent(in) :: phase
+      !> x'/V
+      real(wp) :: w
+      type(dd_real) :: t
+      real(wp) :: xi, s, b
+      b = tr%beta%hi
+      xi = sqrt(2.0_wp * tr%hq%hi * y%hi)
+      s = b * xi
+      if (s < 1.0e-4_wp) then
+         ! the first term left out, s^4/4320, is below 3e-20
+         if (phase == compression_phase) then
+            w = xi * (1.0_wp + s * (1.0_wp / 3.0_wp + s * (1.0_wp / 36.0_wp - s / 270.0_wp)))
+         else
+            w = -xi * (1.0_wp - s * (1.0_wp / 3.0_wp - s * (1.0_wp / 36.0_wp + s / 270.0_wp)))
+         end if
+      else
+         t = tr%hq * tr%beta * tr%beta * y
+         if (phase == compression_phase) then
+            w = -lambert_wm1p1(t%hi) / b
+         else
+            w = -lambert_w0p1(t%hi) / b
+         end if
+      end if
+   end function branch_speed
 
    !> x'/V at the point l of the trajectory: expm1(beta l)/beta (l at beta = 0).
    !>
@@ -453,7 +511,11 @@ contains
       real(wp), intent(in) :: dxb
       !> Density at the node
       real(wp) :: fx
-      fx = self%density(self%turn_gap + dxa, self%end_gap + dxb)
+      ! (the distance to the end of contact no smaller than the smallest normal number:
+      ! scaled by a tiny unit, the rule's last nodes would reach 0, where the density is
+      ! infinite)
+      fx = self%density(self%turn_gap + dxa * self%unit, &
+         & max(self%end_gap + dxb * self%unit, tiny(1.0_wp)))
    end function phase_eval
 
    !> |l| of the end of contact of a phase, in double-double.
@@ -492,22 +554,78 @@ contains
       ! For the power law the density is a correction to `flat`: its error is measured
       ! against the whole integral, of which flat*width is a part.
       atol = 0.5_wp * epsilon(1.0_wp) * f%flat * width
+      ! The rule runs over [0, width/unit], width/unit in [1/2, 1), unit a power of two
+      ! (exact): its nodes reach 1.7e-275 of the interval from an end but no closer than
+      ! the smallest normal number, so a part narrower than 1e-33 in l (beta above 1e30)
+      ! would have nodes piled up at that floor, and a singular end would not converge.
+      f%unit = scale(1.0_wp, exponent(width))
       ! In l the integrands are analytic near the real axis (g is entire; the density's
       ! singularities are at the ends, where the tanh-sinh map handles them), so the
       ! rule doubles its digits per level: no level is spent confirming convergence.
-      call tanh_sinh(f, 0.0_wp, width, res, rtol=f%rtol, atol=atol, &
+      call tanh_sinh(f, 0.0_wp, width / f%unit, res, rtol=f%rtol, atol=atol / f%unit, &
          & max_levels=tanh_sinh_max_levels, analytic=.true.)
       evaluations = evaluations + res%evaluations
       if (res%status /= quadrature_success) then
          stat = hcimpact_err_no_convergence
          return
       end if
-      total = two_prod(f%flat, width) + res%integral
+      total = two_prod(f%flat, width) + res%integral * f%unit
       ! a part that reaches the end and contains the seam: add the time of the shift
       seam = 0.5_wp * f%tr%bound(f%phase)
       if (end_gap == 0.0_wp .and. turn_gap < seam .and. f%tr%gap(f%phase) /= 0.0_wp) &
          & total = total + f%tr%gap(f%phase) * (f%flat + f%density(seam, seam))
    end subroutine integrate_part
+
+   !> Integral of flat + density over |l| in [from, from + width] of the current phase
+   !> (the span reaches the end of contact when reaches_end: from + width = bound). For
+   !> beta > graded_beta the restitution is cut at |L| = beta |l| = 4, 12, 36 (below 3/4
+   !> of the phase), each piece a tanh-sinh rule of its own: the complex zeros of S near
+   !> L = ln h(beta) +- 2 pi i, next to the turning point on a phase of length ~beta in
+   !> L, made one rule's error estimate stop early (a user law's contact time was off by
+   !> up to 8e3 ulps for beta = 1e4 ... 1e6; the power law's rules cut the phase the
+   !> same way, hcimpact_power_rules). Without a cut inside, the width is used as given
+   !> (recomputed from the ends it would carry the rounding of the larger one).
+   pure subroutine integrate_span(f, from, width, reaches_end, total, evaluations, stat)
+      class(phase_integrand), intent(inout) :: f
+      real(wp), intent(in) :: from, width
+      logical, intent(in) :: reaches_end
+      type(dd_real), intent(out) :: total
+      integer(ik), intent(inout) :: evaluations
+      integer, intent(out) :: stat
+      type(dd_real) :: part, gap
+      real(wp) :: a, b, to, cut_l, beta, phase_l, end_gap, rest
+
+      stat = hcimpact_ok
+      total = dd(0.0_wp)
+      a = from
+      to = from + width
+      if (reaches_end) to = f%tr%bound(f%phase)
+      beta = f%tr%beta%hi
+      if (f%phase == restitution_phase .and. beta > graded_beta) then
+         phase_l = beta * f%tr%bound(restitution_phase)
+         cut_l = 4.0_wp
+         do while (cut_l <= 0.75_wp * phase_l .and. cut_l <= 40.0_wp)
+            b = cut_l / beta
+            if (b > a .and. b < to) then
+               gap = phase_length(f%tr, f%phase) - b
+               call integrate_part(f, a, b - a, gap%hi, part, evaluations, stat)
+               if (stat /= hcimpact_ok) return
+               total = total + part
+               a = b
+            end if
+            cut_l = 3.0_wp * cut_l
+         end do
+      end if
+      end_gap = 0.0_wp
+      if (.not. reaches_end) then
+         gap = phase_length(f%tr, f%phase) - to
+         end_gap = gap%hi
+      end if
+      rest = width
+      if (a /= from) rest = to - a
+      call integrate_part(f, a, rest, end_gap, part, evaluations, stat)
+      total = total + part
+   end subroutine integrate_span
 
    !> Duration of a whole phase, in the units of the density.
    pure subroutine phase_duration(f, phase, duration, evaluations, stat)
@@ -523,7 +641,7 @@ contains
       integer, intent(out) :: stat
 
       f%phase = phase
-      call integrate_part(f, 0.0_wp, f%tr%bound(phase), 0.0_wp, duration, evaluations, stat)
+      call integrate_span(f, 0.0_wp, f%tr%bound(phase), .true., duration, evaluations, stat)
    end subroutine phase_duration
 
    !> Time between the turning point and the point at |l| = lt of a phase.
@@ -544,11 +662,18 @@ contains
 
       f%phase = phase
       if (lt >= f%tr%bound(phase)) then
-         call integrate_part(f, 0.0_wp, f%tr%bound(phase), 0.0_wp, duration, evaluations, stat)
-         return
+         call integrate_span(f, 0.0_wp, f%tr%bound(phase), .true., duration, evaluations, &
+            & stat)
+      else if (lt <= first_order_turn * f%tr%bound(phase)) then
+         ! next to the turning point the rate is flat to second order: lt times the rate
+         ! there, to 2**-60 relative (and a quadrature over a span of 1e-280 would
+         ! not converge: the peak at beta = 1e-280)
+         stat = hcimpact_ok
+         gap = phase_length(f%tr, phase)
+         duration = two_prod(lt, rate_at(f, 0.0_wp, gap%hi))
+      else
+         call integrate_span(f, 0.0_wp, lt, .false., duration, evaluations, stat)
       end if
-      gap = phase_length(f%tr, phase) - lt
-      call integrate_part(f, 0.0_wp, lt, gap%hi, duration, evaluations, stat)
    end subroutine duration_from_turn
 
    !> Time between the end of contact of a phase (impact, or separation) and the point
@@ -570,8 +695,8 @@ contains
 
       f%phase = phase
       width = min(d, f%tr%bound(phase))
-      call integrate_part(f, f%tr%bound(phase) - width, width, 0.0_wp, duration, &
-         & evaluations, stat)
+      call integrate_span(f, f%tr%bound(phase) - width, width, .true., duration, evaluations, &
+         & stat)
    end subroutine duration_from_end
 
    !> Rate d(time)/d|l| at a point: flat + density.

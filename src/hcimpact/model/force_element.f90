@@ -50,7 +50,7 @@
 !> NaN or infinite x or v hcimpact_err_not_finite; every field is then NaN.
 module hcimpact_force_element
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_positive_inf
-   use hcimpact_kinds, only : wp, nan
+   use hcimpact_kinds, only : wp, nan, finite_value, bit_exponent
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
       & hcimpact_err_elastic_law
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
@@ -319,7 +319,7 @@ contains
       ! b v beyond the double range: an infinity of its sign, formed without an
       ! overflow (the Debug build traps on it)
       if (damping /= 0.0_wp .and. rate%hi /= 0.0_wp) then
-         if (exponent(damping) + exponent(rate%hi) >= maxexponent(1.0_wp)) then
+         if (bit_exponent(damping) + bit_exponent(rate%hi) >= maxexponent(1.0_wp) - 2) then
             factor = sign(ieee_value(1.0_wp, ieee_positive_inf), rate%hi)
             bv = factor
             return
@@ -352,6 +352,10 @@ contains
       call damping_factor(b, rate, s, bv)
       speed = abs(rate%hi)
       np1 = two_sum(n, 1.0_wp)
+      if (products_stay_normal(c, n, b, x, speed, s)) then
+         e = direct_element(c, n, b, x, speed, s, np1%hi, clamp)
+         return
+      end if
       xn = safe_power(x, n)
       ! Pi = c x^n x/(n + 1)
       e%potential = power_product(xn, x, n, [c, x], np1%hi)
@@ -388,6 +392,53 @@ contains
          e%dissipation = power_product(xn, x, n, [c, speed], 1.0_wp)
       end if
    end function power_element
+
+   !> Whether x^n and every product and quotient of the element's factors (c, n, b, x,
+   !> |v|, |1 + b v|, n + 1) stay normal doubles: the binary exponents, weighted by how
+   !> often each factor enters, add up to less than the normal range's. Then
+   !> `direct_element` multiplies them as they are (each rounding relative, no
+   !> overflow or underflow possible), with power_product's order of operations.
+   elemental logical function products_stay_normal(c, n, b, x, speed, s) result(ok)
+      real(wp), intent(in) :: c, n, b, x, speed, s
+      real(wp) :: budget
+      integer, parameter :: range = minexponent(1.0_wp) + 8
+      ok = .false.
+      if (.not. finite_value(s) .or. s == 0.0_wp) return
+      ! log2 of x^n is within n of n e(x); x enters once more (Pi, dF/dx)
+      budget = abs(n) * real(abs(bit_exponent(x)) + 1, wp) + abs(bit_exponent(x)) &
+         & + abs(bit_exponent(c)) + abs(bit_exponent(n)) + abs(bit_exponent(s)) + 4
+      if (b > 0.0_wp) budget = budget + abs(bit_exponent(b))
+      if (speed > 0.0_wp) budget = budget + 2 * abs(bit_exponent(speed))
+      ok = budget < real(-range, wp)
+   end function products_stay_normal
+
+   !> The power-law element by direct products, where products_stay_normal holds: the
+   !> same operations in the same order as power_product's direct path, so the same
+   !> results bit for bit, without its range checks.
+   elemental function direct_element(c, n, b, x, speed, s, np1, clamp) result(e)
+      real(wp), intent(in) :: c, n, b, x, speed, s, np1
+      logical, intent(in) :: clamp
+      type(contact_force_type) :: e
+      real(wp) :: f
+
+      f = x**n * c
+      e%potential = f * x / np1
+      if (s > 0.0_wp .or. .not. clamp) then
+         e%force = sign(f * abs(s), s)
+         e%dforce_dx = sign(f * abs(s) * n / x, s)
+         e%dforce_dv = 0.0_wp
+         e%dissipation = 0.0_wp
+         if (b > 0.0_wp) then
+            e%dforce_dv = f * b
+            if (speed > 0.0_wp) e%dissipation = f * b * speed * speed
+         end if
+      else
+         e%force = 0.0_wp
+         e%dforce_dx = 0.0_wp
+         e%dforce_dv = 0.0_wp
+         e%dissipation = f * speed
+      end if
+   end function direct_element
 
    !> The element of a user's law for a valid damping and finite x, v.
    pure subroutine law_element(law, b, x, rate, clamp, e, stat)

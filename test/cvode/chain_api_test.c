@@ -1,0 +1,234 @@
+/* SPDX-License-Identifier: Apache-2.0 */
+/* hcimpact_chain_simulate (libhcimpact_cvode, hcimpact_cvode.h) from C: the structures
+ * as the header declares them (two bodies against the closed forms of one impact, field
+ * by field, so that a field out of place fails), a cradle of touching balls (momentum,
+ * energy, not the (0, 0, V) of instantaneous collisions), the samples' layout, options of
+ * zeros, the caller's contact array and message buffer, and the statuses for bad input.
+ * The bit-for-bit comparison with the Fortran API is test/cvode/test_chain_api.f90.
+ * Exit code 0 when every check passes. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "hcimpact_cvode.h"
+
+static int failures = 0;
+
+static void check(const char *what, int ok)
+{
+  if (!ok) {
+    printf("FAIL %s\n", what);
+    ++failures;
+  }
+}
+
+static void check_close(const char *what, double actual, double expected, double rel)
+{
+  if (!(fabs(actual - expected) <= rel * fabs(expected))) {
+    printf("FAIL %s: %.17g, expected %.17g (rel %.1e)\n", what, actual, expected, rel);
+    ++failures;
+  }
+}
+
+static void check_status(const char *what, int actual, int expected, const char *message)
+{
+  if (actual != expected) {
+    printf("FAIL %s: status %d, expected %d (%s)\n", what, actual, expected, message);
+    ++failures;
+  }
+}
+
+#define STEEL_PLATE 1.7135e10
+#define STEEL_PAIR (STEEL_PLATE / 1.4142135623730951)
+
+/* Two balls of different masses, the first striking the second: one contact, computed
+ * by the closed forms, equal to hcimpact_impact's outcome at the effective mass and the
+ * relative speed, and to hcimpact_two_body_velocities' velocities after it. */
+static void two_bodies(void)
+{
+  const double m[2] = {0.1, 0.3}, v[2] = {2.0, -0.5}, gap[1] = {1e-4};
+  const hcimpact_chain_law law[1] = {{STEEL_PAIR, 1.5, 0.2}};
+  hcimpact_chain_result r;
+  hcimpact_chain_contact c[4];
+  hcimpact_contact contact;
+  hcimpact_outcome out;
+  double x[2], vf[2], v1, v2;
+  char message[256];
+  int stat;
+
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, NULL, NULL, 0.0, NULL, &r, x, vf, 4, c,
+                                 NULL, message, sizeof message);
+  check_status("two bodies", stat, HCIMPACT_OK, message);
+  check("two bodies: message", strcmp(message, "success") == 0);
+  check("two bodies: one contact by the closed forms",
+        r.n_contacts == 1 && r.contacts_recorded == 1 && c[0].pair == 1
+            && c[0].method == HCIMPACT_CHAIN_BY_CLOSED_FORMS
+            && r.method_used == HCIMPACT_CHAIN_BY_CLOSED_FORMS && r.closed_form_contacts == 1
+            && r.integrated_contacts == 0 && r.steps == 0 && r.rested == 0);
+  contact.mass = hcimpact_effective_mass(m[0], m[1]);
+  contact.stiffness = law[0].stiffness;
+  contact.exponent = law[0].exponent;
+  contact.damping = law[0].damping;
+  contact.velocity = v[0] - v[1];
+  check_status("hcimpact_impact", hcimpact_impact(&contact, &out), HCIMPACT_OK, "");
+  check_status("hcimpact_two_body_velocities",
+               hcimpact_two_body_velocities(m[0], m[1], v[0], v[1], out.restitution, &v1, &v2),
+               HCIMPACT_OK, "");
+  /* the contact starts when the gap has closed at the relative speed */
+  check_close("t_start", c[0].t_start, gap[0] / contact.velocity, 1e-15);
+  check_close("contact time", c[0].t_end - c[0].t_start, out.contact_time, 1e-11);
+  check_close("approach speed", c[0].approach_speed, contact.velocity, 1e-15);
+  check_close("separation speed", c[0].separation_speed, -out.rebound_velocity, 1e-14);
+  check_close("peak force", c[0].peak_force, out.peak_force, 1e-14);
+  check_close("max deformation", c[0].max_deformation, out.max_compression, 1e-14);
+  check_close("dissipated", c[0].dissipated,
+              0.5 * contact.mass * contact.velocity * contact.velocity * out.energy_loss_ratio,
+              1e-13);
+  check_close("dissipated (result)", r.dissipated, c[0].dissipated, 1e-15);
+  check_close("velocity 1 after", vf[0], v1, 1e-14);
+  check_close("velocity 2 after", vf[1], v2, 1e-14);
+  check("energy balance", r.energy_error < 1e-14);
+  check("momentum balance", r.momentum_error < 1e-15);
+  check_close("initial energy", r.initial_energy, 0.5 * (m[0] * v[0] * v[0] + m[1] * v[1] * v[1]),
+              1e-15);
+  /* the centre of mass moves uniformly; the bodies part from touching at t_end */
+  check_close("centre of mass", (m[0] * x[0] + m[1] * x[1]) / (m[0] + m[1]),
+              (m[1] * gap[0] + (m[0] * v[0] + m[1] * v[1]) * r.time) / (m[0] + m[1]), 1e-12);
+  check("gap after the contact", fabs((x[1] - x[0]) - (vf[1] - vf[0]) * (r.time - c[0].t_end))
+                                     <= 1e-12 * fabs(x[1]) + 1e-18);
+}
+
+/* Three touching equal Hertz balls, one striking from a gap: a cluster integrated by
+ * CVODE, sampled; zero options are the defaults. */
+static void cradle(void)
+{
+  enum { n = 3, ns = 4 };
+  const double m[n] = {0.1, 0.1, 0.1}, v[n] = {1.0, 0.0, 0.0}, gap[n - 1] = {1e-5, 0.0};
+  const hcimpact_chain_law law[n - 1] = {{STEEL_PAIR, 1.5, 0.0}, {STEEL_PAIR, 1.5, 0.0}};
+  const double times[ns] = {0.0, 5e-6, 1e-4, 1e-3};
+  double sx[ns * n], sv[ns * n], sf[ns * (n + 1)], x[n], vf[n], x0[n], v0[n];
+  hcimpact_chain_samples samples;
+  hcimpact_chain_options options = {0};
+  hcimpact_chain_result r;
+  hcimpact_chain_contact c[16];
+  char message[256];
+  int stat, i, j;
+
+  samples.count = ns;
+  samples.times = times;
+  samples.positions = sx;
+  samples.velocities = sv;
+  samples.forces = sf;
+  options.rtol = 1e-10;
+  stat = hcimpact_chain_simulate(n, m, v, gap, law, NULL, NULL, 0.0, &options, &r, x, vf, 16,
+                                 c, &samples, message, sizeof message);
+  check_status("cradle", stat, HCIMPACT_OK, message);
+  check("cradle: integrated", r.integrated_contacts >= 1 && r.steps > 0 && r.clusters >= 1
+                                  && (r.method_used == HCIMPACT_CHAIN_BY_INTEGRATION
+                                      || r.method_used == HCIMPACT_CHAIN_BY_BOTH));
+  check("cradle: momentum to rounding", r.momentum_error < 1e-14);
+  check("cradle: elastic energy to the tolerance", r.energy_error < 1e-7);
+  check("cradle: not (0, 0, V)", fabs(vf[0]) > 1e-3 || fabs(vf[1]) > 1e-3);
+  check("cradle: all separating", vf[0] <= vf[1] && vf[1] <= vf[2]);
+  /* the first sample is the initial state: q = 0, gap, gap; forces 0 */
+  x0[0] = 0.0;
+  x0[1] = gap[0];
+  x0[2] = gap[0] + gap[1];
+  v0[0] = 1.0;
+  v0[1] = v0[2] = 0.0;
+  for (i = 0; i < n; ++i) {
+    check("sample 0: positions", sx[i] == x0[i]);
+    check("sample 0: velocities", sv[i] == v0[i]);
+  }
+  for (i = 0; i <= n; ++i) check("sample 0: forces", sf[i] == 0.0);
+  /* at 5 us the first ball flies freely: 5e-6 m, the others at rest; walls: force 0 */
+  check_close("sample 1: ball 1", sx[n + 0], 5e-6, 1e-14);
+  check("sample 1: balls 2 and 3", sx[n + 1] == x0[1] && sx[n + 2] == x0[2]);
+  /* the last sample is after every contact: the final velocities */
+  for (i = 0; i < n; ++i) check_close("last sample: velocity", sv[3 * n + i], vf[i], 1e-12);
+  for (j = 0; j < ns; ++j) {
+    check("no wall: no wall force", sf[j * (n + 1)] == 0.0 && sf[j * (n + 1) + n] == 0.0);
+  }
+  check("some force during the contacts", sf[2 * (n + 1) + 1] >= 0.0);
+}
+
+/* Bad input: statuses, nothing written (NULL, sizes) or NaN (values). */
+static void bad_input(void)
+{
+  const double m[2] = {0.1, 0.1}, v[2] = {1.0, 0.0}, gap[1] = {0.0}, bad_gap[1] = {-1e-9};
+  const double nan_mass[2] = {0.1, NAN}, zero_mass[2] = {0.1, 0.0};
+  const hcimpact_chain_law law[1] = {{STEEL_PAIR, 1.5, 0.0}};
+  const hcimpact_chain_wall wall = {STEEL_PLATE, 1.5, 0.1, -1.0};
+  hcimpact_chain_options options = {0};
+  hcimpact_chain_result r;
+  double x[2] = {-7.0, -7.0};
+  char message[256];
+  int stat;
+
+  r.time = -7.0;
+  stat = hcimpact_chain_simulate(2, NULL, v, gap, law, NULL, NULL, 0.0, NULL, &r, x, NULL, 0,
+                                 NULL, NULL, message, sizeof message);
+  check_status("masses NULL", stat, HCIMPACT_ERR_NULL, message);
+  check("masses NULL: nothing written", r.time == -7.0 && x[0] == -7.0);
+  check("masses NULL: a message", strlen(message) > 0);
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, NULL, NULL, 0.0, NULL, NULL, x, NULL, 0,
+                                 NULL, NULL, NULL, 0);
+  check_status("result NULL", stat, HCIMPACT_ERR_NULL, "");
+  stat = hcimpact_chain_simulate(2, m, v, NULL, law, NULL, NULL, 0.0, NULL, &r, x, NULL, 0,
+                                 NULL, NULL, NULL, 0);
+  check_status("gaps NULL", stat, HCIMPACT_ERR_NULL, "");
+  stat = hcimpact_chain_simulate(0, m, v, gap, law, NULL, NULL, 0.0, NULL, &r, x, NULL, 0, NULL,
+                                 NULL, message, sizeof message);
+  check_status("n = 0", stat, HCIMPACT_ERR_SIZE, message);
+  check("n = 0: nothing written", r.time == -7.0 && x[0] == -7.0);
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, NULL, NULL, 0.0, NULL, &r, x, NULL, -1,
+                                 NULL, NULL, NULL, 0);
+  check_status("capacity -1", stat, HCIMPACT_ERR_SIZE, "");
+
+  stat = hcimpact_chain_simulate(2, nan_mass, v, gap, law, NULL, NULL, 0.0, NULL, &r, x, NULL,
+                                 0, NULL, NULL, message, sizeof message);
+  check_status("mass NaN", stat, HCIMPACT_ERR_NOT_FINITE, message);
+  check("mass NaN: NaN outputs", isnan(r.time) && isnan(r.energy_error) && r.n_contacts == 0
+                                     && isnan(x[0]) && isnan(x[1]));
+  stat = hcimpact_chain_simulate(2, zero_mass, v, gap, law, NULL, NULL, 0.0, NULL, &r, x, NULL,
+                                 0, NULL, NULL, message, sizeof message);
+  check_status("mass 0", stat, HCIMPACT_ERR_MASS, message);
+  stat = hcimpact_chain_simulate(2, m, v, bad_gap, law, NULL, NULL, 0.0, NULL, &r, x, NULL, 0,
+                                 NULL, NULL, message, sizeof message);
+  check_status("negative gap", stat, HCIMPACT_ERR_DOMAIN, message);
+  check("negative gap: the message names the gap", strstr(message, "gap 1") != NULL);
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, &wall, NULL, 0.0, NULL, &r, x, NULL, 0,
+                                 NULL, NULL, message, sizeof message);
+  check_status("wall overlapping", stat, HCIMPACT_ERR_DOMAIN, message);
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, NULL, NULL, INFINITY, NULL, &r, x, NULL, 0,
+                                 NULL, NULL, message, sizeof message);
+  check_status("gravity infinite", stat, HCIMPACT_ERR_NOT_FINITE, message);
+  options.rtol = -1e-8;
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, NULL, NULL, 0.0, &options, &r, x, NULL, 0,
+                                 NULL, NULL, message, sizeof message);
+  check_status("rtol < 0", stat, HCIMPACT_ERR_DOMAIN, message);
+  options.rtol = 0.0;
+  options.method = 9;
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, NULL, NULL, 0.0, &options, &r, x, NULL, 0,
+                                 NULL, NULL, message, sizeof message);
+  check_status("method 9", stat, HCIMPACT_ERR_DOMAIN, message);
+  /* the touching pair struck from one side is isolated here (two bodies): exact works */
+  options.method = HCIMPACT_CHAIN_EXACT;
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, NULL, NULL, 0.0, &options, &r, x, NULL, 0,
+                                 NULL, NULL, message, sizeof message);
+  check_status("two touching bodies, exact", stat, HCIMPACT_OK, message);
+  check("contacts counted without an array", r.n_contacts == 1 && r.contacts_recorded == 0);
+}
+
+int main(void)
+{
+  two_bodies();
+  cradle();
+  bad_input();
+  if (failures) {
+    printf("%d checks failed\n", failures);
+    return 1;
+  }
+  printf("hcimpact_chain_simulate: all checks passed\n");
+  return 0;
+}

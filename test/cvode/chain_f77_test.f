@@ -1,0 +1,162 @@
+C     SPDX-License-Identifier: Apache-2.0
+C
+C     HCCHN (components/cvode/chain_f77.f90, libhcimpact_cvode) from a
+C     fixed-form program with an implicit interface: two balls against
+C     the closed forms of one impact (HCEMAS, HCIMP, HCTWOB), three
+C     touching balls (momentum, energy, not (0, 0, V)), the contacts
+C     table with a leading dimension larger than the rows asked for, and
+C     INFO for bad arguments. The bit-for-bit comparison with the
+C     Fortran API is test/cvode/test_chain_api.f90. STOP 1 if a check
+C     fails.
+C
+      PROGRAM CHNTST
+      IMPLICIT NONE
+      INTEGER NBAD
+      COMMON /CHNCNT/ NBAD
+      INTEGER LDC
+      PARAMETER (LDC = 10)
+      DOUBLE PRECISION XM(3), V(3), GAP(2), PLAW(3, 2), WALL(4, 2)
+      DOUBLE PRECISION OPTS(2), X(3), VF(3), RES(6), CONT(LDC, 7)
+      DOUBLE PRECISION OUT(8), EM, V1A, V2A, CPAIR, P0, P1, XNAN
+      INTEGER IOPTS(4), ICNT(11), ICON(LDC, 2), INFO, I
+      CHARACTER*100 MSG
+      LOGICAL ISNAN3
+C
+      NBAD = 0
+C     a quiet NaN from the library (0/0 would trap under -ffpe-trap)
+      CALL HCRES(-1.0D0, XNAN, INFO)
+      CPAIR = 1.7135D10 / SQRT(2.0D0)
+C
+C     Two balls, 0.1 and 0.3 kg, at 2 and -0.5 m/s, 0.1 mm apart
+      XM(1) = 0.1D0
+      XM(2) = 0.3D0
+      V(1) = 2.0D0
+      V(2) = -0.5D0
+      GAP(1) = 1.0D-4
+      PLAW(1, 1) = CPAIR
+      PLAW(2, 1) = 1.5D0
+      PLAW(3, 1) = 0.2D0
+      DO 10 I = 1, 4
+         WALL(I, 1) = 0.0D0
+         WALL(I, 2) = 0.0D0
+   10 CONTINUE
+      OPTS(1) = 0.0D0
+      OPTS(2) = 0.0D0
+      DO 20 I = 1, 4
+         IOPTS(I) = 0
+   20 CONTINUE
+      CALL HCCHN(2, XM, V, GAP, PLAW, WALL, 0.0D0, OPTS, IOPTS, X, VF,
+     &   RES, ICNT, 3, LDC, CONT, ICON, MSG, INFO)
+      CALL CHECK('two balls: INFO = 0', INFO .EQ. 0)
+      CALL CHECK('two balls: MSG', MSG(1:7) .EQ. 'success')
+      CALL CHECK('two balls: one contact, recorded, closed forms',
+     &   ICNT(1) .EQ. 1 .AND. ICNT(2) .EQ. 1 .AND. ICNT(3) .EQ. 1
+     &   .AND. ICON(1, 1) .EQ. 1 .AND. ICON(1, 2) .EQ. 1)
+      CALL HCEMAS(XM(1), XM(2), EM, INFO)
+      CALL HCIMP(EM, CPAIR, 1.5D0, 0.2D0, V(1) - V(2), OUT, INFO)
+      CALL HCTWOB(XM(1), XM(2), V(1), V(2), OUT(1), V1A, V2A, INFO)
+      CALL CLOSE('contact time', CONT(1, 2) - CONT(1, 1), OUT(8),
+     &   1.0D-11)
+      CALL CLOSE('approach speed', CONT(1, 3), V(1) - V(2), 1.0D-15)
+      CALL CLOSE('separation speed', CONT(1, 4), -OUT(3), 1.0D-14)
+      CALL CLOSE('peak force', CONT(1, 5), OUT(5), 1.0D-14)
+      CALL CLOSE('max deformation', CONT(1, 6), OUT(4), 1.0D-14)
+      CALL CLOSE('velocity 1 after', VF(1), V1A, 1.0D-14)
+      CALL CLOSE('velocity 2 after', VF(2), V2A, 1.0D-14)
+      CALL CHECK('two balls: energy and momentum',
+     &   RES(4) .LT. 1.0D-14 .AND. RES(6) .LT. 1.0D-15)
+      CALL CHECK('two balls: no rest time', ISNAN3(RES(2)))
+C
+C     Three touching balls, the first struck at 1 m/s: a cluster
+      XM(2) = 0.1D0
+      XM(3) = 0.1D0
+      V(1) = 1.0D0
+      V(2) = 0.0D0
+      V(3) = 0.0D0
+      GAP(1) = 0.0D0
+      GAP(2) = 0.0D0
+      PLAW(3, 1) = 0.0D0
+      DO 30 I = 1, 3
+         PLAW(I, 2) = PLAW(I, 1)
+   30 CONTINUE
+      OPTS(2) = 1.0D-10
+      CALL HCCHN(3, XM, V, GAP, PLAW, WALL, 0.0D0, OPTS, IOPTS, X, VF,
+     &   RES, ICNT, LDC, LDC, CONT, ICON, MSG, INFO)
+      CALL CHECK('cradle: INFO = 0', INFO .EQ. 0)
+      P0 = 0.1D0 * 1.0D0
+      P1 = 0.1D0 * (VF(1) + VF(2) + VF(3))
+      CALL CLOSE('cradle: momentum', P1, P0, 1.0D-14)
+      CALL CHECK('cradle: energy to the tolerance', RES(4) .LT. 1.0D-7)
+      CALL CHECK('cradle: integrated', ICNT(6) .GE. 1 .AND.
+     &   ICNT(7) .GT. 0)
+      CALL CHECK('cradle: not (0, 0, V)', ABS(VF(1)) .GT. 1.0D-3 .OR.
+     &   ABS(VF(2)) .GT. 1.0D-3)
+C
+C     Bad arguments: INFO = -i, NaN results
+      CALL HCCHN(0, XM, V, GAP, PLAW, WALL, 0.0D0, OPTS, IOPTS, X, VF,
+     &   RES, ICNT, LDC, LDC, CONT, ICON, MSG, INFO)
+      CALL CHECK('N = 0: INFO = -1', INFO .EQ. -1)
+      CALL CHECK('N = 0: RES NaN', ISNAN3(RES(1)))
+      XM(2) = 0.0D0
+      CALL HCCHN(3, XM, V, GAP, PLAW, WALL, 0.0D0, OPTS, IOPTS, X, VF,
+     &   RES, ICNT, LDC, LDC, CONT, ICON, MSG, INFO)
+      CALL CHECK('XM(2) = 0: INFO = -2', INFO .EQ. -2)
+      CALL CHECK('XM(2) = 0: X NaN', ISNAN3(X(1)) .AND. ISNAN3(VF(3)))
+      XM(2) = 0.1D0
+      GAP(2) = -1.0D-9
+      CALL HCCHN(3, XM, V, GAP, PLAW, WALL, 0.0D0, OPTS, IOPTS, X, VF,
+     &   RES, ICNT, LDC, LDC, CONT, ICON, MSG, INFO)
+      CALL CHECK('GAP(2) < 0: INFO = -4', INFO .EQ. -4)
+      GAP(2) = 0.0D0
+      CALL HCCHN(3, XM, V, GAP, PLAW, WALL, XNAN, OPTS, IOPTS, X, VF,
+     &   RES, ICNT, LDC, LDC, CONT, ICON, MSG, INFO)
+      CALL CHECK('GRAV NaN: INFO = -7', INFO .EQ. -7)
+      CALL HCCHN(3, XM, V, GAP, PLAW, WALL, 0.0D0, OPTS, IOPTS, X, VF,
+     &   RES, ICNT, 5, 4, CONT, ICON, MSG, INFO)
+      CALL CHECK('LDC < MAXC: INFO = -15', INFO .EQ. -15)
+      IOPTS(1) = 1
+      CALL HCCHN(3, XM, V, GAP, PLAW, WALL, 0.0D0, OPTS, IOPTS, X, VF,
+     &   RES, ICNT, LDC, LDC, CONT, ICON, MSG, INFO)
+      CALL CHECK('exact only, a cluster: INFO = 12', INFO .EQ. 12)
+C
+      IF (NBAD .GT. 0) THEN
+         WRITE (*, '(I0, A)') NBAD, ' checks failed'
+         STOP 1
+      END IF
+      WRITE (*, '(A)') 'HCCHN: all checks passed'
+      END
+C
+C     Count a failed check
+      SUBROUTINE CHECK(WHAT, OK)
+      IMPLICIT NONE
+      CHARACTER*(*) WHAT
+      LOGICAL OK
+      INTEGER NBAD
+      COMMON /CHNCNT/ NBAD
+      IF (.NOT. OK) THEN
+         NBAD = NBAD + 1
+         WRITE (*, '(2A)') ' FAIL ', WHAT
+      END IF
+      END
+C
+C     ACT within REL of EXP (NaN fails)
+      SUBROUTINE CLOSE(WHAT, ACT, EXP, REL)
+      IMPLICIT NONE
+      CHARACTER*(*) WHAT
+      DOUBLE PRECISION ACT, EXP, REL
+      LOGICAL ISNAN3
+      IF (ISNAN3(ACT)) THEN
+         CALL CHECK(WHAT, .FALSE.)
+      ELSE
+         IF (ABS(ACT - EXP) .GT. REL * ABS(EXP))
+     &      WRITE (*, '(A, 2E26.17)') ' got, expected: ', ACT, EXP
+         CALL CHECK(WHAT, ABS(ACT - EXP) .LE. REL * ABS(EXP))
+      END IF
+      END
+C
+C     NaN without an ordered comparison: only NaN differs from itself
+      LOGICAL FUNCTION ISNAN3(X)
+      IMPLICIT NONE
+      DOUBLE PRECISION X
+      ISNAN3 = .NOT. (X .EQ. X)
+      END
