@@ -477,13 +477,13 @@ contains
                ! overshoot: Adams at rtol 1e-12 missed the peak force by 1e-8)
                step_max = hermite_max(last%x, last%w, x, w, h)
                if (last%w > 0.0_wp .and. w <= 0.0_wp .and. last%x > 0.0_wp) then
-                  dense = dense_max(self, engine, j, t0, engine%time, .false.)
+                  dense = dense_max(self, j, t0, engine%time, .false.)
                   if (dense > 0.0_wp) step_max = dense
                end if
                self%contact(j)%deformation = max(self%contact(j)%deformation, step_max)
                step_max = hermite_max(last%f, last%df, e%force, df, h)
                if (last%df > 0.0_wp .and. df <= 0.0_wp .and. last%x > 0.0_wp) then
-                  dense = dense_max(self, engine, j, t0, engine%time, .true.)
+                  dense = dense_max(self, j, t0, engine%time, .true.)
                   if (dense > 0.0_wp) step_max = dense
                end if
                self%contact(j)%peak = max(self%contact(j)%peak, step_max)
@@ -508,56 +508,62 @@ contains
    !> The largest deformation (force: the largest force) of slot j in the last step
    !> [ta, tb], where its rate (the force's rate) falls from > 0 to <= 0: the root of
    !> that rate on CVODE's interpolant of the whole state (the Illinois variant of
-   !> regula falsi, at most 40 evaluations, each O(m)), and the value there.
-   function dense_max(self, engine, j, ta, tb, of_force) result(best)
-      type(cvode_chain_integrator), intent(inout) :: self
-      type(chain_engine), intent(in) :: engine
+   !> regula falsi, at most 40 evaluations, each O(m)), and the value there; 0 where
+   !> the interpolant cannot be evaluated or the rate does not change sign on it.
+   !> The work arrays are local and released on every path (no state kept).
+   function dense_max(self, j, ta, tb, of_force) result(best)
+      type(cvode_chain_integrator), intent(in) :: self
       integer, intent(in) :: j
       real(wp), intent(in) :: ta, tb
       logical, intent(in) :: of_force
       real(wp) :: best
-      real(c_double), pointer :: dky(:)
+      real(c_double), pointer, contiguous :: dky(:)
       type(N_Vector), pointer :: dky_vec
       real(wp), allocatable :: dy(:)
       real(wp) :: a, b, fa, fb, c, fc, value
-      integer :: it, side
+      integer :: it, side, alloc_stat
       logical :: ok
 
       best = 0.0_wp
-      allocate(dky(size(self%y)), dy(size(self%y)))
-      dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
-      a = ta
-      b = tb
-      call rate_at(a, fa, value)
-      if (.not. ok) return
-      call rate_at(b, fb, value)
-      if (.not. (ok .and. fa > 0.0_wp .and. fb <= 0.0_wp)) then
-         call FN_VDestroy(dky_vec)
+      allocate(dky(size(self%y)), dy(size(self%y)), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         if (associated(dky)) deallocate(dky)
          return
       end if
-      best = value
-      side = 0
-      c = b
-      do it = 1, 40
-         c = b - fb * (b - a) / (fb - fa)
-         if (.not. (c > a .and. c < b)) c = 0.5_wp * (a + b)
-         call rate_at(c, fc, value)
-         if (.not. ok) exit
-         best = max(best, value)
-         if (fc > 0.0_wp) then
-            a = c
-            fa = fc
-            if (side == -1) fb = 0.5_wp * fb
-            side = -1
-         else
-            b = c
-            fb = fc
-            if (side == 1) fa = 0.5_wp * fa
-            side = 1
-         end if
-         if (fc == 0.0_wp .or. b - a <= 4 * spacing(max(abs(a), abs(b)))) exit
-      end do
-      call FN_VDestroy(dky_vec)
+      dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
+      if (associated(dky_vec)) then
+         search: block
+            a = ta
+            b = tb
+            call rate_at(a, fa, value)
+            if (.not. ok) exit search
+            call rate_at(b, fb, value)
+            if (.not. (ok .and. fa > 0.0_wp .and. fb <= 0.0_wp)) exit search
+            best = value
+            side = 0
+            do it = 1, 40
+               c = b - fb * (b - a) / (fb - fa)
+               if (.not. (c > a .and. c < b)) c = 0.5_wp * (a + b)
+               call rate_at(c, fc, value)
+               if (.not. ok) exit
+               best = max(best, value)
+               if (fc > 0.0_wp) then
+                  a = c
+                  fa = fc
+                  if (side == -1) fb = 0.5_wp * fb
+                  side = -1
+               else
+                  b = c
+                  fb = fc
+                  if (side == 1) fa = 0.5_wp * fa
+                  side = 1
+               end if
+               if (fc == 0.0_wp .or. b - a <= 4 * spacing(max(abs(a), abs(b)))) exit
+            end do
+         end block search
+         call FN_VDestroy(dky_vec)
+      end if
+      deallocate(dky)
    contains
       !> The rate (deformation's or force's) and the value at the time t
       subroutine rate_at(t, rate, val)

@@ -691,8 +691,9 @@ def cases():
                         gravity=-9.81, max_contacts=1,
                         note=f"a steel ball hits a floor at {v:g} m/s under gravity: "
                              "its first contact"))
-    out.append(case("chain16_b01", [0.1] * 16, [1.0] + [0.0] * 15, [0.0] * 15,
-                    [pair(0.1)] * 15, note="a chain of 16 touching steel beads, struck"))
+    # (a struck chain of 16 touching beads took more than 40 minutes here and is
+    # not in the file; test/cvode/test_chain.f90 checks the longer chains by their
+    # energy balance and Nesterenko's wave)
     return out
 
 
@@ -818,7 +819,7 @@ def main():
                 "per pair 1..n-1; wall_* with index 0 left, n right; gravity; "
                 "max_contacts), then results (final_velocity per body, contact_* per "
                 "contact in the order they end, dissipated)\n")
-        f.write("case,quantity,index,hi,lo\n")
+        f.write("# case,quantity,index,hi,lo\n")
         for row in rows:
             f.write(",".join(row) + "\n")
     print(f"wrote {path} ({len(rows)} rows, {time.time() - start:.0f} s)")

@@ -263,7 +263,10 @@ contains
                cycle main
             case (advance_captured)
                engine%region_rested = .true.
-               if (.not. engine%rested) then
+               ! the system rests when the resting region is all of it (a stack at
+               ! rest while another body is still falling onto it is not)
+               if (.not. engine%rested .and. engine%first == 1 .and. &
+                  & engine%last == engine%n) then
                   engine%rested = .true.
                   engine%rest_time = engine%time
                end if
@@ -711,12 +714,18 @@ contains
       real(wp) :: gap, rate, mass, ul, vl, ur, vr, total
       type(contact_law) :: law
       type(exact_contact) :: c
+      logical :: pressed
 
       why = ""
       neighbour = -1
       call slot_bodies(engine, s, left, right)
       call slot_gap_at(engine, s, engine%time, gap, rate)
-      if (.not. rate < 0.0_wp) then
+      ! touching a wall without speed, gravity pushing the body into it: a contact
+      ! starts (with the rate 0 alone it was taken as grazing, rescheduled at the
+      ! same instant, and the run never advanced: a ball released on a floor)
+      pressed = rate == 0.0_wp .and. ((s == 0 .and. engine%gravity < 0.0_wp) .or. &
+         & (s == engine%n .and. engine%gravity > 0.0_wp))
+      if (.not. (rate < 0.0_wp .or. pressed)) then
          ! grazing: nothing happens
          call schedule(engine, s)
          return
@@ -981,6 +990,9 @@ contains
       engine%first = a
       engine%last = b
       engine%region_begun = .false.
+      ! a new region has not rested yet (a body falling onto a stack at rest joined
+      ! it: with the old region's flag the run ended as it landed)
+      engine%region_rested = .false.
       call log_switch(engine, a, b, why)
       do s = max(a - 2, 0), min(b + 1, engine%n)
          call schedule(engine, s)
@@ -1066,6 +1078,7 @@ contains
       call region_release(engine)
       engine%first = 0
       engine%last = 0
+      engine%region_rested = .false.
       call log_switch(engine, 0, 0, "the cluster has separated: closed forms again")
       do s = max(a - 2, 0), min(b + 1, engine%n)
          call schedule(engine, s)
