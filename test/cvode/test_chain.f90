@@ -770,7 +770,7 @@ contains
       type(chain_options) :: o
       type(chain_result) :: result
       real(wp) :: speed(3), peak(3), t_peak(first:last), v_peak(first:last), t_last
-      real(wp) :: exponent, width(3), vmax
+      real(wp) :: exponent, width(3), vmax, around(3)
       integer :: s, i, k, kbest, wide
 
       do s = 1, 3
@@ -789,8 +789,9 @@ contains
                & "solitary wave: the peak of a bead inside the samples")
             if (allocated(error)) return
             ! the vertex of the parabola through the three samples around the peak
-            call vertex(o%sample_times(kbest - 1:kbest + 1), &
-               & result%sample_velocities(i, kbest - 1:kbest + 1), t_peak(i), v_peak(i))
+            ! (a copy: the row of samples is not contiguous)
+            around = result%sample_velocities(i, kbest - 1:kbest + 1)
+            call vertex(o%sample_times(kbest - 1:kbest + 1), around, t_peak(i), v_peak(i))
          end do
          ! constant speed (beads per second, least squares) and peak
          speed(s) = slope(real([(i, i = first, last)], wp), t_peak)
