@@ -13,6 +13,7 @@ program tester_cvode
    use test_cvode_law, only : collect_law
    use test_cvode_stability, only : collect_stability
    use test_cvode_threads, only : collect_threads
+   use test_cvode_chain, only : collect_chain
    use test_cvode_chain_api, only : collect_chain_api
    implicit none
    type(testsuite_type), allocatable :: testsuites(:)
@@ -23,6 +24,7 @@ program tester_cvode
       new_testsuite("law", collect_law), &
       new_testsuite("stability", collect_stability), &
       new_testsuite("threads", collect_threads), &
+      new_testsuite("chain", collect_chain), &
       new_testsuite("chain_api", collect_chain_api) &
       ]
 

@@ -229,8 +229,10 @@ contains
             if (stat /= hcimpact_ok) exit main
             engine%region_begun = .true.
          end if
-         ! at rest for good, and nothing else can happen
-         if (until_rest .and. engine%region_rested .and. engine%heap_size == 0) then
+         ! at rest for good, and nothing else can happen: the region is the whole
+         ! system (a body outside it, in free flight under gravity, would fall onto it)
+         if (until_rest .and. engine%region_rested .and. engine%heap_size == 0 .and. &
+            & engine%first == 1 .and. engine%last == engine%n) then
             call integrator%finish(engine)
             call settle_at_rest(engine)
             exit main
@@ -261,7 +263,10 @@ contains
                cycle main
             case (advance_captured)
                engine%region_rested = .true.
-               if (.not. engine%rested) then
+               ! the system rests when the resting region is all of it (a stack at
+               ! rest while another body is still falling onto it is not)
+               if (.not. engine%rested .and. engine%first == 1 .and. &
+                  & engine%last == engine%n) then
                   engine%rested = .true.
                   engine%rest_time = engine%time
                end if
@@ -709,12 +714,18 @@ contains
       real(wp) :: gap, rate, mass, ul, vl, ur, vr, total
       type(contact_law) :: law
       type(exact_contact) :: c
+      logical :: pressed
 
       why = ""
       neighbour = -1
       call slot_bodies(engine, s, left, right)
       call slot_gap_at(engine, s, engine%time, gap, rate)
-      if (.not. rate < 0.0_wp) then
+      ! touching a wall without speed, gravity pushing the body into it: a contact
+      ! starts (with the rate 0 alone it was taken as grazing, rescheduled at the
+      ! same instant, and the run never advanced: a ball released on a floor)
+      pressed = rate == 0.0_wp .and. ((s == 0 .and. engine%gravity < 0.0_wp) .or. &
+         & (s == engine%n .and. engine%gravity > 0.0_wp))
+      if (.not. (rate < 0.0_wp .or. pressed)) then
          ! grazing: nothing happens
          call schedule(engine, s)
          return
@@ -979,6 +990,9 @@ contains
       engine%first = a
       engine%last = b
       engine%region_begun = .false.
+      ! a new region has not rested yet (a body falling onto a stack at rest joined
+      ! it: with the old region's flag the run ended as it landed)
+      engine%region_rested = .false.
       call log_switch(engine, a, b, why)
       do s = max(a - 2, 0), min(b + 1, engine%n)
          call schedule(engine, s)
@@ -1064,6 +1078,7 @@ contains
       call region_release(engine)
       engine%first = 0
       engine%last = 0
+      engine%region_rested = .false.
       call log_switch(engine, 0, 0, "the cluster has separated: closed forms again")
       do s = max(a - 2, 0), min(b + 1, engine%n)
          call schedule(engine, s)
@@ -1105,8 +1120,8 @@ contains
       type(chain_engine), intent(in) :: engine
       real(wp), intent(in) :: u(:), v(:)
       real(wp) :: margin
-      real(wp) :: e, b_sum, b_min, weight, x, xs
-      integer :: a, b, i, j, k, s
+      real(wp) :: e, b_sum, b_min, weight, x, xs, bound
+      integer :: a, b, i, k, s
       type(contact_law) :: law
       logical :: from_left
 
@@ -1123,30 +1138,25 @@ contains
       end do
       b_sum = 0.0_wp
       b_min = huge(1.0_wp)
-      ! contacts from the wall outwards: the wall's, then the pairs
-      do k = 0, b - a
+      ! contacts from the outermost inwards to the wall, the weight beyond each
+      ! accumulated on the way (O(m))
+      weight = 0.0_wp
+      do k = b - a, 0, -1
          if (from_left) then
             s = a - 1 + k
+            weight = weight + engine%chain%mass(s + 1) * abs(engine%gravity)
          else
             s = b - k
+            weight = weight + engine%chain%mass(s) * abs(engine%gravity)
          end if
-         weight = 0.0_wp
-         if (from_left) then
-            do j = s + 1, b
-               weight = weight + engine%chain%mass(j)
-            end do
-         else
-            do j = a, s
-               weight = weight + engine%chain%mass(j)
-            end do
-         end if
-         weight = weight * abs(engine%gravity)
          law = slot_law(engine, s)
          x = region_deformation(engine, s, u)
-         e = e + power_law_potential(law%stiffness, law%exponent, x) - weight * x
+         e = e + power_law_potential(law%stiffness, law%exponent, max(x, 0.0_wp)) &
+            & - weight * x
          xs = (weight / law%stiffness)**(1.0_wp / law%exponent)
-         b_sum = b_sum + weight * xs * (law%exponent / (law%exponent + 1.0_wp))
-         b_min = min(b_min, weight * xs * (law%exponent / (law%exponent + 1.0_wp)))
+         bound = weight * xs * (law%exponent / (law%exponent + 1.0_wp))
+         b_sum = b_sum + bound
+         b_min = min(b_min, bound)
       end do
       margin = e + b_sum - b_min
    end function capture_margin
@@ -1196,28 +1206,22 @@ contains
    subroutine rest_state(engine, u)
       type(chain_engine), intent(in) :: engine
       real(wp), intent(out) :: u(:)
-      integer :: a, b, k, s, j
-      real(wp) :: weight, xs
+      integer :: a, b, k, s
+      real(wp) :: weight, xs, total
       type(contact_law) :: law
       logical :: from_left
       a = engine%first
       b = engine%last
       from_left = engine%gravity < 0.0_wp
+      ! the weight beyond each contact: all of the region beyond the wall's, less
+      ! one body per contact further out (O(m))
+      total = sum(engine%chain%mass(a:b))
+      weight = total
       do k = 0, b - a
          if (from_left) then
             s = a - 1 + k
          else
             s = b - k
-         end if
-         weight = 0.0_wp
-         if (from_left) then
-            do j = s + 1, b
-               weight = weight + engine%chain%mass(j)
-            end do
-         else
-            do j = a, s
-               weight = weight + engine%chain%mass(j)
-            end do
          end if
          law = slot_law(engine, s)
          xs = (weight * abs(engine%gravity) / law%stiffness)**(1.0_wp / law%exponent)
@@ -1227,12 +1231,14 @@ contains
             else
                u(s + 1 - a + 1) = u(s - a + 1) - xs - engine%chain%gap(s)
             end if
+            weight = weight - engine%chain%mass(s + 1)
          else
             if (s == engine%n) then
                u(b - a + 1) = engine%chain%right_gap + xs
             else
                u(s - a + 1) = u(s + 1 - a + 1) + xs + engine%chain%gap(s)
             end if
+            weight = weight - engine%chain%mass(s)
          end if
       end do
    end subroutine rest_state
