@@ -211,6 +211,7 @@ contains
          & new_unittest("velocity-reference", test_velocity_reference), &
          & new_unittest("velocity-huge-exponent", test_velocity_huge_exponent), &
          & new_unittest("user-law-ranges", test_user_law_ranges), &
+         & new_unittest("user-law-peak-below-range", test_user_law_peak_below_range), &
          & new_unittest("damping-extremes", test_damping_extremes), &
          & new_unittest("out-of-memory", test_out_of_memory) &
          & ]
@@ -1257,6 +1258,49 @@ contains
          & .and. outcome%time_at_peak_force < outcome%compression_time, &
          & "damped: x_max below the elastic one, peak before x_max with 1 + b V > 1")
    end subroutine test_user_law_cubic
+
+   !> Found by the fuzzer (bench/fuzz): a law that jumps at 0 (c x^n with n near 0:
+   !> f(0) = 0, f(0+) = c) has its peak force closer to the impact than the smallest
+   !> double; the bisection ended at x = 0 and impact_law returned the peak force
+   !> f(0) = 0 at x = 0 and t = 0 with status OK. Now HCIMPACT_ERR_DOMAIN (the peak's
+   !> compression leaves the double range), and a law whose peak is in range (n = 1e-3)
+   !> still gives the power law's outcome.
+   subroutine test_user_law_peak_below_range(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(outcome_type) :: outcome, exact
+      integer :: stat, i
+      ! m, c, n, b, V: two contacts of the fuzzer's, and one of the issue's scale
+      real(wp), parameter :: cases(5, 3) = reshape([ &
+         & 5.9629770128710697e18_wp, 2.6820542935133372e154_wp, 7.1614220280550012e-304_wp, &
+         & 1.4901161193847656e-8_wp, 5.4210108624275222e-20_wp, &
+         & 1.8845331111599917e-15_wp, 6.4514064662082355e18_wp, 9.7903276935863817e-307_wp, &
+         & 6.0794466300197322e-19_wp, 8.6981533087282514e-12_wp, &
+         & 0.1_wp, 1.7135e10_wp, 1.0e-12_wp, 0.5_wp, 1.0_wp], [5, 3])
+      do i = 1, 3
+         call impact_law(power_law(stiffness=cases(2, i), exponent=cases(3, i)), cases(1, i), &
+            & cases(4, i), cases(5, i), outcome, stat)
+         if (stat == hcimpact_ok) then
+            call check(error, outcome%peak_force > 0.0_wp &
+               & .and. outcome%compression_at_peak_force > 0.0_wp &
+               & .and. outcome%time_at_peak_force > 0.0_wp, "case " // int_text(i) &
+               & // ": peak force " // format_real(outcome%peak_force) // " at x = " &
+               & // format_real(outcome%compression_at_peak_force) // " with status OK")
+         else
+            call check(error, stat, hcimpact_err_domain, "case " // int_text(i))
+            if (allocated(error)) return
+            call check(error, ieee_is_nan(outcome%peak_force), "NaN on error")
+         end if
+         if (allocated(error)) return
+      end do
+      call impact_law(power_law(stiffness=1.7135e10_wp, exponent=1.0e-3_wp), 0.1_wp, 0.5_wp, &
+         & 1.0_wp, outcome, stat)
+      call impact(contact_type(mass=0.1_wp, stiffness=1.7135e10_wp, exponent=1.0e-3_wp, &
+         & damping=0.5_wp, velocity=1.0_wp), exact, stat)
+      call check(error, stat == hcimpact_ok .and. outcome%peak_force > 0.0_wp &
+         & .and. abs(outcome%peak_force - exact%peak_force) <= 1e-13_wp * exact%peak_force, &
+         & "n = 1e-3: peak force " // format_real(outcome%peak_force) // ", closed forms " &
+         & // format_real(exact%peak_force))
+   end subroutine test_user_law_peak_below_range
 
    subroutine test_user_law_invalid(error)
       type(error_type), allocatable, intent(out) :: error
