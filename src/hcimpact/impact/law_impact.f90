@@ -350,6 +350,9 @@ contains
          stat = hcimpact_err_domain
          return
       end if
+      ! the trajectory never passes x_max; next to the turning point the potential's
+      ! inverse at the peak's l can round an ulp beyond it (b V = 1e-263)
+      xp = min(xp, f%x_max)
       if (from_turn) then
          call duration_from_turn(f, compression_phase, dist, t, ev(3), stat)
          tpeak = dur(1) - t
