@@ -111,9 +111,12 @@ contains
       real(wp), intent(in) :: x, p
       real(wp) :: y
       real(wp) :: estimate
+      y = 0.0_wp
+      ! the test below needs |p| < maxexponent - 4: a larger p fails it without forming
+      ! p e(x), which overflows for p near the largest double (a trap in Debug builds)
+      if (.not. abs(p) < real(maxexponent(1.0_wp) - 4, wp)) return
       ! log2(x^p) = p log2(x), log2(x) within 1 of exponent(x)
       estimate = p * real(exponent(x), wp)
-      y = 0.0_wp
       if (abs(estimate) + abs(p) < real(maxexponent(1.0_wp) - 4, wp)) y = x**p
    end function safe_power
 
