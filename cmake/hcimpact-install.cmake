@@ -52,11 +52,27 @@ foreach(_hcimpact_component_target IN LISTS _hcimpact_components)
     COMPONENT hcimpact_development)
 endforeach()
 
+# The installed .mod files are the Fortran API: the umbrella modules and the topic
+# modules the documentation names (doc/building.md). gfortran writes into a module file
+# everything a user of it needs, so the internal modules (double-double, rules, the C
+# and FORTRAN 77 layers, the components' solvers) stay in the build tree.
+set(_hcimpact_public_modules
+  hcimpact hcimpact_kinds hcimpact_status hcimpact_version_info hcimpact_lambertw
+  hcimpact_restitution_law hcimpact_quadrature hcimpact_impact_model hcimpact_hertz
+  hcimpact_elastic hcimpact_force_element hcimpact_chain hcimpact_chain_types
+  hcimpact_legacy_damping hcimpact_parallel)
+if(TARGET hcimpact_cvode)
+  list(APPEND _hcimpact_public_modules hcimpact_cvode)
+endif()
+if(TARGET hcimpact_lapack)
+  list(APPEND _hcimpact_public_modules hcimpact_calibration)
+endif()
+list(TRANSFORM _hcimpact_public_modules PREPEND "${HCIMPACT_MODULE_DIR}/")
+list(TRANSFORM _hcimpact_public_modules APPEND ".mod")
 install(
-  DIRECTORY "${HCIMPACT_MODULE_DIR}/"
+  FILES ${_hcimpact_public_modules}
   DESTINATION "${HCIMPACT_INSTALL_MODULEDIR}"
-  COMPONENT hcimpact_development
-  FILES_MATCHING PATTERN "*.mod" PATTERN "*.smod")
+  COMPONENT hcimpact_development)
 install(
   DIRECTORY "${PROJECT_SOURCE_DIR}/include/"
   DESTINATION "${CMAKE_INSTALL_INCLUDEDIR}"
@@ -164,6 +180,13 @@ set(HCIMPACT_PC_NAME "hcimpact")
 set(HCIMPACT_PC_DESCRIPTION "${PROJECT_DESCRIPTION}")
 set(HCIMPACT_PC_REQUIRES "")
 set(HCIMPACT_PC_LIBS "-L\${libdir} -lhcimpact")
+# A static libhcimpact.a built with OpenMP calls the OpenMP runtime, which a Fortran
+# or C link does not name by itself: in Libs, so that `pkg-config --libs` (without
+# --static, as legacy makefiles call it) is enough.
+if(NOT BUILD_SHARED_LIBS AND HCIMPACT_OPENMP_ENABLED)
+  _hcimpact_pc_link_flags(_hcimpact_pc_openmp ${OpenMP_Fortran_LIB_NAMES})
+  string(APPEND HCIMPACT_PC_LIBS " ${_hcimpact_pc_openmp}")
+endif()
 set(HCIMPACT_PC_CFLAGS "Cflags: -I\${includedir} -I\${moduledir}")
 configure_file("${PROJECT_SOURCE_DIR}/cmake/hcimpact.pc.in" "${PROJECT_BINARY_DIR}/hcimpact.pc" @ONLY)
 install(FILES "${PROJECT_BINARY_DIR}/hcimpact.pc" DESTINATION "${HCIMPACT_INSTALL_PKGCONFIGDIR}"

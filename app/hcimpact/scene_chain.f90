@@ -27,7 +27,7 @@ module hcimpact_scene_chain
    use hcimpact_scene_ode, only : ode_available, ode_missing, ode_chain
    use hcimpact_scene_console, only : say, emit, say_text, files_note, pad, str_int64
    use hcimpact_scene_system, only : wall_clock
-   use hcimpact_scene_text, only : str, real_str, duration_str, count_str, csv_real
+   use hcimpact_scene_text, only : str, real_str, duration_str, count_str, csv_real, csv_text
    implicit none
    private
 
@@ -160,7 +160,7 @@ contains
       call csv_open(res, "parameters.csv", [character(len=8) :: "name", "value", "unit"], &
          & csv, error)
       if (allocated(error)) return
-      call csv_line(csv, "title," // quoted(sc%title) // ",-")
+      call csv_line(csv, "title," // csv_text(sc%title) // ",-")
       call csv_line(csv, "hcimpact_version," // hcimpact_version_string // ",-")
       call csv_line(csv, "kind,system,-")
       call item("bodies", real(s%n, wp), "-")
@@ -200,22 +200,6 @@ contains
       real(wp) :: row(3)
       row = [law%stiffness, law%exponent, law%damping]
    end function law_row
-
-   !> A text field for a CSV file: quoted, inner quotes doubled.
-   pure function quoted(text) result(out)
-      character(len=*), intent(in) :: text
-      character(len=:), allocatable :: out
-      integer :: i
-      out = '"'
-      do i = 1, len(text)
-         if (text(i:i) == '"') then
-            out = out // '""'
-         else
-            out = out // text(i:i)
-         end if
-      end do
-      out = out // '"'
-   end function quoted
 
    !> The library's system and options of a scene.
    subroutine to_library(s, chain, options)

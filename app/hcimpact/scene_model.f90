@@ -9,7 +9,7 @@
 !> one kind of scene (`system_outputs`).
 module hcimpact_scene_model
    use, intrinsic :: iso_fortran_env, only : int64
-   use hcimpact_kinds, only : wp
+   use hcimpact_kinds, only : wp, nan
    use hcimpact_chain_types, only : contact_law, method_auto, integrator_bdf
    use hcimpact_scene_text, only : lower
    implicit none
@@ -24,8 +24,6 @@ module hcimpact_scene_model
    public :: scene_line_length, max_scene_lines, max_bodies
    public :: unset_bits, is_unset
 
-   !> Quiet NaN
-   real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
 
    !> The bits that mark a real a scene file did not set: a quiet NaN with a payload of
    !> its own, told apart from any value a file can hold (also "nan", whose payload

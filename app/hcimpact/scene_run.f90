@@ -49,7 +49,8 @@ module hcimpact_scene_run
       & console_reason, say, emit, say_wrapped, say_text, shout, files_note, pad, str_int64, &
       & progress_begin, progress_step, progress_clear, progress_end
    use hcimpact_scene_numbers, only : power_product, quotient_of
-   use hcimpact_scene_text, only : str, real_str, duration_str, join, count_str, csv_real
+   use hcimpact_scene_text, only : str, real_str, duration_str, join, count_str, csv_real, &
+      & csv_text
    implicit none
    private
 
@@ -331,22 +332,6 @@ contains
          call csv_line(csv, name // "," // csv_real(value) // "," // unit)
       end subroutine item
    end subroutine write_parameters
-
-   !> A text field for a CSV file: quoted, inner quotes doubled.
-   pure function csv_text(text) result(out)
-      character(len=*), intent(in) :: text
-      character(len=:), allocatable :: out
-      integer :: i
-      out = '"'
-      do i = 1, len(text)
-         if (text(i:i) == '"') then
-            out = out // '""'
-         else
-            out = out // text(i:i)
-         end if
-      end do
-      out = out // '"'
-   end function csv_text
 
    !> The scene's bodies, contact and damping, for the log.
    subroutine describe_scene(sc)

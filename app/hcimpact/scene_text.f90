@@ -6,7 +6,7 @@ module hcimpact_scene_text
    implicit none
    private
 
-   public :: lower, str, real_str, csv_real, duration_str, join, word_index, count_str
+   public :: lower, str, real_str, csv_real, csv_text, duration_str, join, word_index, count_str
    public :: printable
 
    !> Text of an integer or a real
@@ -121,6 +121,22 @@ contains
          text = trim(adjustl(buffer))
       end if
    end function csv_real
+
+   !> A text field for a CSV file: quoted, inner quotes doubled.
+   pure function csv_text(text) result(out)
+      character(len=*), intent(in) :: text
+      character(len=:), allocatable :: out
+      integer :: i
+      out = '"'
+      do i = 1, len(text)
+         if (text(i:i) == '"') then
+            out = out // '""'
+         else
+            out = out // text(i:i)
+         end if
+      end do
+      out = out // '"'
+   end function csv_text
 
    !> A duration in s, ms or us.
    pure function duration_str(seconds) result(text)

@@ -21,10 +21,10 @@ module hcimpact_cvode_chain
       & c_null_ptr, c_loc, c_funloc, c_f_pointer, c_associated
    use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
-   use, intrinsic :: ieee_exceptions, only : ieee_flag_type, ieee_overflow, ieee_invalid, &
-      & ieee_divide_by_zero, ieee_get_halting_mode, ieee_set_halting_mode, ieee_get_flag, &
-      & ieee_set_flag, ieee_support_halting
    use hcimpact_kinds, only : wp, nan
+   use hcimpact_cvode_report, only : report_detail
+   use hcimpact_cvode_halting, only : halting_suspend, halting_resume, callback_enter, &
+      & callback_leave
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_solver
    use hcimpact_force_element, only : contact_force_type
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
@@ -55,10 +55,6 @@ module hcimpact_cvode_chain
    private
 
    public :: chain_simulate, cvode_chain_integrator
-
-   !> The exceptions a caller may trap (-ffpe-trap=invalid,zero,overflow)
-   type(ieee_flag_type), parameter :: trapped(3) = [ieee_overflow, ieee_invalid, &
-      & ieee_divide_by_zero]
 
    !> A contact of the region in progress
    type :: open_contact
@@ -261,12 +257,7 @@ contains
 
       ! CVODE is not written for trapping floating-point exceptions (module header of
       ! hcimpact_cvode_solver): halting off while it runs, back on in the callbacks
-      self%region%halting = .false.
-      if (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_invalid) &
-         & .and. ieee_support_halting(ieee_divide_by_zero)) then
-         call ieee_get_halting_mode(trapped, self%region%halting)
-         call ieee_set_halting_mode(trapped, .false.)
-      end if
+      call halting_suspend(self%region%halting)
 
       setup: block
          where = "SUNContext_Create"
@@ -289,7 +280,7 @@ contains
          end if
          if (.not. c_associated(self%mem)) exit setup
          where = "CVodeSetErrHandler"
-         ierr = capture_errors(self%ctx, self%mem, c_null_ptr)
+         ierr = capture_errors(self%ctx, self%mem, c_loc(self%region%report))
          if (ierr /= 0) exit setup
          where = "CVodeInit"
          ierr = FCVodeInit(self%mem, c_funloc(chain_rhs_callback), real(engine%time, c_double), &
@@ -330,7 +321,7 @@ contains
       if (ierr /= 0) then
          stat = hcimpact_err_solver
          engine%message = "CVODE setup failed in " // trim(where) // ": " &
-            & // cvode_flag_name(ierr)
+            & // cvode_flag_name(ierr) // report_detail(self%region%report)
          call release_all(self)
          return
       end if
@@ -372,7 +363,7 @@ contains
          if (ierr < 0) then
             stat = hcimpact_err_solver
             write(engine%message, '(a, es10.3, a)') "CVODE failed at t = ", tret(1), &
-               & " s: " // cvode_flag_name(ierr)
+               & " s: " // cvode_flag_name(ierr) // report_detail(self%region%report)
             what = advance_failed
             return
          end if
@@ -758,10 +749,7 @@ contains
       if (associated(self%region)) then
          halting = self%region%halting
          deallocate(self%region)
-         if (any(halting)) then
-            call ieee_set_flag(trapped, .false.)
-            call ieee_set_halting_mode(trapped, halting)
-         end if
+         call halting_resume(halting)
       end if
    end subroutine release_all
 
@@ -779,11 +767,11 @@ contains
       real(c_double), pointer :: yv(:), dv(:)
       logical :: ok, flags(3)
       call c_f_pointer(user_data, region)
-      if (any(region%halting)) call traps_on(region, flags)
+      call callback_enter(region%halting, flags)
       yv => FN_VGetArrayPointer(y)
       dv => FN_VGetArrayPointer(ydot)
       call region_rhs(region, real(t, wp), yv, dv, ok)
-      if (any(region%halting)) call traps_off(flags)
+      call callback_leave(region%halting, flags)
       ierr = 0
       ! a force beyond the double range: CVODE retries with a smaller step
       if (.not. ok) ierr = 1
@@ -827,7 +815,7 @@ contains
       integer :: ldim, smu, n
       logical :: flags(3)
       call c_f_pointer(user_data, region)
-      if (any(region%halting)) call traps_on(region, flags)
+      call callback_enter(region%halting, flags)
       yv => FN_VGetArrayPointer(y)
       n = region_size(region%m)
       ldim = int(FSUNBandMatrix_LDim(jac_mat))
@@ -836,25 +824,8 @@ contains
       call c_f_pointer(c_loc(data(1)), band, [ldim, n])
       band = 0.0_c_double
       call region_jacobian(region, real(t, wp), yv, smu, band)
-      if (any(region%halting)) call traps_off(flags)
+      call callback_leave(region%halting, flags)
       ierr = 0
    end function chain_jacobian_callback
-
-   !> In a callback: the caller's halting modes back on, with the flags CVODE may have
-   !> raised set aside.
-   subroutine traps_on(region, flags)
-      type(chain_region), intent(in) :: region
-      logical, intent(out) :: flags(3)
-      call ieee_get_flag(trapped, flags)
-      call ieee_set_flag(trapped, .false.)
-      call ieee_set_halting_mode(trapped, region%halting)
-   end subroutine traps_on
-
-   !> Leaving a callback: halting off again for CVODE, its flags restored.
-   subroutine traps_off(flags)
-      logical, intent(in) :: flags(3)
-      call ieee_set_halting_mode(trapped, .false.)
-      call ieee_set_flag(trapped, flags)
-   end subroutine traps_off
 
 end module hcimpact_cvode_chain

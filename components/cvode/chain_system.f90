@@ -27,6 +27,7 @@ module hcimpact_cvode_chain_system
    use hcimpact_kinds, only : wp
    use hcimpact_force_element, only : contact_force_type, contact_force_pair
    use hcimpact_chain_types, only : contact_law
+   use hcimpact_cvode_report, only : solver_report
    implicit none
    private
 
@@ -57,6 +58,8 @@ module hcimpact_cvode_chain_system
       real(wp) :: out_t0(2) = 0.0_wp, out_u0(2) = 0.0_wp, out_v0(2) = 0.0_wp
       !> The caller's halting modes (the driver turns halting off while CVODE runs)
       logical :: halting(3) = .false.
+      !> Set by the solver's error handler: its last message and code
+      type(solver_report) :: report
       !> The relative tolerance and the scales of the errors: deformation (m), speed
       !> (m/s) and energy (J) (the driver's error weights)
       real(wp) :: rtol = 1.0e-10_wp, scale(3) = 1.0_wp

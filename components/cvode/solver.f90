@@ -46,10 +46,9 @@ module hcimpact_cvode_solver
       & c_null_ptr, c_loc, c_funloc, c_f_pointer, c_associated
    use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
-   use, intrinsic :: ieee_exceptions, only : ieee_flag_type, ieee_overflow, ieee_invalid, &
-      & ieee_divide_by_zero, ieee_get_halting_mode, ieee_set_halting_mode, ieee_get_flag, &
-      & ieee_set_flag, ieee_support_halting
-   use hcimpact_kinds, only : wp
+   use hcimpact_kinds, only : wp, nan
+   use hcimpact_cvode_halting, only : halting_suspend, halting_resume, callback_enter, &
+      & callback_leave
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
       & hcimpact_err_damping, hcimpact_err_domain, hcimpact_err_no_convergence, &
@@ -63,6 +62,7 @@ module hcimpact_cvode_solver
       & largest_eigenvalue, scaled_energy, guarded_product, guarded_quotient, finite_value, &
       & rhs_ok, rhs_recoverable, rhs_law_failure, &
       & n_events, event_max_compression, event_peak_force, event_end_of_contact
+   use hcimpact_cvode_report, only : report_detail
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
       & context_create, context_free, capture_errors
@@ -107,13 +107,6 @@ module hcimpact_cvode_solver
    !> CVODE's own CV_MEM_FAIL)
    character(len=*), parameter :: out_of_memory_message = "out of memory recording " &
       & // "the trajectory (options%record_trajectory)"
-
-   !> Quiet NaN
-   real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
-
-   !> The exceptions a caller may trap (-ffpe-trap=invalid,zero,overflow)
-   type(ieee_flag_type), parameter :: trapped(3) = [ieee_overflow, ieee_invalid, &
-      & ieee_divide_by_zero]
 
    !> Settings of one integration. The defaults give a relative error of a few 1e-8
    !> in the contact time (doc/cvode.md).
@@ -569,14 +562,9 @@ contains
       ! convergence failure (a smaller step). A caller that traps exceptions would be
       ! killed there, so halting is off while CVODE runs; the callbacks switch the
       ! caller's halting back on for our own code (traps still catch our bugs).
-      sys%halting = .false.
-      if (ieee_support_halting(ieee_overflow) .and. ieee_support_halting(ieee_invalid) &
-         & .and. ieee_support_halting(ieee_divide_by_zero)) then
-         call ieee_get_halting_mode(trapped, sys%halting)
-         call ieee_set_halting_mode(trapped, .false.)
-      end if
+      call halting_suspend(sys%halting)
       sys%law_failed = .false.
-      sys%solver_code = 0
+      sys%report%code = 0
       simulation%length_unit = sys%length
       simulation%time_unit = sys%time
       y = [0.0_c_double, 1.0_c_double]
@@ -618,7 +606,7 @@ contains
             exit setup
          end if
          where = "CVodeSetErrHandler"
-         ierr = capture_errors(ctx, cvode_mem, c_loc(sys))
+         ierr = capture_errors(ctx, cvode_mem, c_loc(sys%report))
          if (ierr /= 0) exit setup
          where = "CVodeInit"
          ierr = FCVodeInit(cvode_mem, c_funloc(rhs_callback), 0.0_c_double, y_vec)
@@ -687,7 +675,7 @@ contains
       if (ierr /= 0) then
          stat = hcimpact_err_solver
          simulation%message = "CVODE setup failed in " // where // ": " &
-            & // cvode_flag_name(ierr) // solver_detail(sys)
+            & // cvode_flag_name(ierr) // report_detail(sys%report)
       else
          tret = 0.0_c_double
          ! CVODE's own limit (CVodeSetMaxNumSteps) counts the steps of one call, and
@@ -714,7 +702,7 @@ contains
                end if
                simulation%message = "CVODE failed at t = " &
                   & // trim(real_text(guarded_product(tret(1), sys%time))) // " s: " &
-                  & // cvode_flag_name(ierr) // solver_detail(sys)
+                  & // cvode_flag_name(ierr) // report_detail(sys%report)
                exit march
             end if
             ! every step is returned once with CV_SUCCESS (a root in it is returned
@@ -882,10 +870,7 @@ contains
    !> and the caller's halting modes come back.
    subroutine restore_halting(sys)
       type(impact_system), intent(in) :: sys
-      if (any(sys%halting)) then
-         call ieee_set_flag(trapped, .false.)
-         call ieee_set_halting_mode(trapped, sys%halting)
-      end if
+      call halting_resume(sys%halting)
    end subroutine restore_halting
 
    !> Append the state at the scaled time tau to the trajectory, in SI units; `added`
@@ -959,7 +944,7 @@ contains
       logical :: flags(3)
 
       call c_f_pointer(user_data, sys)
-      if (any(sys%halting)) call traps_on(sys, flags)
+      call callback_enter(sys%halting, flags)
       yv => FN_VGetArrayPointer(y)
       dv => FN_VGetArrayPointer(ydot)
       ! (a copy: a section of the pointer as the argument would make gfortran's
@@ -967,7 +952,7 @@ contains
       state = yv(1:2)
       call system_rhs(sys, t, state, dy, stat)
       dv(1:2) = dy
-      if (any(sys%halting)) call traps_off(flags)
+      call callback_leave(sys%halting, flags)
       ierr = callback_flag(sys, stat)
    end function rhs_callback
 
@@ -986,7 +971,7 @@ contains
       logical :: flags(3)
 
       call c_f_pointer(user_data, sys)
-      if (any(sys%halting)) call traps_on(sys, flags)
+      call callback_enter(sys%halting, flags)
       yv => FN_VGetArrayPointer(y)
       ! the wrapper returns a pointer of size 1 to the column-major 2x2 data
       data => FSUNDenseMatrix_Data(jac_mat)
@@ -994,7 +979,7 @@ contains
       state = yv(1:2)
       call system_jacobian(sys, t, state, jac, stat)
       jv = jac
-      if (any(sys%halting)) call traps_off(flags)
+      call callback_leave(sys%halting, flags)
       ierr = callback_flag(sys, stat)
    end function jacobian_callback
 
@@ -1035,51 +1020,16 @@ contains
       logical :: flags(3)
 
       call c_f_pointer(user_data, sys)
-      if (any(sys%halting)) call traps_on(sys, flags)
+      call callback_enter(sys%halting, flags)
       yv => FN_VGetArrayPointer(y)
       state = yv(1:2)
       call system_events(sys, t, state, g, stat)
       gout = g
-      if (any(sys%halting)) call traps_off(flags)
+      call callback_leave(sys%halting, flags)
       ierr = 0
       if (stat == rhs_law_failure) sys%law_failed = .true.
       if (stat /= rhs_ok) ierr = -1
    end function events_callback
-
-   !> In a callback: the caller's halting modes back on, with the flags CVODE may have
-   !> raised set aside (unmasking a raised flag could trap at once).
-   subroutine traps_on(sys, flags)
-      type(impact_system), intent(in) :: sys
-      logical, intent(out) :: flags(3)
-      call ieee_get_flag(trapped, flags)
-      call ieee_set_flag(trapped, .false.)
-      call ieee_set_halting_mode(trapped, sys%halting)
-   end subroutine traps_on
-
-   !> Leaving a callback: halting off again for CVODE, its flags restored.
-   subroutine traps_off(flags)
-      logical, intent(in) :: flags(3)
-      call ieee_set_halting_mode(trapped, .false.)
-      call ieee_set_flag(trapped, flags)
-   end subroutine traps_off
-
-   !> Length of solver_detail(sys).
-   pure function solver_detail_length(sys) result(length)
-      type(impact_system), intent(in) :: sys
-      integer :: length
-      length = 0
-      if (allocated(sys%solver_message)) then
-         if (len(sys%solver_message) > 0) length = len(sys%solver_message) + 3
-      end if
-   end function solver_detail_length
-
-   !> The last message of CVODE's error handler, if any, as " (<message>)"; empty
-   !> without one.
-   pure function solver_detail(sys) result(text)
-      type(impact_system), intent(in) :: sys
-      character(len=solver_detail_length(sys)) :: text
-      if (len(text) > 0) text = " (" // sys%solver_message // ")"
-   end function solver_detail
 
    !> The name of a CVODE return flag, blank-padded.
    pure function flag_label(flag) result(name)

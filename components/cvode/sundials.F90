@@ -10,7 +10,7 @@
 !> - Errors: in 6, CVODE reports its errors and warnings to a handler set on the
 !>   solver (CVodeSetErrHandlerFn); in 7, its errors to a stack of handlers on the
 !>   context (SUNContext_PushErrHandler; CVodeSetErrHandlerFn is gone). Either way the
-!>   handler here stores the message in the impact_system given as its user data
+!>   handler here stores the message in the solver_report given as its user data
 !>   and prints nothing: the library never writes to the terminal. SUNDIALS 7 sends
 !>   CVODE's warnings (CV_WARNING) to its logger instead, which prints them on
 !>   stdout by default; the solver turns off the only ones CVODE 7.1 has ("t + h = t",
@@ -39,7 +39,7 @@ module hcimpact_cvode_sundials
    use fsundials_linearsolver_mod, only : SUNLinearSolver, FSUNLinSolFree
    use fcvode_mod, only : FCVodeSetErrHandlerFn
 #endif
-   use hcimpact_cvode_system, only : impact_system
+   use hcimpact_cvode_report, only : solver_report
    implicit none
    private
 
@@ -97,7 +97,7 @@ contains
       type(c_ptr), intent(in) :: ctx
       !> The CVODE memory
       type(c_ptr), intent(in) :: cvode_mem
-      !> c_loc of the impact_system of this integration
+      !> c_loc of the solver_report (hcimpact_cvode_report) of this integration
       type(c_ptr), intent(in) :: data
       !> 0 or the SUNDIALS error code
       integer(c_int) :: ierr
@@ -129,18 +129,18 @@ contains
    end subroutine error_handler
 #endif
 
-   !> Store "function: message" and the code in the impact_system at `user_data`.
+   !> Store "function: message" and the code in the solver_report at `user_data`.
    subroutine record_message(user_data, code, func, msg)
       type(c_ptr), intent(in) :: user_data, func, msg
       integer(c_int), intent(in) :: code
-      type(impact_system), pointer :: sys
+      type(solver_report), pointer :: report
       character(len=:), allocatable :: func_text, msg_text
       if (.not. c_associated(user_data)) return
-      call c_f_pointer(user_data, sys)
-      sys%solver_code = int(code)
+      call c_f_pointer(user_data, report)
+      report%code = int(code)
       call copy_c_string(func, func_text)
       call copy_c_string(msg, msg_text)
-      sys%solver_message = func_text // ": " // msg_text
+      report%message = func_text // ": " // msg_text
    end subroutine record_message
 
    !> Copy of a NUL-terminated C string (at most max_message characters). A

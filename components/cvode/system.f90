@@ -43,6 +43,7 @@ module hcimpact_cvode_system
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp, finite_value
    use hcimpact_status, only : hcimpact_ok
+   use hcimpact_cvode_report, only : solver_report
    use hcimpact_elastic, only : elastic_law
    use hcimpact_force_element, only : contact_force_type, contact_force
    implicit none
@@ -142,8 +143,7 @@ module hcimpact_cvode_system
       !> Set by the callbacks: the last evaluation failure of the user's procedures
       logical :: law_failed = .false.
       !> Set by the solver's error handler: its last message and code
-      character(len=:), allocatable :: solver_message
-      integer :: solver_code = 0
+      type(solver_report) :: report
    end type impact_system
 
 contains

@@ -28,10 +28,9 @@
 !> The functions return NaN for arguments outside their domain (as the elementary
 !> functions do); the subroutine returns a status.
 module hcimpact_hertz
-   use, intrinsic :: iso_fortran_env, only : int64
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan, ieee_value, &
       & ieee_positive_inf, ieee_negative_inf
-   use hcimpact_kinds, only : wp
+   use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_velocity, hcimpact_err_restitution
    use hcimpact_double_double, only : dd_real, dd, two_sum, dd_sqrt, dd_scale, &
@@ -41,8 +40,6 @@ module hcimpact_hertz
 
    public :: hertz_constant, effective_mass, two_body_velocities
 
-   !> Quiet NaN
-   real(wp), parameter :: nan = transfer(9221120237041090560_int64, 1.0_wp)
 
    !> The number significand 2^exponent: a double-double significand near 1 with the
    !> binary exponent apart, so that products and quotients neither overflow nor
