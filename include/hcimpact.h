@@ -311,7 +311,9 @@ typedef struct {
  *  value that is not finite, or a law that is not increasing, HCIMPACT_ERR_ELASTIC_LAW.
  *  HCIMPACT_ERR_DOMAIN where the law's values the method needs leave the double range
  *  (energies m V^2 h(bV)/(bV)^2 near the bottom of the range, f or f' infinite or
- *  subnormal where the peak's sign is decided), rather than a wrong number. */
+ *  subnormal where the peak's sign is decided; a peak force closer to the impact than
+ *  the smallest double, as for a law that jumps at 0 like c x^n with n near 0), rather
+ *  than a wrong number. */
 HCIMPACT_API int hcimpact_impact_law(const hcimpact_elastic_law *law, double mass, double damping,
                                      double velocity, hcimpact_outcome *outcome);
 

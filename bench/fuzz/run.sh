@@ -10,13 +10,20 @@
 #     when they are built): gfortran -fsanitize=address,undefined,float-cast-overflow
 #     -fcheck=all (bounds, pointers, recursion...); its objects link against clang's
 #     sanitizer runtimes (same ASan interface);
+#   - comparisons in the Fortran code: gfortran -fsanitize-coverage=trace-cmp calls
+#     libFuzzer's __sanitizer_cov_trace_cmp*/const_cmp*/switch hooks at every integer
+#     comparison (and two empty stubs in the target at floating-point ones), which
+#     libFuzzer turns into features with -use_value_profile=1: the guidance inside
+#     the library (gfortran cannot emit libFuzzer's edge counters);
 #   - the fuzz target bench/fuzz/fuzz_api.c: clang -fsanitize=fuzzer,address,undefined
-#     (coverage guidance comes from the C side; the Fortran code is not
-#     coverage-instrumented, gfortran cannot emit libFuzzer's counters).
+#     (edge coverage of the C side).
 #   Not instrumented: SUNDIALS, LAPACK/BLAS, libgfortran, libc.
 #
+# The committed corpus bench/fuzz/corpus seeds every run (read only; new inputs go to
+# the build directory's corpus); --merge-corpus minimises a run's corpus into it.
+#
 # Usage: bench/fuzz/run.sh [--seconds N] [--build-dir DIR] [--jobs N] [--no-components]
-#                          [--fpe] [--quiet] [--keep-corpus]
+#                          [--fpe] [--quiet] [--no-value-profile] [--no-seed-corpus]
 #   --seconds N       fuzzing budget (default 300)
 #   --runs N          stop after N executions instead (with --seed: a reproducible run)
 #   --seed N          libFuzzer's random seed (default: chosen by libFuzzer)
@@ -33,6 +40,13 @@
 #                     overflow) in the library, as -ffpe-trap would: a separate finding
 #                     class, not part of the default run (see doc/robustness.md)
 #   --quiet           only the summary
+#   --no-value-profile  no comparison guidance (no trace-cmp, no -use_value_profile):
+#                     the C side's edges only, for comparison
+#   --no-seed-corpus  do not read the committed corpus bench/fuzz/corpus
+#   --with-chain      also fuzz hcimpact_chain_simulate (HCIMPACT_FUZZ_CHAIN=1): off by
+#                     default until its known findings are fixed (doc/robustness.md)
+#   --merge-corpus    after the run, add to bench/fuzz/corpus the inputs of the run's
+#                     corpus that bring new features (libFuzzer -merge=1)
 # Exit status: 0 no finding; 1 a crash, hang, sanitizer report or contract violation;
 # 77 clang or libFuzzer missing (CTest: skipped).
 set -euo pipefail
@@ -49,6 +63,11 @@ fpe=0
 quiet=0
 keep_going=0
 triage_only=0
+value_profile=1
+seed_corpus=1
+merge_corpus=0
+seed_dirs=()
+committed="$root/bench/fuzz/corpus"
 while [ $# -gt 0 ]; do
   case "$1" in
     --seconds) seconds="$2"; shift 2 ;;
@@ -62,6 +81,10 @@ while [ $# -gt 0 ]; do
     --keep-going) keep_going=1; shift ;;
     --triage-only) triage_only=1; shift ;;
     --quiet) quiet=1; shift ;;
+    --no-value-profile) value_profile=0; shift ;;
+    --no-seed-corpus) seed_corpus=0; shift ;;
+    --merge-corpus) merge_corpus=1; shift ;;
+    --with-chain) export HCIMPACT_FUZZ_CHAIN=1; shift ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -78,6 +101,7 @@ if ! command -v "$cc" >/dev/null 2>&1; then
   exit 77
 fi
 mkdir -p "$build"
+build="$(cd "$build" && pwd)"   # absolute: libFuzzer runs inside it
 # libFuzzer and the sanitizer runtimes come with libclang-rt-<version>-dev
 printf 'int LLVMFuzzerTestOneInput(const unsigned char *d, unsigned long n) { (void)d; (void)n; return 0; }\n' \
   >"$build/probe.c"
@@ -93,6 +117,7 @@ if [ "$triage_only" = 0 ]; then
 san_flags="-fsanitize=address,undefined,float-cast-overflow -fno-omit-frame-pointer"
 # -fcheck=all but recursion: that check is a static flag (not what is fuzzed here)
 fflags="-g -O1 $san_flags -fcheck=all -fcheck=no-recursion"
+if [ "$value_profile" = 1 ]; then fflags="$fflags -fsanitize-coverage=trace-cmp"; fi
 if [ "$components" = 1 ]; then with=AUTO; else with=OFF; fi
 if [ "$fpe" = 1 ]; then fpe_flag=ON; else fpe_flag=OFF; fi
 
@@ -125,15 +150,24 @@ fuzz_args=(-max_total_time="$seconds" -timeout=20 -rss_limit_mb=4096 -max_len=51
   -print_final_stats=1 -artifact_prefix="$artifacts/")
 if [ -n "$runs" ]; then fuzz_args+=(-runs="$runs"); fi
 if [ -n "$seed" ]; then fuzz_args+=(-seed="$seed"); fi
+if [ "$value_profile" = 1 ]; then fuzz_args+=(-use_value_profile=1); fi
+if [ "$seed_corpus" = 1 ] && [ -d "$committed" ]; then seed_dirs=("$committed"); fi
 if [ "$keep_going" = 1 ]; then
   fuzz_args+=(-fork="$jobs" -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1)
 elif [ "$jobs" -gt 1 ]; then
   fuzz_args+=(-jobs="$jobs" -workers="$jobs")
 fi
 started=$(date +%s.%N)
-(cd "$build" && ./fuzz_api "${fuzz_args[@]}" "$corpus") >"$log" 2>&1 || status=$?
+(cd "$build" && ./fuzz_api "${fuzz_args[@]}" "$corpus" "${seed_dirs[@]}") >"$log" 2>&1 || status=$?
 elapsed=$(awk -v a="$started" -v b="$(date +%s.%N)" 'BEGIN {printf "%.1f", b - a}')
 if [ "$jobs" -gt 1 ]; then cat "$build"/fuzz-*.log >>"$log" 2>/dev/null || true; fi
+if [ "$merge_corpus" = 1 ]; then
+  say "merging the run's corpus into $committed"
+  mkdir -p "$committed"
+  merge_args=(-merge=1 -timeout=20 -rss_limit_mb=4096 -max_len=512)
+  if [ "$value_profile" = 1 ]; then merge_args+=(-use_value_profile=1); fi
+  (cd "$build" && ./fuzz_api "${merge_args[@]}" "$committed" "$corpus") >"$build/merge.log" 2>&1
+fi
 else
   corpus="$build/corpus"; artifacts="$build/artifacts"; log="$build/fuzz.log"
   components_built="(as built before)"
@@ -184,7 +218,7 @@ cat <<EOF
 hcimpact fuzz summary ($(date -u +%Y-%m-%dT%H:%MZ), $(uname -m), budget ${seconds} s${runs:+ or $runs runs}${seed:+, seed $seed}, ran ${elapsed} s, $jobs worker(s))
   target            bench/fuzz/fuzz_api.c (entry points of: $components_built)
   executions        $execs ($rate exec/s)
-  coverage          ${cov:-n/a} (C side), corpus $corpus_size inputs
+  coverage          ${cov:-n/a} ($( [ "$value_profile" = 1 ] && echo "C edges; features with the Fortran comparisons" || echo "C side only")), corpus $corpus_size inputs$( [ ${#seed_dirs[@]} -gt 0 ] && echo " (+ $(find "$committed" -type f | wc -l) committed)")
   crashes           $crashes
   hangs (> 20 s)    $hangs
   leaks             $leaks

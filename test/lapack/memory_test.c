@@ -24,7 +24,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include "hcimpact.h"
+#include "hcimpact_lapack.h"
 
 enum { FIT_DAMPING, FIT_DAMPING_LINEAR, FIT_STATIC, FIT_ELASTIC, FIT_IMPACT, N_FITS };
 static const char *fit_names[N_FITS] = {"fit_damping", "fit_damping_linear", "fit_static",

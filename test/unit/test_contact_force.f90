@@ -67,6 +67,7 @@ contains
          new_unittest("law-form", test_law_form), &
          new_unittest("array-form", test_array_form), &
          new_unittest("bad-input", test_bad_input), &
+         new_unittest("huge-exponent", test_huge_exponent), &
          new_unittest("energy-and-closed-forms", test_energy_and_closed_forms) &
          ]
    end subroutine collect_contact_force
@@ -201,6 +202,37 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_dual_numbers
+
+   !> Found by the fuzzer (bench/fuzz): exponents near the largest double made n ln x
+   !> overflow inside the logarithmic product, and the element returned NaN in every
+   !> field with status OK (c = 1.7e-77, n = 2.5e307, x = 3.8e-10). c x^n, n c x^(n-1)
+   !> and c x^(n+1)/(n+1) are 0 (below the smallest double) for x < 1 and +inf for
+   !> x > 1 there, as the header promises for results beyond the range.
+   subroutine test_huge_exponent(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(contact_force_type) :: e
+      integer :: stat, i
+      real(wp), parameter :: exponents(4) = [2.4945427586795597e307_wp, 1.0e300_wp, &
+         & 1.0e20_wp, huge(1.0_wp)]
+      do i = 1, size(exponents)
+         call contact_force(1.727973921681797e-77_wp, exponents(i), 9.2244979367616184e18_wp, &
+            & 3.7653080653399229e-10_wp, 0.0_wp, e, stat)
+         call check(error, stat == hcimpact_ok .and. e%force == 0.0_wp &
+            & .and. e%dforce_dx == 0.0_wp .and. e%dforce_dv == 0.0_wp &
+            & .and. e%potential == 0.0_wp .and. e%dissipation == 0.0_wp, &
+            & "x < 1, n = " // trim(format_real(exponents(i))) // ": F " &
+            & // trim(format_real(e%force)) // ", dF/dx " // trim(format_real(e%dforce_dx)) &
+            & // ", potential " // trim(format_real(e%potential)))
+         if (allocated(error)) return
+         call contact_force(1.0_wp, exponents(i), 0.0_wp, 2.0_wp, 1.0_wp, e, stat)
+         call check(error, stat == hcimpact_ok .and. e%force > huge(1.0_wp) &
+            & .and. e%dforce_dx > huge(1.0_wp) .and. e%potential > huge(1.0_wp), &
+            & "x = 2, n = " // trim(format_real(exponents(i))) // ": F " &
+            & // trim(format_real(e%force)) // ", dF/dx " // trim(format_real(e%dforce_dx)) &
+            & // ", potential " // trim(format_real(e%potential)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_huge_exponent
 
    !> The clamp: F = 0 and both derivatives 0 where 1 + b v <= 0; the dissipation
    !> -f(x) v there; F continuous across the kink (it tends to 0 from above).

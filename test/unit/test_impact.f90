@@ -153,6 +153,16 @@ module test_impact
       procedure :: force_derivative => cubic_force_derivative
    end type cubic_spring
 
+   !> The power law c x^n as a caller would write it (Fortran's **, C's pow): each
+   !> value within an ulp or two, not the library's own evaluation
+   type, extends(elastic_law) :: plain_power_law
+      real(wp) :: c = 1.0_wp, n = 1.5_wp
+   contains
+      procedure :: force => plain_power_force
+      procedure :: potential => plain_power_potential
+      procedure :: force_derivative => plain_power_derivative
+   end type plain_power_law
+
    !> A law that goes wrong beyond `limit` (negative potential)
    type, extends(elastic_law) :: broken_law
       real(wp) :: limit = 1.0e-3_wp
@@ -211,6 +221,8 @@ contains
          & new_unittest("velocity-reference", test_velocity_reference), &
          & new_unittest("velocity-huge-exponent", test_velocity_huge_exponent), &
          & new_unittest("user-law-ranges", test_user_law_ranges), &
+         & new_unittest("user-law-peak-below-range", test_user_law_peak_below_range), &
+         & new_unittest("user-law-peak-within-x-max", test_user_law_peak_within_x_max), &
          & new_unittest("damping-extremes", test_damping_extremes), &
          & new_unittest("out-of-memory", test_out_of_memory) &
          & ]
@@ -1113,6 +1125,27 @@ contains
       y = self%k + 0.0_wp * x
    end function linear_force_derivative
 
+   pure function plain_power_force(self, x) result(y)
+      class(plain_power_law), intent(in) :: self
+      real(wp), intent(in) :: x
+      real(wp) :: y
+      y = self%c * x**self%n
+   end function plain_power_force
+
+   pure function plain_power_potential(self, x) result(y)
+      class(plain_power_law), intent(in) :: self
+      real(wp), intent(in) :: x
+      real(wp) :: y
+      y = self%c * x**(self%n + 1.0_wp) / (self%n + 1.0_wp)
+   end function plain_power_potential
+
+   pure function plain_power_derivative(self, x) result(y)
+      class(plain_power_law), intent(in) :: self
+      real(wp), intent(in) :: x
+      real(wp) :: y
+      y = self%c * self%n * x**(self%n - 1.0_wp)
+   end function plain_power_derivative
+
    pure function cubic_force(self, x) result(y)
       class(cubic_spring), intent(in) :: self
       real(wp), intent(in) :: x
@@ -1257,6 +1290,72 @@ contains
          & .and. outcome%time_at_peak_force < outcome%compression_time, &
          & "damped: x_max below the elastic one, peak before x_max with 1 + b V > 1")
    end subroutine test_user_law_cubic
+
+   !> Found by the fuzzer (bench/fuzz): a law that jumps at 0 (c x^n with n near 0:
+   !> f(0) = 0, f(0+) = c) has its peak force closer to the impact than the smallest
+   !> double; the bisection ended at x = 0 and impact_law returned the peak force
+   !> f(0) = 0 at x = 0 and t = 0 with status OK. Now HCIMPACT_ERR_DOMAIN (the peak's
+   !> compression leaves the double range), and a law whose peak is in range (n = 1e-3)
+   !> still gives the power law's outcome.
+   subroutine test_user_law_peak_below_range(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(outcome_type) :: outcome, exact
+      integer :: stat, i
+      ! m, c, n, b, V: two contacts of the fuzzer's, and one of the issue's scale
+      real(wp), parameter :: cases(5, 3) = reshape([ &
+         & 5.9629770128710697e18_wp, 2.6820542935133372e154_wp, 7.1614220280550012e-304_wp, &
+         & 1.4901161193847656e-8_wp, 5.4210108624275222e-20_wp, &
+         & 1.8845331111599917e-15_wp, 6.4514064662082355e18_wp, 9.7903276935863817e-307_wp, &
+         & 6.0794466300197322e-19_wp, 8.6981533087282514e-12_wp, &
+         & 0.1_wp, 1.7135e10_wp, 1.0e-12_wp, 0.5_wp, 1.0_wp], [5, 3])
+      do i = 1, 3
+         call impact_law(power_law(stiffness=cases(2, i), exponent=cases(3, i)), cases(1, i), &
+            & cases(4, i), cases(5, i), outcome, stat)
+         if (stat == hcimpact_ok) then
+            call check(error, outcome%peak_force > 0.0_wp &
+               & .and. outcome%compression_at_peak_force > 0.0_wp &
+               & .and. outcome%time_at_peak_force > 0.0_wp, "case " // int_text(i) &
+               & // ": peak force " // format_real(outcome%peak_force) // " at x = " &
+               & // format_real(outcome%compression_at_peak_force) // " with status OK")
+         else
+            call check(error, stat, hcimpact_err_domain, "case " // int_text(i))
+            if (allocated(error)) return
+            call check(error, ieee_is_nan(outcome%peak_force), "NaN on error")
+         end if
+         if (allocated(error)) return
+      end do
+      call impact_law(power_law(stiffness=1.7135e10_wp, exponent=1.0e-3_wp), 0.1_wp, 0.5_wp, &
+         & 1.0_wp, outcome, stat)
+      call impact(contact_type(mass=0.1_wp, stiffness=1.7135e10_wp, exponent=1.0e-3_wp, &
+         & damping=0.5_wp, velocity=1.0_wp), exact, stat)
+      call check(error, stat == hcimpact_ok .and. outcome%peak_force > 0.0_wp &
+         & .and. abs(outcome%peak_force - exact%peak_force) <= 1e-13_wp * exact%peak_force, &
+         & "n = 1e-3: peak force " // format_real(outcome%peak_force) // ", closed forms " &
+         & // format_real(exact%peak_force))
+   end subroutine test_user_law_peak_below_range
+
+   !> Found by the fuzzer (bench/fuzz): with b V tiny the peak lies next to the turning
+   !> point, and its compression, from the potential's inverse at a point of the
+   !> trajectory, came out one ulp above x_max (the power law through C's pow,
+   !> m = 1.03e-6, c = 2648, n = 1/4, b = 3.75e-273, V = 3058.34375). The compression
+   !> at the peak is at most x_max.
+   subroutine test_user_law_peak_within_x_max(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(outcome_type) :: outcome
+      integer :: stat, i
+      real(wp) :: damping
+      do i = 0, 40
+         damping = 3.7548046705201132e-273_wp * 10.0_wp**i
+         call impact_law(plain_power_law(c=2648.0_wp, n=0.25_wp), &
+            & 1.0283110896125436e-6_wp, damping, 3058.34375_wp, outcome, stat)
+         call check(error, stat == hcimpact_ok .and. outcome%compression_at_peak_force > 0.0_wp &
+            & .and. outcome%compression_at_peak_force <= outcome%max_compression, &
+            & "b = " // format_real(damping) // ": x at the peak " &
+            & // format_real(outcome%compression_at_peak_force) // ", x_max " &
+            & // format_real(outcome%max_compression))
+         if (allocated(error)) return
+      end do
+   end subroutine test_user_law_peak_within_x_max
 
    subroutine test_user_law_invalid(error)
       type(error_type), allocatable, intent(out) :: error

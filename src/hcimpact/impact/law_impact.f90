@@ -308,7 +308,9 @@ contains
    !>
    !> Errors: as for the power law (mass, damping, velocity), and
    !> hcimpact_err_elastic_law when the law returns a non-finite, negative or
-   !> non-increasing value where it is evaluated.
+   !> non-increasing value where it is evaluated; hcimpact_err_domain also when the
+   !> peak force acts closer to the impact than the smallest double (a law that jumps
+   !> at x = 0, e.g. c x^n with n near 0).
    pure subroutine impact_law(law, mass, damping, velocity, outcome, stat)
       !> The elastic law
       class(elastic_law), intent(in) :: law
@@ -341,6 +343,16 @@ contains
       ! the peak: its distance in l from the turning point or from the impact
       call law_peak(f, damping, from_turn, dist, xp, w_peak, stat)
       if (stat /= hcimpact_ok) return
+      if (.not. xp > 0.0_wp) then
+         ! the peak lies closer to the impact than the smallest double (a law that jumps
+         ! at 0, such as c x^n with n near 0: G < 0 down to x = 2^-1074); f(0) = 0 cannot
+         ! stand for the force there, so its value and place are beyond the range
+         stat = hcimpact_err_domain
+         return
+      end if
+      ! the trajectory never passes x_max; next to the turning point the potential's
+      ! inverse at the peak's l can round an ulp beyond it (b V = 1e-263)
+      xp = min(xp, f%x_max)
       if (from_turn) then
          call duration_from_turn(f, compression_phase, dist, t, ev(3), stat)
          tpeak = dur(1) - t

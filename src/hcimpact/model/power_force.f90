@@ -6,6 +6,7 @@
 !> hcimpact_elastic's `power_law` and the contact-force element (hcimpact_force_element)
 !> both evaluate the law here.
 module hcimpact_power_force
+   use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_positive_inf
    use hcimpact_kinds, only : wp
    use hcimpact_double_double, only : dd_real, dd, two_sum, operator(+), operator(-), &
       & operator(*), dd_exp, dd_log
@@ -110,9 +111,12 @@ contains
       real(wp), intent(in) :: x, p
       real(wp) :: y
       real(wp) :: estimate
+      y = 0.0_wp
+      ! the test below needs |p| < maxexponent - 4: a larger p fails it without forming
+      ! p e(x), which overflows for p near the largest double (a trap in Debug builds)
+      if (.not. abs(p) < real(maxexponent(1.0_wp) - 4, wp)) return
       ! log2(x^p) = p log2(x), log2(x) within 1 of exponent(x)
       estimate = p * real(exponent(x), wp)
-      y = 0.0_wp
       if (abs(estimate) + abs(p) < real(maxexponent(1.0_wp) - 4, wp)) y = x**p
    end function safe_power
 
@@ -120,14 +124,36 @@ contains
    !> double-double (each ln(2^e f) = e ln 2 + ln f to about 2^-100 relative), then one
    !> exponential: a result above the largest double is +Inf, below the smallest
    !> subnormal 0, and a subnormal result is rounded once more to its precision.
+   !> Where |p ln x| alone exceeds what the other logarithms (each within 745 of 0)
+   !> could bring back into the range, the result is 0 or +Inf without forming p ln x,
+   !> which overflows for p near the largest double (the fuzzer's n = 2.5e307 at
+   !> x = 3.8e-10 gave NaN: -inf plus the NaN of its trailing part).
    pure function log_product(x, p, factors, divisor) result(y)
       real(wp), intent(in) :: x, p
       real(wp), intent(in) :: factors(:)
       real(wp), intent(in) :: divisor
       real(wp) :: y
       type(dd_real) :: l, r
+      real(wp) :: log_x, bound
+      logical :: beyond
       integer :: i
+      ! beyond what a product of doubles can bring back: about 2 ln(huge) per factor
+      real(wp), parameter :: beyond_range = 1500.0_wp
 
+      log_x = log(x)
+      bound = beyond_range * real(size(factors) + 2, wp)
+      ! |p ln x| > bound, tested without forming a product or quotient that could
+      ! overflow (separate branches: Fortran's .and. may evaluate both operands)
+      if (p >= 1.0_wp) then
+         beyond = abs(log_x) > bound / p
+      else
+         beyond = abs(log_x) * abs(p) > bound
+      end if
+      if (beyond) then
+         y = 0.0_wp
+         if (log_x > 0.0_wp) y = ieee_value(1.0_wp, ieee_positive_inf)
+         return
+      end if
       l = p * dd_log(dd(x)) - dd_log(dd(divisor))
       do i = 1, size(factors)
          l = l + dd_log(dd(factors(i)))
