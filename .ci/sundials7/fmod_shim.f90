@@ -4,7 +4,8 @@
 !
 ! A stand-in for the Fortran 2003 interface of SUNDIALS 7 (the SWIG-generated
 ! modules fsundials_core_mod, fnvector_serial_mod, fsunmatrix_dense_mod,
-! fsunlinsol_dense_mod and fcvode_mod), written by hand for exactly the names that
+! fsunlinsol_dense_mod, fsunmatrix_band_mod, fsunlinsol_band_mod and fcvode_mod),
+! written by hand for exactly the names that
 ! components/cvode uses. The C library it calls is a real SUNDIALS 7.1 build (CVODES,
 ! whose C functions have the same names and signatures as CVODE's).
 !
@@ -307,6 +308,119 @@ contains
 end module fsunlinsol_dense_mod
 
 
+!> fsunmatrix_band_mod: the band matrix (the systems of bodies on a line).
+module fsunmatrix_band_mod
+   use, intrinsic :: iso_c_binding, only : c_int64_t, c_double, c_ptr, c_loc, c_f_pointer
+   use fsundials_core_mod, only : SUNMatrix
+   implicit none
+   private
+
+   public :: FSUNBandMatrix, FSUNBandMatrix_Data, FSUNBandMatrix_LData, &
+      & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
+
+   interface
+      ! SUNMatrix SUNBandMatrix(sunindextype N, sunindextype mu, sunindextype ml,
+      ! SUNContext)
+      function c_band_matrix(n, mu, ml, ctx) result(a) bind(C, name="SUNBandMatrix")
+         import :: c_int64_t, c_ptr
+         integer(c_int64_t), value :: n, mu, ml
+         type(c_ptr), value :: ctx
+         type(c_ptr) :: a
+      end function c_band_matrix
+      ! sunrealtype* SUNBandMatrix_Data(SUNMatrix)
+      function c_band_data(a) result(p) bind(C, name="SUNBandMatrix_Data")
+         import :: c_ptr
+         type(c_ptr), value :: a
+         type(c_ptr) :: p
+      end function c_band_data
+      ! sunindextype SUNBandMatrix_LData(SUNMatrix)
+      function c_band_ldata(a) result(n) bind(C, name="SUNBandMatrix_LData")
+         import :: c_ptr, c_int64_t
+         type(c_ptr), value :: a
+         integer(c_int64_t) :: n
+      end function c_band_ldata
+      ! sunindextype SUNBandMatrix_LDim(SUNMatrix)
+      function c_band_ldim(a) result(n) bind(C, name="SUNBandMatrix_LDim")
+         import :: c_ptr, c_int64_t
+         type(c_ptr), value :: a
+         integer(c_int64_t) :: n
+      end function c_band_ldim
+      ! sunindextype SUNBandMatrix_StoredUpperBandwidth(SUNMatrix)
+      function c_band_smu(a) result(n) bind(C, name="SUNBandMatrix_StoredUpperBandwidth")
+         import :: c_ptr, c_int64_t
+         type(c_ptr), value :: a
+         integer(c_int64_t) :: n
+      end function c_band_smu
+   end interface
+
+contains
+
+   function FSUNBandMatrix(n, mu, ml, sunctx) result(a)
+      integer(c_int64_t), intent(in) :: n, mu, ml
+      type(c_ptr) :: sunctx
+      type(SUNMatrix), pointer :: a
+      call c_f_pointer(c_band_matrix(n, mu, ml, sunctx), a)
+   end function FSUNBandMatrix
+
+   function FSUNBandMatrix_LData(a) result(n)
+      type(SUNMatrix), target, intent(inout) :: a
+      integer(c_int64_t) :: n
+      n = c_band_ldata(c_loc(a))
+   end function FSUNBandMatrix_LData
+
+   function FSUNBandMatrix_LDim(a) result(n)
+      type(SUNMatrix), target, intent(inout) :: a
+      integer(c_int64_t) :: n
+      n = c_band_ldim(c_loc(a))
+   end function FSUNBandMatrix_LDim
+
+   function FSUNBandMatrix_StoredUpperBandwidth(a) result(n)
+      type(SUNMatrix), target, intent(inout) :: a
+      integer(c_int64_t) :: n
+      n = c_band_smu(c_loc(a))
+   end function FSUNBandMatrix_StoredUpperBandwidth
+
+   !> The column-major data of the matrix, all of its stored entries
+   function FSUNBandMatrix_Data(a) result(x)
+      type(SUNMatrix), target, intent(inout) :: a
+      real(c_double), dimension(:), pointer :: x
+      call c_f_pointer(c_band_data(c_loc(a)), x, [FSUNBandMatrix_LData(a)])
+   end function FSUNBandMatrix_Data
+
+end module fsunmatrix_band_mod
+
+
+!> fsunlinsol_band_mod: the band direct linear solver.
+module fsunlinsol_band_mod
+   use, intrinsic :: iso_c_binding, only : c_ptr, c_loc, c_f_pointer
+   use fsundials_core_mod, only : N_Vector, SUNMatrix, SUNLinearSolver
+   implicit none
+   private
+
+   public :: FSUNLinSol_Band
+
+   interface
+      ! SUNLinearSolver SUNLinSol_Band(N_Vector y, SUNMatrix A, SUNContext)
+      function c_linsol_band(y, a, ctx) result(s) bind(C, name="SUNLinSol_Band")
+         import :: c_ptr
+         type(c_ptr), value :: y, a, ctx
+         type(c_ptr) :: s
+      end function c_linsol_band
+   end interface
+
+contains
+
+   function FSUNLinSol_Band(y, a, sunctx) result(s)
+      type(N_Vector), target, intent(inout) :: y
+      type(SUNMatrix), target, intent(inout) :: a
+      type(c_ptr) :: sunctx
+      type(SUNLinearSolver), pointer :: s
+      call c_f_pointer(c_linsol_band(c_loc(y), c_loc(a), sunctx), s)
+   end function FSUNLinSol_Band
+
+end module fsunlinsol_band_mod
+
+
 !> fcvode_mod: the CVODE integrator (bound to the functions of CVODES, which
 !> carry the same C names and signatures).
 module fcvode_mod
@@ -357,7 +471,7 @@ module fcvode_mod
       & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
       & FCVodeGetNumGEvals, FCVodeGetNumErrTestFails, FCVodeGetNumNonlinSolvIters, &
       & FCVodeGetNumNonlinSolvConvFails, FCVodeGetNumLinSolvSetups, &
-      & FCVodeGetNumLinRhsEvals
+      & FCVodeGetNumLinRhsEvals, FCVodeWFtolerances, FCVodeSetStopTime, FCVodeGetDky
 
    interface
       ! void* CVodeCreate(int lmm, SUNContext)
@@ -391,6 +505,29 @@ module fcvode_mod
          type(c_ptr), value :: abstol
          integer(c_int) :: flag
       end function c_sv_tolerances
+      ! int CVodeWFtolerances(void*, CVEwtFn efun)
+      function c_wf_tolerances(mem, efun) result(flag) bind(C, name="CVodeWFtolerances")
+         import :: c_int, c_ptr, c_funptr
+         type(c_ptr), value :: mem
+         type(c_funptr), value :: efun
+         integer(c_int) :: flag
+      end function c_wf_tolerances
+      ! int CVodeSetStopTime(void*, sunrealtype tstop)
+      function c_set_stop_time(mem, tstop) result(flag) bind(C, name="CVodeSetStopTime")
+         import :: c_int, c_ptr, c_double
+         type(c_ptr), value :: mem
+         real(c_double), value :: tstop
+         integer(c_int) :: flag
+      end function c_set_stop_time
+      ! int CVodeGetDky(void*, sunrealtype t, int k, N_Vector dky)
+      function c_get_dky(mem, t, k, dky) result(flag) bind(C, name="CVodeGetDky")
+         import :: c_int, c_ptr, c_double
+         type(c_ptr), value :: mem
+         real(c_double), value :: t
+         integer(c_int), value :: k
+         type(c_ptr), value :: dky
+         integer(c_int) :: flag
+      end function c_get_dky
       ! int CVodeSetLinearSolver(void*, SUNLinearSolver, SUNMatrix)
       function c_set_linear_solver(mem, ls, a) result(flag) &
             & bind(C, name="CVodeSetLinearSolver")
@@ -569,6 +706,29 @@ contains
       integer(c_int) :: flag
       flag = c_set_linear_solver(cvode_mem, c_loc(ls), c_loc(a))
    end function FCVodeSetLinearSolver
+
+   function FCVodeWFtolerances(cvode_mem, efun) result(flag)
+      type(c_ptr) :: cvode_mem
+      type(c_funptr), intent(in), value :: efun
+      integer(c_int) :: flag
+      flag = c_wf_tolerances(cvode_mem, efun)
+   end function FCVodeWFtolerances
+
+   function FCVodeSetStopTime(cvode_mem, tstop) result(flag)
+      type(c_ptr) :: cvode_mem
+      real(c_double), intent(in) :: tstop
+      integer(c_int) :: flag
+      flag = c_set_stop_time(cvode_mem, tstop)
+   end function FCVodeSetStopTime
+
+   function FCVodeGetDky(cvode_mem, t, k, dky) result(flag)
+      type(c_ptr) :: cvode_mem
+      real(c_double), intent(in) :: t
+      integer(c_int), intent(in) :: k
+      type(N_Vector), target, intent(inout) :: dky
+      integer(c_int) :: flag
+      flag = c_get_dky(cvode_mem, t, k, c_loc(dky))
+   end function FCVodeGetDky
 
    function FCVodeSetJacFn(cvode_mem, jac) result(flag)
       type(c_ptr) :: cvode_mem
