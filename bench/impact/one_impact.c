@@ -88,33 +88,78 @@ static double median(double *values, size_t count)
     return count % 2 ? values[count / 2] : 0.5 * (values[count / 2 - 1] + values[count / 2]);
 }
 
-/* One pass over all contacts in the given order: nanoseconds per call; the number of
- * failed calls in *failures */
-static double time_pass(impact_fn impact, const contact *contacts, const size_t *order,
-                        size_t count, outcome *results, size_t *failures)
+/* What is timed: the impacts of the libraries on `contacts`, or one Lambert W function
+ * of each library on `z`; each library's results in its own buffer */
+typedef struct {
+    int nlibs;
+    impact_fn impact[max_libs];
+    lambert_fn w[max_libs];
+    const contact *contacts; /* the impacts, or NULL: the Lambert W function on z */
+    const double *z;
+    void *results[max_libs];
+    size_t failures[max_libs];
+} workload;
+
+/* One pass of library l over all inputs in the given order: nanoseconds per call; the
+ * number of failed impacts in failures[l] */
+static double time_pass(workload *work, int l, const size_t *order, size_t count)
 {
     size_t failed = 0;
     double t0 = thread_seconds();
-    for (size_t i = 0; i < count; ++i) {
-        size_t k = order[i];
-        failed += impact(&contacts[k], &results[k]) != 0;
+    if (work->contacts) {
+        outcome *out = work->results[l];
+        for (size_t i = 0; i < count; ++i) {
+            size_t k = order[i];
+            failed += work->impact[l](&work->contacts[k], &out[k]) != 0;
+        }
+    } else {
+        double *out = work->results[l];
+        for (size_t i = 0; i < count; ++i) {
+            size_t k = order[i];
+            out[k] = work->w[l](work->z[k]);
+        }
     }
     double t1 = thread_seconds();
-    *failures = failed;
+    work->failures[l] = failed;
     return 1e9 * (t1 - t0) / (double)count;
 }
 
-/* One pass of a Lambert W function over all arguments in the given order: ns per call */
-static double time_pass_w(lambert_fn w, const double *z, const size_t *order, size_t count,
-                          double *results)
+/* One untimed pass per library (page in code and data), then the rounds: in each, every
+ * library one pass in a fresh order (the libraries' order alternating between rounds).
+ * Per library l: the sorted times per call in per_round[l * rounds ...], the sorted
+ * per-round ratios to library 0 in ratios[l * rounds ...], and their medians */
+static void run_rounds(workload *work, int rounds, size_t *order, size_t count,
+                       double *per_round, double *ratios, double *time_median,
+                       double *ratio_median)
 {
-    double t0 = thread_seconds();
-    for (size_t i = 0; i < count; ++i) {
-        size_t k = order[i];
-        results[k] = w(z[k]);
+    for (size_t i = 0; i < count; ++i) order[i] = i;
+    for (int l = 0; l < work->nlibs; ++l) time_pass(work, l, order, count);
+    for (int r = 0; r < rounds; ++r) {
+        double t[max_libs];
+        for (int s = 0; s < work->nlibs; ++s) {
+            int l = (r % 2) ? work->nlibs - 1 - s : s;
+            shuffle(order, count);
+            t[l] = time_pass(work, l, order, count);
+        }
+        for (int l = 0; l < work->nlibs; ++l) {
+            per_round[l * rounds + r] = t[l];
+            ratios[l * rounds + r] = t[l] / t[0];
+        }
     }
-    double t1 = thread_seconds();
-    return 1e9 * (t1 - t0) / (double)count;
+    for (int l = 0; l < work->nlibs; ++l) {
+        time_median[l] = median(&per_round[l * rounds], (size_t)rounds);
+        ratio_median[l] = median(&ratios[l * rounds], (size_t)rounds);
+    }
+}
+
+/* How many of library l's results are not bit-identical to library 0's */
+static size_t count_differing(const workload *work, int l, size_t count, size_t size)
+{
+    const unsigned char *a = work->results[l], *b = work->results[0];
+    size_t differing = 0;
+    for (size_t i = 0; i < count; ++i)
+        differing += memcmp(a + i * size, b + i * size, size) != 0;
+    return differing;
 }
 
 static void make_group(contact *contacts, size_t count, double beta_lo, double beta_hi)
@@ -130,31 +175,19 @@ static void make_group(contact *contacts, size_t count, double beta_lo, double b
 }
 
 /* The Lambert W groups: the same rounds, ratios and bit-identity counts as the impacts */
-static int run_lambertw(int nlibs, const char **paths, lambert_fn *w0, lambert_fn *wm1,
-                        int rounds, size_t count)
+static void run_lambertw(workload *work, lambert_fn *w0, lambert_fn *wm1, const char **paths,
+                         int rounds, size_t count, double *z, size_t *order,
+                         double *per_round, double *ratios)
 {
     const char *group_text[4] = {"W0, z in (-1/e, 0)", "W0, z in [e, 1e300]",
                                  "W-1, z in (-1/e, 0)", "W-1, z + 1/e in [1e-15, 1e-2]"};
     const double inv_e = 0.36787944117144233;
-    double *z = malloc(count * sizeof *z);
-    size_t *order = malloc(count * sizeof *order);
-    double *results[max_libs];
-    double *per_round = malloc((size_t)rounds * max_libs * sizeof *per_round);
-    double *ratios = malloc((size_t)rounds * max_libs * sizeof *ratios);
-    if (!z || !order || !per_round || !ratios) {
-        fprintf(stderr, "bench_one_impact: out of memory\n");
-        return 1;
-    }
-    for (int l = 0; l < nlibs; ++l) {
-        results[l] = malloc(count * sizeof(double));
-        if (!results[l]) {
-            fprintf(stderr, "bench_one_impact: out of memory\n");
-            return 1;
-        }
-    }
+    double tmed[max_libs], rmed[max_libs];
     printf("| arguments | library | ns per call (median of %d rounds) | min | max |"
            " ratio to the first (median, min, max) | results differing |\n", rounds);
     printf("|---|---|---:|---:|---:|---|---:|\n");
+    work->contacts = NULL;
+    work->z = z;
     for (int g = 0; g < 4; ++g) {
         for (size_t i = 0; i < count; ++i) {
             switch (g) {
@@ -162,35 +195,16 @@ static int run_lambertw(int nlibs, const char **paths, lambert_fn *w0, lambert_f
             case 1: z[i] = log_uniform(2.718281828459045, 1e300); break;
             default: z[i] = -inv_e + log_uniform(1e-15, 1e-2); break;
             }
-            order[i] = i;
         }
-        lambert_fn *w = (g < 2) ? w0 : wm1;
-        for (int l = 0; l < nlibs; ++l) time_pass_w(w[l], z, order, count, results[l]);
-        for (int r = 0; r < rounds; ++r) {
-            double t[max_libs];
-            for (int s = 0; s < nlibs; ++s) {
-                int l = (r % 2) ? nlibs - 1 - s : s;
-                shuffle(order, count);
-                t[l] = time_pass_w(w[l], z, order, count, results[l]);
-            }
-            for (int l = 0; l < nlibs; ++l) {
-                per_round[l * rounds + r] = t[l];
-                ratios[l * rounds + r] = t[l] / t[0];
-            }
-        }
-        for (int l = 0; l < nlibs; ++l) {
-            size_t differing = 0;
-            for (size_t i = 0; i < count; ++i)
-                differing += memcmp(&results[l][i], &results[0][i], sizeof(double)) != 0;
+        for (int l = 0; l < work->nlibs; ++l) work->w[l] = (g < 2) ? w0[l] : wm1[l];
+        run_rounds(work, rounds, order, count, per_round, ratios, tmed, rmed);
+        for (int l = 0; l < work->nlibs; ++l) {
             double *tl = &per_round[l * rounds], *rl = &ratios[l * rounds];
-            double tmed = median(tl, (size_t)rounds);
-            double rmed = median(rl, (size_t)rounds);
             printf("| %s | %s | %.1f | %.1f | %.1f | %.3f (%.3f, %.3f) | %zu |\n",
-                   group_text[g], paths[l], tmed, tl[0], tl[rounds - 1], rmed, rl[0],
-                   rl[rounds - 1], differing);
+                   group_text[g], paths[l], tmed[l], tl[0], tl[rounds - 1], rmed[l], rl[0],
+                   rl[rounds - 1], count_differing(work, l, count, sizeof(double)));
         }
     }
-    return 0;
 }
 
 int main(int argc, char **argv)
@@ -222,7 +236,7 @@ int main(int argc, char **argv)
                         "[--group low|high] [--lambertw] LIB [LIB ...]\n");
         return 2;
     }
-    impact_fn impact[max_libs];
+    workload work = {.nlibs = nlibs};
     lambert_fn w0[max_libs], wm1[max_libs];
     for (int l = 0; l < nlibs; ++l) {
         /* RTLD_LOCAL|RTLD_DEEPBIND: each copy keeps its own symbols */
@@ -231,70 +245,53 @@ int main(int argc, char **argv)
             fprintf(stderr, "bench_one_impact: %s\n", dlerror());
             return 1;
         }
-        impact[l] = (impact_fn)dlsym(handle, "hcimpact_impact");
+        work.impact[l] = (impact_fn)dlsym(handle, "hcimpact_impact");
         w0[l] = (lambert_fn)dlsym(handle, "hcimpact_lambert_w0");
         wm1[l] = (lambert_fn)dlsym(handle, "hcimpact_lambert_wm1");
-        if (!impact[l] || !w0[l] || !wm1[l]) {
+        if (!work.impact[l] || !w0[l] || !wm1[l]) {
             fprintf(stderr, "bench_one_impact: %s: not an hcimpact library\n", paths[l]);
             return 1;
         }
     }
-    if (lambertw) return run_lambertw(nlibs, paths, w0, wm1, rounds, count);
+
+    contact *contacts = malloc(count * sizeof *contacts);
+    double *z = malloc(count * sizeof *z);
+    size_t *order = malloc(count * sizeof *order);
+    double *per_round = malloc((size_t)rounds * max_libs * sizeof *per_round);
+    double *ratios = malloc((size_t)rounds * max_libs * sizeof *ratios);
+    int ok = contacts && z && order && per_round && ratios;
+    for (int l = 0; l < nlibs; ++l) {
+        work.results[l] = malloc(count * sizeof(outcome)); /* room for a double too */
+        ok = ok && work.results[l];
+    }
+    if (!ok) {
+        fprintf(stderr, "bench_one_impact: out of memory\n");
+        return 1;
+    }
+    if (lambertw) {
+        run_lambertw(&work, w0, wm1, paths, rounds, count, z, order, per_round, ratios);
+        return 0;
+    }
 
     const char *group_name[2] = {"low", "high"};
     const char *group_text[2] = {"beta <= 100", "100 < beta <= 1e8"};
     const double beta_lo[2] = {1e-3, 100.0}, beta_hi[2] = {100.0, 1e8};
-    contact *contacts = malloc(count * sizeof *contacts);
-    size_t *order = malloc(count * sizeof *order);
-    outcome *results[max_libs];
-    double *per_round = malloc((size_t)rounds * max_libs * sizeof *per_round);
-    double *ratios = malloc((size_t)rounds * max_libs * sizeof *ratios);
-    if (!contacts || !order || !per_round || !ratios) {
-        fprintf(stderr, "bench_one_impact: out of memory\n");
-        return 1;
-    }
-    for (int l = 0; l < nlibs; ++l) {
-        results[l] = malloc(count * sizeof(outcome));
-        if (!results[l]) {
-            fprintf(stderr, "bench_one_impact: out of memory\n");
-            return 1;
-        }
-    }
-
+    double tmed[max_libs], rmed[max_libs];
     printf("| contacts | library | ns per impact (median of %d rounds) | min | max |"
            " ratio to the first (median, min, max) | failures | outcomes differing |\n",
            rounds);
     printf("|---|---|---:|---:|---:|---|---:|---:|\n");
+    work.contacts = contacts;
     for (int g = 0; g < 2; ++g) {
         if (only && strcmp(only, group_name[g])) continue;
         make_group(contacts, count, beta_lo[g], beta_hi[g]);
-        for (size_t i = 0; i < count; ++i) order[i] = i;
-        size_t failures[max_libs] = {0};
-        /* one untimed pass each: page in code and data */
-        for (int l = 0; l < nlibs; ++l)
-            time_pass(impact[l], contacts, order, count, results[l], &failures[l]);
-        for (int r = 0; r < rounds; ++r) {
-            double t[max_libs];
-            for (int s = 0; s < nlibs; ++s) {
-                int l = (r % 2) ? nlibs - 1 - s : s;
-                shuffle(order, count);
-                t[l] = time_pass(impact[l], contacts, order, count, results[l], &failures[l]);
-            }
-            for (int l = 0; l < nlibs; ++l) {
-                per_round[l * rounds + r] = t[l];
-                ratios[l * rounds + r] = t[l] / t[0];
-            }
-        }
+        run_rounds(&work, rounds, order, count, per_round, ratios, tmed, rmed);
         for (int l = 0; l < nlibs; ++l) {
-            size_t differing = 0;
-            for (size_t i = 0; i < count; ++i)
-                differing += memcmp(&results[l][i], &results[0][i], sizeof(outcome)) != 0;
             double *tl = &per_round[l * rounds], *rl = &ratios[l * rounds];
-            double tmed = median(tl, (size_t)rounds);
-            double rmed = median(rl, (size_t)rounds);
             printf("| %s | %s | %.0f | %.0f | %.0f | %.3f (%.3f, %.3f) | %zu | %zu |\n",
-                   group_text[g], paths[l], tmed, tl[0], tl[rounds - 1], rmed, rl[0],
-                   rl[rounds - 1], failures[l], differing);
+                   group_text[g], paths[l], tmed[l], tl[0], tl[rounds - 1], rmed[l], rl[0],
+                   rl[rounds - 1], work.failures[l],
+                   count_differing(&work, l, count, sizeof(outcome)));
         }
     }
     return 0;

@@ -1471,16 +1471,12 @@ contains
    subroutine sift_up(engine, start)
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: start
-      integer :: k, parent, s
+      integer :: k, parent
       k = start
       do while (k > 1)
          parent = k / 2
          if (.not. before(engine, engine%heap(k), engine%heap(parent))) exit
-         s = engine%heap(k)
-         engine%heap(k) = engine%heap(parent)
-         engine%heap(parent) = s
-         engine%heap_pos(engine%heap(k)) = k
-         engine%heap_pos(engine%heap(parent)) = parent
+         call swap_heap(engine, k, parent)
          k = parent
       end do
    end subroutine sift_up
@@ -1488,7 +1484,7 @@ contains
    subroutine sift_down(engine, start)
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: start
-      integer :: k, child, s
+      integer :: k, child
       k = start
       do
          child = 2 * k
@@ -1497,14 +1493,22 @@ contains
             if (before(engine, engine%heap(child + 1), engine%heap(child))) child = child + 1
          end if
          if (.not. before(engine, engine%heap(child), engine%heap(k))) exit
-         s = engine%heap(k)
-         engine%heap(k) = engine%heap(child)
-         engine%heap(child) = s
-         engine%heap_pos(engine%heap(k)) = k
-         engine%heap_pos(engine%heap(child)) = child
+         call swap_heap(engine, k, child)
          k = child
       end do
    end subroutine sift_down
+
+   !> Exchange the heap entries at positions i and j, and their recorded positions
+   subroutine swap_heap(engine, i, j)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: i, j
+      integer :: s
+      s = engine%heap(i)
+      engine%heap(i) = engine%heap(j)
+      engine%heap(j) = s
+      engine%heap_pos(engine%heap(i)) = i
+      engine%heap_pos(engine%heap(j)) = j
+   end subroutine swap_heap
 
    !> Slot a's event comes before slot b's (ties: the lower slot first, so that the
    !> order is the same in every run)
