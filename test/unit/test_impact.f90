@@ -220,6 +220,7 @@ contains
          & new_unittest("time-law-end", test_time_law_end), &
          & new_unittest("velocity-reference", test_velocity_reference), &
          & new_unittest("velocity-huge-exponent", test_velocity_huge_exponent), &
+         & new_unittest("velocity-bounds", test_velocity_bounds), &
          & new_unittest("user-law-ranges", test_user_law_ranges), &
          & new_unittest("user-law-peak-below-range", test_user_law_peak_below_range), &
          & new_unittest("user-law-peak-within-x-max", test_user_law_peak_within_x_max), &
@@ -2068,6 +2069,79 @@ contains
          end do
       end do
    end subroutine test_velocity_huge_exponent
+
+   !> The velocity never leaves its exact bounds: 0 <= x' <= V in compression, -k V <=
+   !> x' <= 0 in restitution (-k V the rebound velocity of `impact`), at depths from
+   !> x_max 2^-1000 to x_max, over beta from 1e-15 to 1e6, V from 1e-100 to 1e100 and n
+   !> from 0.5 to 5. The fuzz test found x' = V (1 + 2^-51) near x = 0 at beta = 7e-6
+   !> (the series of the compression branch rounded above 1); time_law's velocities too.
+   subroutine test_velocity_bounds(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n_depths = 400, n_times = 64
+      type(contact_type) :: contact
+      type(outcome_type) :: outcome
+      real(wp) :: v, lo, hi, x, t(n_times), xt(n_times), vt(n_times), ft(n_times)
+      integer :: ib, iv, in, j, branch, stat
+      do ib = 0, 21
+         do iv = 0, 4
+            do in = 0, 3
+               contact = contact_type(mass=1.7_wp, stiffness=3.1e9_wp, &
+                  & exponent=0.5_wp + 1.5_wp * in, damping=1.0_wp, velocity=10.0_wp**(50 * iv - 100))
+               contact%damping = 10.0_wp**(ib - 15) * (1.0_wp + 0.37_wp * in) / contact%velocity
+               if (ib == 21) then
+                  ! the fuzz test's contact
+                  contact = contact_type(mass=48409113264128.0_wp, &
+                     & stiffness=9.8978976260217198e-18_wp, exponent=2.90203857421875_wp, &
+                     & damping=6.8053803355962693e-20_wp, velocity=107869177380864.0_wp)
+               end if
+               call impact(contact, outcome, stat)
+               if (stat /= hcimpact_ok) cycle
+               do j = 0, n_depths
+                  ! x_max 2^-(1000 j/n_depths) at both ends, the middle in between
+                  if (j < n_depths / 2) then
+                     x = outcome%max_compression * 2.0_wp**(-(1000.0_wp * j) / n_depths)
+                  else
+                     x = outcome%max_compression * 2.0_wp**(-1000.0_wp * (n_depths - j) / n_depths)
+                  end if
+                  do branch = compression_branch, restitution_branch
+                     call velocity_at_depth(contact, x, branch, v, stat)
+                     if (stat /= hcimpact_ok) then
+                        call test_failed(error, "velocity-bounds: status " // int_text(stat) &
+                           & // " at x = " // format_real(x))
+                        return
+                     end if
+                     lo = merge(0.0_wp, outcome%rebound_velocity, branch == compression_branch)
+                     hi = merge(contact%velocity, 0.0_wp, branch == compression_branch)
+                     call check(error, v >= lo .and. v <= hi, "beta = " &
+                        & // format_real(contact%damping * contact%velocity) // ", V = " &
+                        & // format_real(contact%velocity) // ", x = " // format_real(x) &
+                        & // ", branch " // int_text(branch) // ": x' = " // format_real(v) &
+                        & // " outside [" // format_real(lo) // ", " // format_real(hi) // "]")
+                     if (allocated(error)) return
+                  end do
+               end do
+               ! times from contact_time 2^-60 to the whole contact, both ends
+               do j = 1, n_times
+                  t(j) = outcome%contact_time * 2.0_wp**(-60.0_wp * (j - 1) / (n_times - 1))
+               end do
+               t(n_times / 2) = outcome%contact_time * (1.0_wp - epsilon(1.0_wp))
+               call time_law(contact, t, xt, vt, ft, stat)
+               if (stat /= hcimpact_ok) then
+                  call test_failed(error, "velocity-bounds: time_law status " // int_text(stat))
+                  return
+               end if
+               do j = 1, n_times
+                  call check(error, vt(j) >= outcome%rebound_velocity &
+                     & .and. vt(j) <= contact%velocity, "time_law, beta = " &
+                     & // format_real(contact%damping * contact%velocity) // ", V = " &
+                     & // format_real(contact%velocity) // ", t = " // format_real(t(j)) &
+                     & // ": x' = " // format_real(vt(j)) // " outside [-k V, V]")
+                  if (allocated(error)) return
+               end do
+            end do
+         end do
+      end do
+   end subroutine test_velocity_bounds
 
    !> Issue 13: impact_law's peak force came from a bisection on m f' u - (b f)^2, which
    !> overflowed or underflowed at large or tiny scales and gave wrong forces with
