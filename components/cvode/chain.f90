@@ -357,6 +357,16 @@ contains
             what = advance_failed
             return
          end if
+         ! CVODE grows h by a factor of 10^4 at most (its first steps), and h is below
+         ! the time elapsed: beyond huge * 1e-6 the next step could leave the range
+         ! of doubles, where CVODE would go on with an infinite time and NaN states
+         if (engine%time > huge(1.0_wp) * 1.0e-6_wp) then
+            stat = hcimpact_err_solver
+            write(engine%message, '(a, es10.3, a)') "CVODE at t = ", engine%time, &
+               & " s: the time is about to leave the range of doubles"
+            what = advance_failed
+            return
+         end if
          ! (one step: tout gives only the direction; a huge one upsets CVODE's first step)
          ierr = FCVode(self%mem, real(min(t_stop, engine%time + 1.0_wp), c_double), &
             & self%y_vec, tret, CV_ONE_STEP)
@@ -373,8 +383,12 @@ contains
          call follow_contacts(self, engine, what, ended)
          if (what /= advance_reached) return
          ! apart: back to the closed forms; with the integrated method only once no
-         ! contact can ever happen again (the rest is free flight)
-         if (ended) then
+         ! contact can ever happen again (the rest is free flight). Checked after a
+         ! contact ended, and while no contact of the region has pressed yet (bodies
+         ! that touch without force and never approach: no contact ever ends, and the
+         ! steps would grow until the time overflowed)
+         if (ended .or. .not. any(self%contact(0:m)%open .and. &
+            & self%contact(0:m)%peak > 0.0_wp)) then
             if (separated(self, engine)) then
                if (engine%options%method /= method_integrated .or. &
                   & never_again(self, engine)) then

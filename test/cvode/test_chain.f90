@@ -11,10 +11,10 @@
 !> were measured (doc/chains.md, "Accuracy") and the tests allow about twice them.
 module test_cvode_chain
    use, intrinsic :: iso_fortran_env, only : int64, real128
-   use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf
+   use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_is_finite
    use testdrive, only : new_unittest, unittest_type, error_type, check, test_failed
    use hcimpact_check, only : check_close, check_ulps, ulp_error, read_labelled_table, &
-      & format_real, reference_path
+      & format_real, reference_path, int_text
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_size, hcimpact_err_not_finite, &
       & hcimpact_err_mass, hcimpact_err_domain, hcimpact_err_stiffness, &
@@ -25,7 +25,7 @@ module test_cvode_chain
    use hcimpact_restitution_law, only : restitution
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
       & contact_record, method_auto, method_exact, method_integrated, by_closed_forms, by_integration, &
-      & integrator_adams
+      & integrator_adams, integrator_bdf
    use hcimpact_cvode_chain, only : chain_simulate
    implicit none
    private
@@ -76,6 +76,7 @@ contains
          & new_unittest("bounce-under-gravity", test_bounce_gravity), &
          & new_unittest("rest-stacks", test_rest_stacks), &
          & new_unittest("rest-then-hit", test_rest_then_hit), &
+         & new_unittest("touching-at-rest", test_touching_at_rest), &
          & new_unittest("bad-input", test_bad_input), &
          & new_unittest("dilute-stays-exact", test_dilute_exact), &
          & new_unittest("clusters-form-dissolve", test_clusters), &
@@ -1012,6 +1013,48 @@ contains
          & result%positions(2) < result%positions(1) + 0.0_wp, &
          & "rest, then hit: both at rest, the second on the first")
    end subroutine test_rest_then_hit
+
+   !> Bodies that touch each other and both walls, all at rest, no gravity, no end
+   !> time: nothing can ever happen. Every method and integrator ends at once, with
+   !> the bodies where they were. (Integrated, no contact ever ended, so the region was
+   !> never checked for separation: CVODE's steps grew until the time overflowed, and
+   !> CVODE went on with an infinite time and NaN states, never returning; the fuzz
+   !> test's hang.) The masses and laws span the range of doubles.
+   subroutine test_touching_at_rest(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: masses(3) = [8.05e-192_wp, 0.35_wp, 2.55e235_wp]
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      type(chain_options) :: o
+      integer :: n, method, integrator, k, stat
+      do k = 1, size(masses)
+         do n = 1, 3
+            do method = method_auto, method_integrated
+               do integrator = integrator_bdf, integrator_adams
+                  chain = steel_row(n, 0.0_wp, steel_damping, 0.0_wp)
+                  chain%mass = masses(k)
+                  chain%left_wall = .true.
+                  chain%right_wall = .true.
+                  chain%left_law = contact_law(steel_wall * masses(k), 2.87_wp, 3.2e-88_wp)
+                  chain%right_law = contact_law(4.6e-218_wp, 0.93_wp, 3.3e198_wp)
+                  o = opts(method, 1.0e-6_wp)
+                  o%integrator = integrator
+                  o%max_steps = 2000
+                  call chain_simulate(chain, result, stat, o)
+                  call check(error, stat == hcimpact_ok .and. ieee_is_finite(result%time) &
+                     & .and. all(result%velocities == 0.0_wp) .and. result%counters%steps < 10, &
+                     & "touching at rest, n = " // int_text(n) // ", mass " &
+                     & // format_real(masses(k)) // ", method " // int_text(method) &
+                     & // ", integrator " // int_text(integrator) // ": status " &
+                     & // int_text(stat) // " " // trim(result%message) // ", time " &
+                     & // format_real(result%time) // ", steps " &
+                     & // int_text(int(result%counters%steps)))
+                  if (allocated(error)) return
+               end do
+            end do
+         end do
+      end do
+   end subroutine test_touching_at_rest
 
    ! ==================================================================================
    ! Bad input
