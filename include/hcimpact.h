@@ -352,7 +352,12 @@ HCIMPACT_API int hcimpact_velocity_at_depth_array(const hcimpact_contact *contac
  *  compression x[i] (m), velocity v[i] = x' (m/s) and contact force
  *  f[i] = c x^n (1 + b x') (N). Before the contact (t <= 0): x = 0, x' = V, F = 0;
  *  from the contact time of hcimpact_impact on: x = 0, x' = -k V, F = 0 exactly.
- *  Each time costs a few quadratures.
+ *  Each time costs a few quadratures. A time whose state is within the range of
+ *  doubles is answered even where hcimpact_impact fails only because another of its
+ *  outputs is not (a peak force beyond DBL_MAX); a state beyond it is
+ *  HCIMPACT_ERR_DOMAIN. HCIMPACT_ERR_NO_CONVERGENCE where the point cannot be located
+ *  to double accuracy (large exponents with heavy damping, n = 80 and b V = 6600:
+ *  the restitution creeps within 1e-16 of its end, in the trajectory's parameter).
  *  Returns HCIMPACT_OK; the statuses of hcimpact_impact; HCIMPACT_ERR_NOT_FINITE (a
  *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE (also
  *  when the library cannot allocate its copy of the n values: out of memory, outputs

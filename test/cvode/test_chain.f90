@@ -11,7 +11,7 @@
 !> were measured (doc/chains.md, "Accuracy") and the tests allow about twice them.
 module test_cvode_chain
    use, intrinsic :: iso_fortran_env, only : int64, real128
-   use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_quiet_nan, ieee_positive_inf, ieee_is_finite, ieee_is_nan
    use testdrive, only : new_unittest, unittest_type, error_type, check, test_failed
    use hcimpact_check, only : check_close, check_ulps, ulp_error, read_labelled_table, &
       & format_real, reference_path, int_text
@@ -78,6 +78,7 @@ contains
          & new_unittest("rest-then-hit", test_rest_then_hit), &
          & new_unittest("touching-at-rest", test_touching_at_rest), &
          & new_unittest("bad-input", test_bad_input), &
+         & new_unittest("energy-range", test_energy_range), &
          & new_unittest("dilute-stays-exact", test_dilute_exact), &
          & new_unittest("clusters-form-dissolve", test_clusters), &
          & new_unittest("error-independent-of-size", test_size_independent), &
@@ -1205,6 +1206,49 @@ contains
             & allocated(result%positions), what // ": a message and no result")
       end subroutine expect
    end subroutine test_bad_input
+
+   !> The energies and the momentum of the result are doubles or the run fails: 1/2 m
+   !> v^2 beyond DBL_MAX (m = 5.4e-20 kg at 7.5e168 m/s; two bodies of 1e300 kg at
+   !> +-1e10 m/s) is hcimpact_err_domain, for every method (it was success with an
+   !> infinite initial energy and a NaN energy error: the fuzz test). Where v^2 alone
+   !> overflows but the energy does not (1e-300 kg at 1e160 m/s: 5e19 J), success
+   !> with that energy.
+   subroutine test_energy_range(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      type(chain_options) :: o
+      integer :: method, stat
+      do method = method_auto, method_integrated
+         o = opts(method, 1.0e-6_wp, 1.0e-3_wp)
+         chain = steel_row(1, 7.5e168_wp, steel_damping, 0.0_wp)
+         chain%mass = 5.4e-20_wp
+         call chain_simulate(chain, result, stat, o)
+         call check(error, stat == hcimpact_err_domain .and. ieee_is_nan(result%initial_energy) &
+            & .and. index(result%message, "range of doubles") > 0, "one body, method " &
+            & // int_text(method) // ": status " // int_text(stat) // " (" &
+            & // trim(result%message) // "), initial energy " &
+            & // format_real(result%initial_energy))
+         if (allocated(error)) return
+         chain = steel_row(2, 1.0e10_wp, steel_damping, 1.0e-3_wp)
+         chain%mass = 1.0e300_wp
+         chain%velocity(2) = -1.0e10_wp
+         call chain_simulate(chain, result, stat, o)
+         call check(error, stat == hcimpact_err_domain, "two bodies of 1e300 kg, method " &
+            & // int_text(method) // ": status " // int_text(stat) // " (" &
+            & // trim(result%message) // ")")
+         if (allocated(error)) return
+         chain = steel_row(1, 1.0e160_wp, steel_damping, 0.0_wp)
+         chain%mass = 1.0e-300_wp
+         call chain_simulate(chain, result, stat, o)
+         call check(error, stat == hcimpact_ok .and. abs(result%initial_energy - 5.0e19_wp) &
+            & <= 1.0e-15_wp * 5.0e19_wp .and. result%energy_error == 0.0_wp, &
+            & "1e-300 kg at 1e160 m/s, method " // int_text(method) // ": status " &
+            & // int_text(stat) // " (" // trim(result%message) // "), initial energy " &
+            & // format_real(result%initial_energy))
+         if (allocated(error)) return
+      end do
+   end subroutine test_energy_range
 
    ! ==================================================================================
    ! The exact/integrated decision

@@ -221,6 +221,8 @@ contains
          & new_unittest("velocity-reference", test_velocity_reference), &
          & new_unittest("velocity-huge-exponent", test_velocity_huge_exponent), &
          & new_unittest("velocity-bounds", test_velocity_bounds), &
+         & new_unittest("times-below-subnormals", test_times_below_subnormals), &
+         & new_unittest("time-law-creeping-restitution", test_time_law_creeping), &
          & new_unittest("user-law-ranges", test_user_law_ranges), &
          & new_unittest("user-law-peak-below-range", test_user_law_peak_below_range), &
          & new_unittest("user-law-peak-within-x-max", test_user_law_peak_within_x_max), &
@@ -2142,6 +2144,87 @@ contains
          end do
       end do
    end subroutine test_velocity_bounds
+
+   !> A contact shorter than the smallest subnormal (4.9e-324 s) has no representable
+   !> time: status hcimpact_err_domain with NaN, not 0 with success (the fuzz test's
+   !> user-law contacts of about 1e-360 s, and a scan of such scales for both paths).
+   subroutine test_times_below_subnormals(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(outcome_type) :: outcome
+      ! m, c, n, b, V
+      real(wp), parameter :: cases(5, 2) = reshape([ &
+         & 5.8397324167364294e-308_wp, 1.2675264745131617e+274_wp, 1.7264428818844491e-15_wp, &
+         & 0.0_wp, 8.5866571032201171e+221_wp, &
+         & 2.0642817800620248e-310_wp, 7.80469395600715e+222_wp, 1.390671158792012e-309_wp, &
+         & 1.5753696752126182e-310_wp, 1.1279124644811399e+158_wp], [5, 2])
+      real(wp) :: m, v
+      integer :: i, j, k, stat
+      do i = 1, size(cases, 2)
+         call impact_law(power_law(stiffness=cases(2, i), exponent=cases(3, i)), cases(1, i), &
+            & cases(4, i), cases(5, i), outcome, stat)
+         call check(error, stat /= hcimpact_ok .or. (outcome%compression_time > 0.0_wp &
+            & .and. outcome%contact_time > 0.0_wp), "user law, case " // int_text(i) &
+            & // ": status OK with compression time " // format_real(outcome%compression_time))
+         if (allocated(error)) return
+      end do
+      ! the power law and the user law over masses and speeds that take the contact
+      ! time from 1e-280 s down through the subnormals
+      do j = 0, 12
+         do k = 0, 1
+            m = 1.0e-300_wp * 10.0_wp**(-j)
+            v = 10.0_wp**(150 + 5 * j)
+            call impact(contact_type(mass=m, stiffness=1.0e300_wp, exponent=1.5_wp, &
+               & damping=0.3_wp * k / v, velocity=v), outcome, stat)
+            call check(error, stat /= hcimpact_ok .or. (outcome%compression_time > 0.0_wp &
+               & .and. outcome%contact_time > 0.0_wp .and. outcome%time_at_peak_force > 0.0_wp &
+               & .and. outcome%max_compression > 0.0_wp), "power law, m = " // format_real(m) &
+               & // ", V = " // format_real(v) // ": status OK with contact time " &
+               & // format_real(outcome%contact_time))
+            if (allocated(error)) return
+            if (stat /= hcimpact_ok) then
+               call check(error, stat, hcimpact_err_domain, "power law, m = " // format_real(m))
+               if (allocated(error)) return
+            end if
+         end do
+      end do
+   end subroutine test_times_below_subnormals
+
+   !> n = 81.6 and b V = 6650: after a compression of 0.035 s the bodies creep apart at
+   !> -k V for 209 s, most of it within 1e-16 of the end of contact in l. Located from
+   !> the turning point, l - length cancelled: x reached 2e7 times x_max (the fuzz
+   !> test). Now at every time either a status or 0 <= x <= x_max with |x'| <= V,
+   !> x falling through the restitution, and most times answered.
+   subroutine test_time_law_creeping(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: n_times = 400
+      type(contact_type) :: contact
+      type(outcome_type) :: outcome
+      real(wp) :: t(1), x(1), v(1), f(1), last_x
+      integer :: i, stat, answered
+      contact = contact_type(mass=5.2813803830685131e+33_wp, stiffness=81.568359375_wp, &
+         & exponent=81.568359375_wp, damping=81.568359375_wp, velocity=81.505859375_wp)
+      call impact(contact, outcome, stat)
+      call check(error, stat, hcimpact_ok, "impact")
+      if (allocated(error)) return
+      last_x = outcome%max_compression
+      answered = 0
+      do i = 1, n_times
+         t(1) = outcome%compression_time + (outcome%contact_time &
+            & - outcome%compression_time) * (real(i, wp) / n_times)
+         call time_law(contact, t, x, v, f, stat)
+         if (stat /= hcimpact_ok) cycle
+         answered = answered + 1
+         call check(error, x(1) >= 0.0_wp .and. x(1) <= last_x .and. &
+            & abs(v(1)) <= contact%velocity, "t = " // format_real(t(1)) // ": x = " &
+            & // format_real(x(1)) // " (x_max " // format_real(outcome%max_compression) &
+            & // ", the last time answered " // format_real(last_x) // "), x' = " &
+            & // format_real(v(1)))
+         if (allocated(error)) return
+         last_x = x(1)
+      end do
+      call check(error, answered >= n_times / 2, "only " // int_text(answered) // " of " &
+         & // int_text(n_times) // " times answered")
+   end subroutine test_time_law_creeping
 
    !> Issue 13: impact_law's peak force came from a bisection on m f' u - (b f)^2, which
    !> overflowed or underflowed at large or tiny scales and gave wrong forces with

@@ -234,8 +234,13 @@ contains
    !> the position, bounded). Near the end of contact x(t) is ill-conditioned: it moves
    !> by |x'| times the error of the contact time (a few ulps of it).
    !>
-   !> Errors: those of `impact`; hcimpact_err_not_finite if a t is NaN or infinite;
-   !> hcimpact_err_size if the arrays differ in size.
+   !> Errors: those of `impact` (but a time whose state is representable is answered
+   !> where only another output of `impact`, the peak force, is beyond the range);
+   !> hcimpact_err_domain for a state beyond the range of doubles;
+   !> hcimpact_err_no_convergence where a point cannot be located to double accuracy
+   !> (large n with heavy damping: the restitution creeps within 1e-16 of its end in
+   !> l); hcimpact_err_not_finite if a t is NaN or infinite; hcimpact_err_size if the
+   !> arrays differ in size.
    pure subroutine time_law_power(contact, t, x, v, f, stat)
       !> The contact
       type(contact_type), intent(in) :: contact
@@ -358,10 +363,13 @@ contains
       real(wp), intent(in) :: t
       real(wp), intent(out) :: x, v, f
       integer, intent(out) :: stat
-      type(dd_real) :: tau, target, l, e, lt, rho, d, length, ln_share
+      ! a point nearer than this share of the phase's length in l to the end it was
+      ! located from is located from the other end
+      real(wp), parameter :: far_end = 2.0_wp**(-20)
+      type(dd_real) :: tau, turn_time, end_time, l, e, lt, rho, d, length, ln_share
       type(contact_force_type) :: element
       integer(ik) :: ev
-      integer :: phase
+      integer :: phase, attempt
       logical :: from_turn
 
       stat = hcimpact_ok
@@ -397,31 +405,42 @@ contains
          f = 0.0_wp
          return
       end if
+      ! the times from the turning point and from the end of contact of the phase
       if (tau%hi <= dur(1)%hi) then
          phase = compression_phase
-         from_turn = tau%hi > 0.5_wp * dur(1)%hi
-         if (from_turn) then
-            target = dur(1) - tau
-         else
-            target = tau
-         end if
+         turn_time = dur(1) - tau
+         end_time = tau
       else
          phase = restitution_phase
-         target = tau - dur(1)
-         from_turn = target%hi <= 0.5_wp * dur(2)%hi
-         if (.not. from_turn) target = (dur(1) + dur(2)) - tau
+         turn_time = tau - dur(1)
+         end_time = (dur(1) + dur(2)) - tau
       end if
-      if (target%hi < 0.0_wp) target = dd(0.0_wp)
+      if (turn_time%hi < 0.0_wp) turn_time = dd(0.0_wp)
+      if (end_time%hi < 0.0_wp) end_time = dd(0.0_wp)
       length = phase_length(model%f%tr, phase)
-      if (from_turn) then
-         call invert_from_turn(model%f, phase, target, lt, ev, stat)
-         if (stat /= hcimpact_ok) return
-         d = length - lt
-      else
-         call invert_from_end(model%f, phase, model%np1_dd, target, rho, d, ev, stat)
-         if (stat /= hcimpact_ok) return
-         lt = length - d
-      end if
+      ! Located from the nearer end in time first. The nearer end in l may be the other
+      ! one: with a large exponent and damping (n = 82, b V = 6600) the restitution
+      ! creeps out at -k V for most of its time within 1e-16 of the end of contact in
+      ! l, and l - length from the turning point cancelled to nothing (x 2e7 times
+      ! x_max). A point within 2^-20 of the far end in l is located again from that
+      ! end (once: the two ends cannot both be that near).
+      from_turn = turn_time%hi <= end_time%hi
+      do attempt = 1, 2
+         if (from_turn) then
+            call invert_from_turn(model%f, phase, turn_time, lt, ev, stat)
+            if (stat /= hcimpact_ok) return
+            d = length - lt
+            if (.not. d%hi < far_end * length%hi) exit
+         else
+            call invert_from_end(model%f, phase, model%np1_dd, end_time, rho, d, ev, stat)
+            if (stat /= hcimpact_ok) return
+            lt = length - d
+            if (.not. lt%hi < far_end * length%hi) exit
+         end if
+         if (attempt == 1) from_turn = .not. from_turn
+      end do
+      if (d%hi < 0.0_wp) d = dd(0.0_wp)
+      if (lt%hi < 0.0_wp) lt = dd(0.0_wp)
       ! ln((x/x_max)^(n+1)) from the form of S for the nearer end of the phase (in l),
       ! in double-double: x and F are each one exponential of it, rounded once. In
       ! compression the end form R(d) = 1 - (1 + beta) d G2(-beta d) cancels to about

@@ -143,9 +143,12 @@ contains
          & contact%damping, contact%velocity)
    end function check_contact
 
-   !> An outcome beyond the range of doubles (times of 1e300 s and more) is not an
-   !> answer: a successful status never comes with a NaN or an infinity. Such an
-   !> outcome becomes all NaN with hcimpact_err_domain.
+   !> An outcome beyond the range of doubles is not an answer: a successful status
+   !> never comes with a NaN or an infinity (times of 1e300 s and more), nor with 0
+   !> for a quantity that is positive (times, compressions and the peak force below
+   !> the smallest subnormal, 4.9e-324: a contact of 1e-375 s). Such an outcome
+   !> becomes all NaN with hcimpact_err_domain. (The energy loss is 0 without damping,
+   !> and may round to 0 where k is within an ulp of 1: not a quantity of this kind.)
    pure subroutine reject_unrepresentable(outcome, stat)
       type(outcome_type), intent(inout) :: outcome
       integer, intent(inout) :: stat
@@ -153,7 +156,10 @@ contains
       if (all(ieee_is_finite([outcome%restitution, outcome%energy_loss_ratio, &
          & outcome%rebound_velocity, outcome%max_compression, outcome%compression_time, &
          & outcome%contact_time, outcome%time_at_peak_force, &
-         & outcome%compression_at_peak_force, outcome%peak_force]))) return
+         & outcome%compression_at_peak_force, outcome%peak_force])) .and. &
+         & all([outcome%restitution, -outcome%rebound_velocity, outcome%max_compression, &
+         & outcome%compression_time, outcome%contact_time, outcome%time_at_peak_force, &
+         & outcome%compression_at_peak_force, outcome%peak_force] > 0.0_wp)) return
       outcome = outcome_type()
       stat = hcimpact_err_domain
    end subroutine reject_unrepresentable

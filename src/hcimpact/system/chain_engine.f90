@@ -37,7 +37,8 @@
 !> origin.
 module hcimpact_chain_engine
    use, intrinsic :: iso_fortran_env, only : int64
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_positive_inf
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan, ieee_value, &
+      & ieee_positive_inf
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_unavailable, &
       & hcimpact_err_no_convergence, hcimpact_err_domain
@@ -48,7 +49,7 @@ module hcimpact_chain_engine
    use hcimpact_power_force, only : power_law_potential
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, contact_record, &
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
-      & method_integrated, by_closed_forms, by_integration, max_message
+      & method_integrated, by_closed_forms, by_integration, max_message, kinetic_energy
    implicit none
    private
 
@@ -302,7 +303,11 @@ contains
       if (.not. until_rest) engine%time = max(engine%time, t_end)
       ! samples after the end: nothing more happens (until_rest), or none (t_end)
       if (until_rest) call take_samples(engine, integrator, all=.true.)
-      call fill_result(engine, result)
+      call fill_result(engine, result, stat)
+      if (stat /= hcimpact_ok) then
+         result = chain_result()
+         call fail(engine, result, stat)
+      end if
    end subroutine run_engine
 
    !> Initial state: bodies at rest in their initial positions, the slots' events.
@@ -887,8 +892,8 @@ contains
       r%separation_speed = -xd
       r%peak_force = engine%exact(s)%outcome%peak_force
       r%max_deformation = engine%exact(s)%outcome%max_compression
-      r%dissipated = 0.5_wp * engine%exact(s)%contact%mass &
-         & * engine%exact(s)%contact%velocity**2 * engine%exact(s)%outcome%energy_loss_ratio
+      r%dissipated = kinetic_energy(engine%exact(s)%contact%mass, &
+         & engine%exact(s)%contact%velocity) * engine%exact(s)%outcome%energy_loss_ratio
       r%method = by_closed_forms
       call engine_record(engine, r)
       engine%exact(s)%active = .false.
@@ -1018,8 +1023,8 @@ contains
       type(contact_law) :: law
       call contact_state(engine, s, engine%time, x, xd, f)
       law = slot_law(engine, s)
-      e_in = 0.5_wp * engine%exact(s)%contact%mass * engine%exact(s)%contact%velocity**2
-      e_now = 0.5_wp * engine%exact(s)%contact%mass * xd**2 &
+      e_in = kinetic_energy(engine%exact(s)%contact%mass, engine%exact(s)%contact%velocity)
+      e_now = kinetic_energy(engine%exact(s)%contact%mass, xd) &
          & + power_law_potential(law%stiffness, law%exponent, x)
       tau = engine%time - engine%exact(s)%t_start
       engine%exact(s)%handed = .true.
@@ -1134,7 +1139,7 @@ contains
       if (.not. from_left .and. .not. (b == engine%n .and. engine%chain%right_wall)) return
       e = 0.0_wp
       do i = a, b
-         e = e + 0.5_wp * engine%chain%mass(i) * v(i - a + 1)**2
+         e = e + kinetic_energy(engine%chain%mass(i), v(i - a + 1))
       end do
       b_sum = 0.0_wp
       b_min = huge(1.0_wp)
@@ -1171,7 +1176,7 @@ contains
       type(contact_law) :: law
       e = 0.0_wp
       do i = engine%first, engine%last
-         e = e + 0.5_wp * engine%chain%mass(i) * v(i - engine%first + 1)**2 &
+         e = e + kinetic_energy(engine%chain%mass(i), v(i - engine%first + 1)) &
             & - engine%chain%mass(i) * engine%chain%gravity * u(i - engine%first + 1)
       end do
       do s = engine%first - 1, engine%last
@@ -1341,9 +1346,13 @@ contains
    end subroutine take_samples
 
    !> The result from the final state of the engine.
-   subroutine fill_result(engine, result)
+   !> hcimpact_err_domain (and engine%message) where an energy of the result left the
+   !> range of doubles on the way (the elastic or gravitational energy of extreme
+   !> systems; the initial energy and momentum are checked with the input).
+   subroutine fill_result(engine, result, stat)
       type(chain_engine), intent(inout) :: engine
       type(chain_result), intent(inout) :: result
+      integer, intent(out) :: stat
       integer :: i, s, nsamples
       real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, e_grav0, p0, p, scale, x
       type(contact_law) :: law
@@ -1357,7 +1366,7 @@ contains
          call body_state_at(engine, i, engine%time, u, v)
          result%positions(i) = engine%q_initial(i) + u
          result%velocities(i) = v
-         e_kin = e_kin + 0.5_wp * engine%chain%mass(i) * v**2
+         e_kin = e_kin + kinetic_energy(engine%chain%mass(i), v)
          e_grav = e_grav - engine%chain%mass(i) * engine%chain%gravity * u
          p = p + engine%chain%mass(i) * v
       end do
@@ -1378,7 +1387,7 @@ contains
       p0 = 0.0_wp
       scale = 0.0_wp
       do i = 1, engine%n
-         e_kin0 = e_kin0 + 0.5_wp * engine%chain%mass(i) * engine%chain%velocity(i)**2
+         e_kin0 = e_kin0 + kinetic_energy(engine%chain%mass(i), engine%chain%velocity(i))
          p0 = p0 + engine%chain%mass(i) * engine%chain%velocity(i)
          scale = scale + engine%chain%mass(i) * abs(engine%chain%velocity(i))
       end do
@@ -1415,6 +1424,15 @@ contains
          result%method_used = 3
       end if
       result%message = "success"
+      stat = hcimpact_ok
+      if (.not. (ieee_is_finite(result%initial_energy) .and. ieee_is_finite(result%dissipated) &
+         & .and. ieee_is_finite(result%energy_error) .and. ieee_is_finite(e_kin + e_el + e_grav) &
+         & .and. (ieee_is_nan(result%momentum_error) .or. ieee_is_finite(result%momentum_error)))) &
+         & then
+         stat = hcimpact_err_domain
+         engine%message = "the energies of the system leave the range of doubles (kinetic, " &
+            & // "elastic or gravitational energy, or their balance, beyond 1.8e308 J)"
+      end if
    end subroutine fill_result
 
    !> A failed run: the message, nothing else.

@@ -26,7 +26,7 @@ module hcimpact_chain_types
 
    public :: contact_law, chain_type, chain_options, contact_record, chain_result
    public :: chain_counters, chain_switch
-   public :: check_chain
+   public :: check_chain, kinetic_energy
    public :: method_auto, method_exact, method_integrated
    public :: integrator_bdf, integrator_adams
    public :: by_closed_forms, by_integration
@@ -250,6 +250,13 @@ contains
             return
          end if
       end do
+      ! the result reports the energies and the momentum: they must be doubles
+      stat = hcimpact_err_domain
+      if (.not. (ieee_is_finite(sum(kinetic_energy(chain%mass, chain%velocity))) .and. &
+         & ieee_is_finite(sum(chain%mass * abs(chain%velocity))))) then
+         message = "the initial kinetic energy or momentum is beyond the range of doubles"
+         return
+      end if
       do i = 1, n - 1
          stat = hcimpact_err_not_finite
          if (.not. ieee_is_finite(chain%gap(i))) then
@@ -349,5 +356,16 @@ contains
       stat = check_parameters(stiffness=law%stiffness, exponent=law%exponent, &
          & damping=law%damping)
    end function law_status
+
+   !> Kinetic energy 1/2 m v^2 in J, formed as (m |v|) |v|/2: no intermediate overflow
+   !> where the energy itself is a double (v^2 alone overflows above 1.3e154 m/s).
+   elemental function kinetic_energy(mass, velocity) result(energy)
+      !> Mass in kg
+      real(wp), intent(in) :: mass
+      !> Velocity in m/s
+      real(wp), intent(in) :: velocity
+      real(wp) :: energy
+      energy = 0.5_wp * ((mass * abs(velocity)) * abs(velocity))
+   end function kinetic_energy
 
 end module hcimpact_chain_types
