@@ -896,7 +896,11 @@ contains
    !> errors is their 2-norm: the bodies that carry the errors (those in contact) are
    !> few in a long region, and a mean over all its bodies would let their errors
    !> grow with the region's size (a struck chain of 10^4 beads at rtol 1e-8 kept
-   !> its energy to 1.5e-4 only).
+   !> its energy to 1.5e-4 only). No tolerance is below 2 sqrt(n) ulps of its value
+   !> (the value's own rounding): a ball dropped 25 cm has a displacement whose ulp
+   !> is 5e-17 m, above rtol x_ref = 1e-17 m, and CVODE stopped with CV_TOO_MUCH_ACC
+   !> (its check: unit roundoff times the weighted norm of the state at most 1,
+   !> which this floor keeps at 1/2).
    function chain_error_weights(y, ewt, user_data) result(ierr) bind(C)
       type(N_Vector) :: y, ewt
       type(c_ptr), value :: user_data
@@ -904,18 +908,20 @@ contains
       type(chain_region), pointer :: region
       real(c_double), pointer :: yv(:), wv(:)
       integer :: k, m
-      real(wp) :: root_n
+      real(wp) :: root_n, floor
       call c_f_pointer(user_data, region)
       yv => FN_VGetArrayPointer(y)
       wv => FN_VGetArrayPointer(ewt)
       m = region%m
       root_n = sqrt(real(region_size(m), wp))
+      floor = 2.0_wp * epsilon(1.0_wp) * root_n
       do k = 1, m
-         wv(3 * k - 2) = root_n / (region%rtol * region%scale(1))
-         wv(3 * k - 1) = root_n / (region%rtol * (abs(yv(3 * k - 1)) + region%scale(2)))
-         wv(3 * k) = root_n / (region%rtol * region%scale(3))
+         wv(3 * k - 2) = root_n / max(region%rtol * region%scale(1), floor * abs(yv(3 * k - 2)))
+         wv(3 * k - 1) = root_n / max(region%rtol * (abs(yv(3 * k - 1)) + region%scale(2)), &
+            & floor * abs(yv(3 * k - 1)))
+         wv(3 * k) = root_n / max(region%rtol * region%scale(3), floor * abs(yv(3 * k)))
       end do
-      wv(3 * m + 1) = root_n / (region%rtol * region%scale(3))
+      wv(3 * m + 1) = root_n / max(region%rtol * region%scale(3), floor * abs(yv(3 * m + 1)))
       ierr = 0
    end function chain_error_weights
 

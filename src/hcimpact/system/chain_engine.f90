@@ -286,7 +286,7 @@ contains
          slot = engine%heap(1)
          if (engine%event_time(slot) > engine%time) cycle main
          engine%events = engine%events + 1
-         call process_event(engine, slot, present(integrator), stat)
+         call process_event(engine, slot, stat, integrator)
          if (stat /= hcimpact_ok) exit main
       end do main
 
@@ -668,13 +668,17 @@ contains
    ! =================================================================================
 
    !> Process the event of slot s at its time.
-   subroutine process_event(engine, s, have_integrator, stat)
+   subroutine process_event(engine, s, stat, integrator)
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: s
-      logical, intent(in) :: have_integrator
       integer, intent(out) :: stat
+      !> The integrator of clusters (absent: the closed forms alone)
+      class(cluster_integrator), intent(inout), optional :: integrator
       character(len=max_message) :: why
       integer :: neighbour
+      logical :: have_integrator
+
+      have_integrator = present(integrator)
 
       stat = hcimpact_ok
       engine%time = max(engine%time, engine%event_time(s))
@@ -690,6 +694,7 @@ contains
                   & "): it needs the CVODE component (method auto or integrated)"
                return
             end if
+            call hand_back(engine, integrator)
             call form_cluster(engine, s, why, neighbour)
          end if
       case (event_cluster)
@@ -701,11 +706,27 @@ contains
                & "): it needs the CVODE component (method auto or integrated)"
             return
          end if
+         call hand_back(engine, integrator)
          call form_cluster(engine, s, why, -1)
       case default
          call heap_update(engine, s, huge(1.0_wp))
       end select
    end subroutine process_event
+
+   !> Before a region that is being integrated grows by an event of the engine: the
+   !> integrator writes its bodies' states and its open contacts back (as before a
+   !> growth it found itself). Without this the region's bodies restarted from their
+   !> states when it began, flying freely since (a ball in contact with the floor
+   !> when a contact next to it started went on 0.06 mm into it: 5 % of the energy of
+   !> a stack of three put in at once, and the stack never came to rest).
+   subroutine hand_back(engine, integrator)
+      type(chain_engine), intent(inout) :: engine
+      class(cluster_integrator), intent(inout) :: integrator
+      if (engine%first > 0 .and. engine%region_begun) then
+         call integrator%finish(engine)
+         engine%region_begun = .false.
+      end if
+   end subroutine hand_back
 
    !> A contact of slot s starts now: by the closed forms if it is isolated (why
    !> empty), else why says what prevents it.
