@@ -125,7 +125,8 @@ typedef struct {
   double initial_energy;        /**< initial kinetic energy */
   double energy_error;          /**< |kinetic + elastic + gravitational + dissipated -
                                      initial| relative to the initial energy */
-  double dissipated;            /**< energy dissipated in the contacts */
+  double dissipated;            /**< energy dissipated in the contacts up to time (also
+                                     by those still in progress) */
   double momentum_error;        /**< relative change of the momentum (NaN with a
                                      wall or gravity, which change it) */
   int64_t n_contacts;           /**< every contact, also beyond contact_capacity */

@@ -162,7 +162,7 @@ module hcimpact_chain_types
       !> The initial energy (kinetic + gravitational), and the relative error of
       !> kinetic + elastic + gravitational + dissipated against it at the end
       real(wp) :: initial_energy = nan, energy_error = nan
-      !> Dissipated energy in J
+      !> Dissipated energy in J (up to the time reached: contacts in progress included)
       real(wp) :: dissipated = nan
       !> Relative change of the momentum (only without walls and gravity, else NaN)
       real(wp) :: momentum_error = nan
