@@ -51,6 +51,7 @@ module hcimpact_mpi_chain_cvode
       & FCVodeGetNumNonlinSolvIters, FCVodeGetNumPrecEvals, FCVBBDPrecInit, &
       & FCVBBDPrecGetNumGfnEvals, CV_BDF, CV_NORMAL, CV_SUCCESS, CV_TSTOP_RETURN
    use fnvector_parallel_mod, only : FN_VNew_Parallel
+   use mpi_f08, only : MPI_Allreduce, MPI_LOGICAL, MPI_LAND
    use fsunlinsol_spgmr_mod, only : FSUNLinSol_SPGMR
 #if HCIMPACT_SUNDIALS_MAJOR >= 7
    use fsundials_core_mod, only : SUN_PREC_LEFT
@@ -113,9 +114,11 @@ contains
       integer(c_int64_t) :: n_local, n_global, mu, ml
       integer(c_long) :: count(1)
       character(len=40) :: where
+      logical :: ready, ready_checked
       integer :: m
 
       ok = .false.
+      ready_checked = .false.
       message = ""
       ctx = c_null_ptr
       mem = c_null_ptr
@@ -172,12 +175,22 @@ contains
          where = "CVodeSetStopTime"
          ierr = FCVodeSetStopTime(mem, real(t_end, c_double))
          if (ierr /= CV_SUCCESS) exit setup
+         ! a setup that failed on another rank only: none of them may enter CVode,
+         ! whose steps every rank must take together
+         where = "the setup on another rank"
+         ierr = -1
+         call MPI_Allreduce(.true., ready, 1, MPI_LOGICAL, MPI_LAND, run%block%comm)
+         if (.not. ready) exit setup
+         ready_checked = .true.
          where = "CVode"
          ierr = FCVode(mem, real(t_end, c_double), y_vec, t_reached, CV_NORMAL)
          if (ierr /= CV_SUCCESS .and. ierr /= CV_TSTOP_RETURN) exit setup
          y(1:3 * m) = yv(1:3 * m)
          ok = .true.
       end block setup
+      ! this rank's setup failed: tell the others before they enter CVode
+      if (.not. ready_checked .and. where /= "the setup on another rank") &
+         & call MPI_Allreduce(.false., ready, 1, MPI_LOGICAL, MPI_LAND, run%block%comm)
       if (.not. ok) then
          message = "CVODE failed in " // trim(where) // ": " // trim(cvode_flag_name(ierr)) &
             & // report_detail(run%report)

@@ -23,7 +23,7 @@ program hcimpact_mpi_chain
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result, max_message
    use hcimpact_cvode, only : chain_simulate
-   use hcimpact_cvode_chain_system, only : chain_region, region_scales, slot_pair
+   use hcimpact_cvode_chain_system, only : chain_region, region_scales, slot_none, slot_pair
    use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_scene, scene_system, &
       & chain_energy
    use hcimpact_mpi_chain_block, only : block_setup, block_partition, halo_doubles
@@ -78,7 +78,7 @@ contains
       character(len=max_message) :: message
       logical :: ok
       integer :: stat
-      real(wp) :: t0, t1
+      real(wp) :: seconds
       integer(int64) :: c0, c1, rate
 
       call read_chain_scene(scene_path, scene, ok, message)
@@ -91,8 +91,7 @@ contains
       if (stat /= hcimpact_ok) call fail_alone(exit_failure, result%message)
       call write_state(state_path, result%positions, result%velocities, ok, message)
       if (.not. ok) call fail_alone(exit_failure, message)
-      t0 = 0.0_wp
-      t1 = real(c1 - c0, wp) / real(rate, wp)
+      seconds = real(c1 - c0, wp) / real(rate, wp)
       ok = .true.
       call summary_line(output_unit, "mode", "serial (chain_simulate, method_integrated)", ok)
       call summary_line(output_unit, "beads", str_i(int(size(chain%mass), int64)), ok)
@@ -102,7 +101,7 @@ contains
       call summary_line(output_unit, "jacobian_evaluations", &
          & str_i(result%counters%jacobian_evals), ok)
       call summary_line(output_unit, "energy_error", str_r(result%energy_error), ok)
-      call summary_line(output_unit, "seconds", str_r(t1 - t0), ok)
+      call summary_line(output_unit, "seconds", str_r(seconds), ok)
       if (.not. ok) call fail_alone(exit_failure, "the standard output: writing failed")
       stop exit_ok, quiet=.true.
    end subroutine run_serial
@@ -143,7 +142,7 @@ contains
       whole%m = n
       allocate(whole%mass(n), whole%kind(0:n), whole%law(0:n), whole%gap0(0:n))
       whole%mass = chain%mass
-      whole%kind = 0
+      whole%kind = slot_none
       whole%kind(1:n - 1) = slot_pair
       whole%law(1:n - 1) = chain%law
       whole%gap0 = 0.0_wp
