@@ -34,7 +34,7 @@ module hcimpact_cvode_chain
       & advance_grow_left, advance_grow_right, advance_dissolved, advance_captured, &
       & advance_failed
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
-      & region_jacobian, slot_state, dissipation_index, force_rate, &
+      & region_jacobian, region_scales, slot_state, dissipation_index, force_rate, &
       & upper_band, lower_band, slot_none, slot_pair, slot_left_wall, &
       & slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
@@ -129,9 +129,8 @@ contains
       integer, intent(out) :: stat
       integer :: m, k, i, j, s, n_state, smu
       integer(c_int) :: ierr
-      real(wp) :: x, w, v_ref, x_ref, x_max, mu, e_ref, total
+      real(wp) :: x, w, v_ref, x_ref, e_ref
       type(contact_force_type) :: e
-      type(contact_law) :: law
       character(len=40) :: where
       real(c_double), pointer, contiguous :: y(:), atol(:)
 
@@ -189,38 +188,10 @@ contains
       self%y(n_state) = 0.0_wp
 
       ! scales: the largest relative speed, the smallest maximum compression at it
-      v_ref = 0.0_wp
-      do k = 1, m
-         v_ref = max(v_ref, abs(self%y(3 * k - 1)))
-      end do
-      v_ref = 2.0_wp * v_ref
-      total = sum(self%region%mass)
-      x_ref = huge(1.0_wp)
-      e_ref = 0.0_wp
-      do j = 0, m
-         if (self%region%kind(j) == slot_none .or. self%region%kind(j) == slot_boundary_left &
-            & .or. self%region%kind(j) == slot_boundary_right) cycle
-         law = self%region%law(j)
-         if (self%region%kind(j) == slot_pair) then
-            mu = self%region%mass(j) * (self%region%mass(j + 1) / (self%region%mass(j) &
-               & + self%region%mass(j + 1)))
-         else if (self%region%kind(j) == slot_left_wall) then
-            mu = self%region%mass(1)
-         else
-            mu = self%region%mass(m)
-         end if
-         x_max = 0.0_wp
-         if (v_ref > 0.0_wp) x_max = ((law%exponent + 1.0_wp) * mu * v_ref**2 &
-            & / (2.0_wp * law%stiffness))**(1.0_wp / (law%exponent + 1.0_wp))
-         if (engine%gravity /= 0.0_wp) x_max = max(x_max, (total * abs(engine%gravity) &
-            & / law%stiffness)**(1.0_wp / law%exponent))
-         if (x_max > 0.0_wp) x_ref = min(x_ref, x_max)
-         e_ref = max(e_ref, 0.5_wp * mu * v_ref**2)
-      end do
-      if (.not. (x_ref > 0.0_wp .and. x_ref < huge(1.0_wp))) x_ref = 1.0e-6_wp
-      if (.not. v_ref > 0.0_wp) v_ref = sqrt(abs(engine%gravity) * x_ref)
-      if (.not. v_ref > 0.0_wp) v_ref = 1.0_wp
-      if (.not. e_ref > 0.0_wp) e_ref = 0.5_wp * total * v_ref**2
+      self%region%scale = region_scales(self%region, self%y)
+      x_ref = self%region%scale(1)
+      v_ref = self%region%scale(2)
+      e_ref = self%region%scale(3)
       do k = 1, m
          self%atol(3 * k - 2) = engine%options%rtol * x_ref
          self%atol(3 * k - 1) = engine%options%rtol * v_ref
@@ -228,7 +199,6 @@ contains
       end do
       self%atol(n_state) = engine%options%rtol * e_ref
       self%region%rtol = engine%options%rtol
-      self%region%scale = [x_ref, v_ref, e_ref]
 
       ! the contacts in progress: handed over by the closed forms or an earlier region;
       ! and every slot's state now, the start of the first step's interpolants

@@ -31,7 +31,7 @@ module hcimpact_cvode_chain_system
    implicit none
    private
 
-   public :: chain_region, region_size, region_rhs, region_jacobian
+   public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
    public :: slot_state, dissipation_index, force_rate, upper_band, lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
       & slot_boundary_right
@@ -155,6 +155,54 @@ contains
       call contact_force_pair(region%law(j)%stiffness, region%law(j)%exponent, &
          & region%law(j)%damping, d, ql, vl, qr, vr, element)
    end subroutine slot_state
+
+   !> The natural scales of a region in the state y: the deformation x_ref (m), the
+   !> smallest maximum compression of its contacts at its largest relative speed, or
+   !> the static compression under gravity; that speed v_ref (m/s), twice the largest
+   !> speed of a body; and the kinetic energy e_ref (J) of that speed (the error
+   !> weights' scales, `chain_region`%scale)
+   pure function region_scales(region, y) result(scale)
+      type(chain_region), intent(in) :: region
+      real(wp), intent(in) :: y(:)
+      real(wp) :: scale(3)
+      real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total
+      type(contact_law) :: law
+      integer :: k, j, m
+
+      m = region%m
+      v_ref = 0.0_wp
+      do k = 1, m
+         v_ref = max(v_ref, abs(y(3 * k - 1)))
+      end do
+      v_ref = 2.0_wp * v_ref
+      total = sum(region%mass)
+      x_ref = huge(1.0_wp)
+      e_ref = 0.0_wp
+      do j = 0, m
+         if (region%kind(j) == slot_none .or. region%kind(j) == slot_boundary_left &
+            & .or. region%kind(j) == slot_boundary_right) cycle
+         law = region%law(j)
+         if (region%kind(j) == slot_pair) then
+            mu = region%mass(j) * (region%mass(j + 1) / (region%mass(j) + region%mass(j + 1)))
+         else if (region%kind(j) == slot_left_wall) then
+            mu = region%mass(1)
+         else
+            mu = region%mass(m)
+         end if
+         x_max = 0.0_wp
+         if (v_ref > 0.0_wp) x_max = ((law%exponent + 1.0_wp) * mu * v_ref**2 &
+            & / (2.0_wp * law%stiffness))**(1.0_wp / (law%exponent + 1.0_wp))
+         if (region%gravity /= 0.0_wp) x_max = max(x_max, (total * abs(region%gravity) &
+            & / law%stiffness)**(1.0_wp / law%exponent))
+         if (x_max > 0.0_wp) x_ref = min(x_ref, x_max)
+         e_ref = max(e_ref, 0.5_wp * mu * v_ref**2)
+      end do
+      if (.not. (x_ref > 0.0_wp .and. x_ref < huge(1.0_wp))) x_ref = 1.0e-6_wp
+      if (.not. v_ref > 0.0_wp) v_ref = sqrt(abs(region%gravity) * x_ref)
+      if (.not. v_ref > 0.0_wp) v_ref = 1.0_wp
+      if (.not. e_ref > 0.0_wp) e_ref = 0.5_wp * total * v_ref**2
+      scale = [x_ref, v_ref, e_ref]
+   end function region_scales
 
    !> Right-hand side dy/dt at the time t; ok false if a force is not finite.
    pure subroutine region_rhs(region, t, y, dy, ok)

@@ -1,0 +1,158 @@
+! SPDX-License-Identifier: Apache-2.0
+!> One rank's block of the distributed chain (doc/mpi.md): a contiguous run of beads,
+!> the exchange of its boundary beads with the neighbouring ranks, and its part of the
+!> right-hand side.
+!>
+!> The beads 1 .. n are cut into blocks of consecutive beads, one per rank in rank
+!> order, the sizes differing by at most one. A rank's state is that of its m beads in
+!> the layout of the serial chain's regions (hcimpact_cvode_chain_system): per bead k,
+!> its displacement u_k, velocity v_k and e_k, the energy dissipated so far in the pair
+!> on its left; 3 m values. The pair between two blocks is thus owned by the block on
+!> its right, and every pair by exactly one rank.
+!>
+!> The force on a boundary bead needs the displacement and velocity of the first bead
+!> of the block on the right and of the last bead of the block on the left: before
+!> each evaluation of the right-hand side, `exchange_halo` trades these (2 doubles
+!> each way per neighbour, MPI_Sendrecv). The right-hand side itself is that of the
+!> serial chain (`region_rhs`) on a region made of the block and the one or two
+!> neighbouring beads (halo beads): the same contact-force element and the same
+!> arithmetic, whose rows for the halo beads are dropped.
+module hcimpact_mpi_chain_block
+   use, intrinsic :: iso_fortran_env, only : int64
+   use mpi_f08, only : MPI_Comm, MPI_Sendrecv, MPI_DOUBLE_PRECISION, MPI_PROC_NULL, &
+      & MPI_STATUS_IGNORE, MPI_Comm_rank, MPI_Comm_size
+   use hcimpact_kinds, only : wp
+   use hcimpact_chain_types, only : chain_type
+   use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
+      & slot_none, slot_pair
+   implicit none
+   private
+
+   public :: chain_block, block_partition, block_setup, exchange_halo, block_rhs
+   public :: halo_doubles
+
+   !> Doubles sent to each neighbour per exchange: the displacement and velocity of one
+   !> boundary bead
+   integer, parameter :: halo_doubles = 2
+
+   !> Message tags of the two directions
+   integer, parameter :: tag_to_left = 11, tag_to_right = 12
+
+   !> A rank's block and what its callbacks need
+   type :: chain_block
+      !> The communicator, this rank and the number of ranks
+      type(MPI_Comm) :: comm
+      integer :: rank = 0, n_ranks = 1
+      !> The global number of beads, the first bead of the block and its size m
+      integer :: n = 0, first = 1, m = 0
+      !> The neighbouring ranks (MPI_PROC_NULL at an end of the chain)
+      integer :: left = MPI_PROC_NULL, right = MPI_PROC_NULL
+      !> Halo beads in the region: 1 if there is a neighbour on that side, else 0
+      integer :: n_left = 0, n_right = 0
+      !> The region: halo beads, the block's beads (hcimpact_cvode_chain_system)
+      type(chain_region) :: region
+      !> The region's state and its derivative (halo beads: exchanged values, e = 0)
+      real(wp), allocatable :: y_region(:), dy_region(:)
+      !> Displacement and velocity of the halo beads, from the last exchange
+      real(wp) :: halo_left(halo_doubles) = 0.0_wp, halo_right(halo_doubles) = 0.0_wp
+      !> Exchanges done (each: one MPI_Sendrecv per direction)
+      integer(int64) :: exchanges = 0
+   end type chain_block
+
+contains
+
+   !> The block of `rank` among n_ranks for n beads: its first bead and size m
+   !> (n / n_ranks beads, one more for the first mod(n, n_ranks) ranks)
+   pure subroutine block_partition(n, n_ranks, rank, first, m)
+      integer, intent(in) :: n, n_ranks, rank
+      integer, intent(out) :: first, m
+      integer :: base, extra
+      base = n / n_ranks
+      extra = mod(n, n_ranks)
+      first = rank * base + min(rank, extra) + 1
+      m = base
+      if (rank < extra) m = m + 1
+   end subroutine block_partition
+
+   !> The block of this rank of `comm` for the chain (at least as many beads as
+   !> ranks: hcimpact_mpi_chain_scene checks it; no walls, no gravity)
+   subroutine block_setup(chain, comm, block)
+      type(chain_type), intent(in) :: chain
+      type(MPI_Comm), intent(in) :: comm
+      type(chain_block), intent(out) :: block
+      integer :: mr, j, g
+
+      block%comm = comm
+      call MPI_Comm_rank(comm, block%rank)
+      call MPI_Comm_size(comm, block%n_ranks)
+      block%n = size(chain%mass)
+      call block_partition(block%n, block%n_ranks, block%rank, block%first, block%m)
+      if (block%rank > 0) then
+         block%left = block%rank - 1
+         block%n_left = 1
+      end if
+      if (block%rank < block%n_ranks - 1) then
+         block%right = block%rank + 1
+         block%n_right = 1
+      end if
+      ! the region: beads first - n_left .. first + m - 1 + n_right, its slots j between
+      ! its beads j and j + 1 are the chain's pairs; the slots at its two ends are none
+      mr = block%n_left + block%m + block%n_right
+      block%region%m = mr
+      block%region%gravity = chain%gravity
+      allocate(block%region%mass(mr), block%region%kind(0:mr), block%region%law(0:mr), &
+         & block%region%gap0(0:mr))
+      g = block%first - block%n_left
+      block%region%mass = chain%mass(g:g + mr - 1)
+      block%region%kind = slot_none
+      block%region%gap0 = 0.0_wp
+      do j = 1, mr - 1
+         block%region%kind(j) = slot_pair
+         block%region%law(j) = chain%law(g + j - 1)
+         block%region%gap0(j) = chain%gap(g + j - 1)
+      end do
+      allocate(block%y_region(region_size(mr)), block%dy_region(region_size(mr)))
+      block%y_region = 0.0_wp
+      block%dy_region = 0.0_wp
+   end subroutine block_setup
+
+   !> Trade the boundary beads with the neighbours: this block's first bead (u, v) to
+   !> the left and its last to the right, the halo beads back. y is the block's state.
+   subroutine exchange_halo(block, y)
+      type(chain_block), intent(inout) :: block
+      real(wp), intent(in) :: y(:)
+      real(wp) :: first_bead(halo_doubles), last_bead(halo_doubles)
+      integer :: m
+      m = block%m
+      first_bead = y(1:2)
+      last_bead = y(3 * m - 2:3 * m - 1)
+      ! to the left, from the right: the right neighbour's first bead
+      call MPI_Sendrecv(first_bead, halo_doubles, MPI_DOUBLE_PRECISION, block%left, &
+         & tag_to_left, block%halo_right, halo_doubles, MPI_DOUBLE_PRECISION, block%right, &
+         & tag_to_left, block%comm, MPI_STATUS_IGNORE)
+      ! to the right, from the left: the left neighbour's last bead
+      call MPI_Sendrecv(last_bead, halo_doubles, MPI_DOUBLE_PRECISION, block%right, &
+         & tag_to_right, block%halo_left, halo_doubles, MPI_DOUBLE_PRECISION, block%left, &
+         & tag_to_right, block%comm, MPI_STATUS_IGNORE)
+      block%exchanges = block%exchanges + 1
+   end subroutine exchange_halo
+
+   !> The block's right-hand side dy at the time t from its state y and the halo beads
+   !> of the last exchange; ok false if a force is not finite.
+   subroutine block_rhs(block, t, y, dy, ok)
+      type(chain_block), intent(inout) :: block
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: dy(:)
+      logical, intent(out) :: ok
+      integer :: m, lo, mr
+      m = block%m
+      mr = block%region%m
+      lo = 3 * block%n_left
+      if (block%n_left == 1) block%y_region(1:2) = block%halo_left
+      block%y_region(lo + 1:lo + 3 * m) = y(1:3 * m)
+      if (block%n_right == 1) block%y_region(3 * mr - 2:3 * mr - 1) = block%halo_right
+      call region_rhs(block%region, t, block%y_region, block%dy_region, ok)
+      dy(1:3 * m) = block%dy_region(lo + 1:lo + 3 * m)
+   end subroutine block_rhs
+
+end module hcimpact_mpi_chain_block

@@ -1,0 +1,272 @@
+! SPDX-License-Identifier: Apache-2.0
+!> hcimpact_mpi_chain: a long chain of beads integrated by CVODE over the ranks of MPI
+!> (doc/mpi.md), one contiguous block of beads per rank.
+!>
+!>     mpirun -n N hcimpact_mpi_chain SCENE STATE.csv
+!>     hcimpact_mpi_chain --serial SCENE STATE.csv
+!>
+!> SCENE holds the namelist &mpi_chain (hcimpact_mpi_chain_scene); STATE.csv receives
+!> the final position and velocity of every bead in bead order; the summary (work
+!> done, the halo exchanges and their bytes, the energy balance) goes to the standard
+!> output. --serial computes the same chain with the CVODE component's serial
+!> integrator (`chain_simulate`, method_integrated) in one process without MPI: the
+!> reference of the tests.
+!>
+!> Exit status: 0 success; 1 the integration or an output failed; 2 a bad command
+!> line or scene (every rank checks the same scene, and all end alike).
+program hcimpact_mpi_chain
+   use, intrinsic :: iso_fortran_env, only : int64, output_unit, error_unit
+   use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Comm_rank, MPI_Comm_size, MPI_Gatherv, &
+      & MPI_Reduce, MPI_Allreduce, MPI_Bcast, MPI_Barrier, MPI_Wtime, MPI_COMM_WORLD, &
+      & MPI_DOUBLE_PRECISION, MPI_INTEGER8, MPI_LOGICAL, MPI_SUM, MPI_MAX, MPI_LAND
+   use hcimpact_kinds, only : wp
+   use hcimpact_status, only : hcimpact_ok
+   use hcimpact_chain_types, only : chain_type, chain_options, chain_result, max_message
+   use hcimpact_cvode, only : chain_simulate
+   use hcimpact_cvode_chain_system, only : chain_region, region_scales, slot_none, slot_pair
+   use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_scene, scene_system, &
+      & chain_energy
+   use hcimpact_mpi_chain_block, only : block_setup, block_partition, halo_doubles
+   use hcimpact_mpi_chain_cvode, only : chain_integration, integrate_chain, &
+      & chain_counters_mpi
+   use hcimpact_mpi_chain_output, only : write_state, summary_line
+   implicit none
+
+   integer, parameter :: exit_ok = 0, exit_failure = 1, exit_usage = 2
+   character(len=4096) :: scene_path, state_path, arg
+   logical :: serial
+   integer :: n_args
+
+   n_args = command_argument_count()
+   serial = .false.
+   if (n_args >= 1) then
+      call get_command_argument(1, arg)
+      if (arg == "--help" .or. arg == "-h") then
+         call print_usage(output_unit)
+         stop exit_ok, quiet=.true.
+      end if
+      serial = arg == "--serial"
+   end if
+   if (n_args /= merge(3, 2, serial)) then
+      write(error_unit, '(a)') "error: expected a scene and an output file"
+      call print_usage(error_unit)
+      stop exit_usage, quiet=.true.
+   end if
+   call get_command_argument(merge(2, 1, serial), scene_path)
+   call get_command_argument(merge(3, 2, serial), state_path)
+   if (serial) then
+      call run_serial()
+   else
+      call run_distributed()
+   end if
+
+contains
+
+   subroutine print_usage(unit)
+      integer, intent(in) :: unit
+      write(unit, '(a)') "usage: mpirun -n N hcimpact_mpi_chain SCENE STATE.csv", &
+         & "       hcimpact_mpi_chain --serial SCENE STATE.csv", &
+         & "SCENE: a file with the namelist &mpi_chain (doc/mpi.md)"
+   end subroutine print_usage
+
+   !> The reference: the serial chain integrator on one process, no MPI
+   subroutine run_serial()
+      type(chain_scene) :: scene
+      type(chain_type) :: chain
+      type(chain_options) :: options
+      type(chain_result) :: result
+      character(len=max_message) :: message
+      logical :: ok
+      integer :: stat
+      real(wp) :: seconds
+      integer(int64) :: c0, c1, rate
+
+      call read_chain_scene(scene_path, scene, ok, message)
+      if (.not. ok) call fail_alone(exit_usage, message)
+      call scene_system(scene, 1, chain, options, stat, message)
+      if (stat /= hcimpact_ok) call fail_alone(exit_usage, message)
+      call system_clock(c0, rate)
+      call chain_simulate(chain, result, stat, options)
+      call system_clock(c1)
+      if (stat /= hcimpact_ok) call fail_alone(exit_failure, result%message)
+      call write_state(state_path, result%positions, result%velocities, ok, message)
+      if (.not. ok) call fail_alone(exit_failure, message)
+      seconds = real(c1 - c0, wp) / real(rate, wp)
+      ok = .true.
+      call summary_line(output_unit, "mode", "serial (chain_simulate, method_integrated)", ok)
+      call summary_line(output_unit, "beads", str_i(int(size(chain%mass), int64)), ok)
+      call summary_line(output_unit, "ranks", "1", ok)
+      call summary_line(output_unit, "steps", str_i(result%counters%steps), ok)
+      call summary_line(output_unit, "rhs_evaluations", str_i(result%counters%rhs_evals), ok)
+      call summary_line(output_unit, "jacobian_evaluations", &
+         & str_i(result%counters%jacobian_evals), ok)
+      call summary_line(output_unit, "energy_error", str_r(result%energy_error), ok)
+      call summary_line(output_unit, "seconds", str_r(seconds), ok)
+      if (.not. ok) call fail_alone(exit_failure, "the standard output: writing failed")
+      stop exit_ok, quiet=.true.
+   end subroutine run_serial
+
+   !> The chain over the ranks of MPI_COMM_WORLD
+   subroutine run_distributed()
+      type(chain_scene) :: scene
+      type(chain_type) :: chain
+      type(chain_options) :: options
+      type(chain_integration), target :: run
+      type(chain_counters_mpi) :: counters
+      type(chain_region) :: whole
+      character(len=max_message) :: message
+      real(wp), allocatable :: y(:), local(:), u(:), v(:), positions(:), gathered(:)
+      integer, allocatable :: counts(:), displs(:)
+      real(wp) :: dissipated_local, dissipated, energy0, energy_error, t0, t1, seconds, q0, &
+         & energy_end
+      integer(int64) :: exchanges, halo_bytes
+      integer :: rank, n_ranks, stat, k, m, n, r, first, size_r, i
+      logical :: ok, all_ok
+
+      call MPI_Init()
+      call MPI_Comm_rank(MPI_COMM_WORLD, rank)
+      call MPI_Comm_size(MPI_COMM_WORLD, n_ranks)
+
+      ! every rank reads and checks the same scene: all end alike on a bad one
+      call read_chain_scene(scene_path, scene, ok, message)
+      if (.not. ok) call fail_all(rank, exit_usage, message)
+      call scene_system(scene, n_ranks, chain, options, stat, message)
+      if (stat /= hcimpact_ok) call fail_all(rank, exit_usage, message)
+      n = size(chain%mass)
+
+      call block_setup(chain, MPI_COMM_WORLD, run%block)
+      m = run%block%m
+      first = run%block%first
+      run%rtol = options%rtol
+      ! the scales of the whole chain (those of the serial chain's one region)
+      whole%m = n
+      allocate(whole%mass(n), whole%kind(0:n), whole%law(0:n), whole%gap0(0:n))
+      whole%mass = chain%mass
+      whole%kind = slot_none
+      whole%kind(1:n - 1) = slot_pair
+      whole%law(1:n - 1) = chain%law
+      whole%gap0 = 0.0_wp
+      allocate(y(3 * n + 1))
+      y = 0.0_wp
+      y(2:3 * n - 1:3) = chain%velocity
+      run%scale = region_scales(whole, y)
+      deallocate(y)
+
+      allocate(y(3 * m))
+      y = 0.0_wp
+      do k = 1, m
+         y(3 * k - 1) = chain%velocity(first + k - 1)
+      end do
+
+      call MPI_Barrier(MPI_COMM_WORLD)
+      t0 = MPI_Wtime()
+      call integrate_chain(run, options%t_end, options%max_steps, y, counters, ok, message)
+      t1 = MPI_Wtime()
+      ! CVODE's failures are collective; should one rank fail alone, all still stop
+      call MPI_Reduce(t1 - t0, seconds, 1, MPI_DOUBLE_PRECISION, MPI_MAX, 0, MPI_COMM_WORLD)
+      call MPI_Allreduce(ok, all_ok, 1, MPI_LOGICAL, MPI_LAND, MPI_COMM_WORLD)
+      if (ok .and. .not. all_ok) message = "CVODE failed on another rank"
+      if (.not. all_ok) call fail_all(rank, exit_failure, message)
+
+      ! the beads in order on rank 0: displacements, then velocities
+      allocate(local(2 * m))
+      local(1:m) = y(1:3 * m:3)
+      local(m + 1:2 * m) = y(2:3 * m:3)
+      dissipated_local = sum(y(3:3 * m:3))
+      allocate(counts(n_ranks), displs(n_ranks), gathered(2 * n))
+      do r = 0, n_ranks - 1
+         call block_partition(n, n_ranks, r, i, size_r)
+         counts(r + 1) = 2 * size_r
+         displs(r + 1) = 2 * (i - 1)
+      end do
+      call MPI_Gatherv(local, 2 * m, MPI_DOUBLE_PRECISION, gathered, counts, displs, &
+         & MPI_DOUBLE_PRECISION, 0, MPI_COMM_WORLD)
+      call MPI_Reduce(dissipated_local, dissipated, 1, MPI_DOUBLE_PRECISION, MPI_SUM, 0, &
+         & MPI_COMM_WORLD)
+      call MPI_Reduce(run%block%exchanges, exchanges, 1, MPI_INTEGER8, MPI_SUM, 0, &
+         & MPI_COMM_WORLD)
+
+      ok = .true.
+      if (rank == 0) then
+         allocate(u(n), v(n), positions(n))
+         do r = 0, n_ranks - 1
+            call block_partition(n, n_ranks, r, i, size_r)
+            u(i:i + size_r - 1) = gathered(2 * (i - 1) + 1:2 * (i - 1) + size_r)
+            v(i:i + size_r - 1) = gathered(2 * (i - 1) + size_r + 1:2 * (i - 1) + 2 * size_r)
+         end do
+         ! positions: q_1(0) = 0, q_(i+1)(0) = q_i(0) + gap(i), plus the displacement
+         q0 = 0.0_wp
+         positions(1) = u(1)
+         do i = 2, n
+            q0 = q0 + chain%gap(i - 1)
+            positions(i) = q0 + u(i)
+         end do
+         energy_end = chain_energy(chain, u, v)
+         call write_state(state_path, positions, v, ok, message)
+         if (ok) then
+            ! the initial state: no displacement
+            u = 0.0_wp
+            energy0 = chain_energy(chain, u, chain%velocity)
+            energy_error = (energy_end + dissipated - energy0) / energy0
+            ! bytes of the halo exchanges: every rank sends halo_doubles doubles to each
+            ! neighbour per exchange (exchanges is their sum over the ranks)
+            halo_bytes = (exchanges / n_ranks) * 2_int64 * (n_ranks - 1) * halo_doubles * 8
+            call summary_line(output_unit, "mode", "distributed (N_Vector_Parallel, " &
+               & // "BDF, SPGMR, CVBBDPRE)", ok)
+            call summary_line(output_unit, "beads", str_i(int(n, int64)), ok)
+            call summary_line(output_unit, "ranks", str_i(int(n_ranks, int64)), ok)
+            call summary_line(output_unit, "steps", str_i(counters%steps), ok)
+            call summary_line(output_unit, "rhs_evaluations", str_i(counters%rhs_evals), ok)
+            call summary_line(output_unit, "nonlinear_iterations", &
+               & str_i(counters%nonlinear_iterations), ok)
+            call summary_line(output_unit, "linear_iterations", &
+               & str_i(counters%linear_iterations), ok)
+            call summary_line(output_unit, "preconditioner_setups", &
+               & str_i(counters%preconditioner_setups), ok)
+            call summary_line(output_unit, "local_rhs_evaluations", &
+               & str_i(counters%local_rhs_evals), ok)
+            call summary_line(output_unit, "halo_exchanges", str_i(exchanges / n_ranks), ok)
+            call summary_line(output_unit, "halo_bytes", str_i(halo_bytes), ok)
+            call summary_line(output_unit, "halo_bytes_per_step", &
+               & str_r(real(halo_bytes, wp) / real(max(counters%steps, 1_int64), wp)), ok)
+            call summary_line(output_unit, "energy_error", str_r(energy_error), ok)
+            call summary_line(output_unit, "seconds", str_r(seconds), ok)
+            if (.not. ok) message = "the standard output: writing failed"
+         end if
+      end if
+      call MPI_Bcast(ok, 1, MPI_LOGICAL, 0, MPI_COMM_WORLD)
+      if (.not. ok) call fail_all(rank, exit_failure, message)
+      call MPI_Finalize()
+      stop exit_ok, quiet=.true.
+   end subroutine run_distributed
+
+   !> Report on rank 0, end MPI and stop every rank with `code`
+   subroutine fail_all(rank, code, message)
+      integer, intent(in) :: rank, code
+      character(len=*), intent(in) :: message
+      if (rank == 0) write(error_unit, '(a)') "error: " // trim(message)
+      call MPI_Finalize()
+      stop code, quiet=.true.
+   end subroutine fail_all
+
+   !> Report and stop with `code` (no MPI)
+   subroutine fail_alone(code, message)
+      integer, intent(in) :: code
+      character(len=*), intent(in) :: message
+      write(error_unit, '(a)') "error: " // trim(message)
+      stop code, quiet=.true.
+   end subroutine fail_alone
+
+   pure function str_i(value) result(text)
+      integer(int64), intent(in) :: value
+      character(len=24) :: text
+      write(text, '(i0)') value
+   end function str_i
+
+   pure function str_r(value) result(text)
+      real(wp), intent(in) :: value
+      character(len=24) :: text
+      write(text, '(es12.5)') value
+   end function str_r
+
+end program hcimpact_mpi_chain
