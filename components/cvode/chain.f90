@@ -35,7 +35,7 @@ module hcimpact_cvode_chain
       & advance_failed
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, slot_state, dissipation_index, force_rate, &
-      & upper_band, lower_band, slot_none, slot_pair, slot_left_wall, &
+      & error_weights, upper_band, lower_band, slot_none, slot_pair, slot_left_wall, &
       & slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
@@ -857,41 +857,18 @@ contains
       if (.not. ok) ierr = 1
    end function chain_rhs_callback
 
-   !> The error weights (CVODE's CVEwtFn). A displacement's error is measured against
-   !> rtol x_ref, not against rtol |u|: the deformations, differences of displacements
-   !> that grow as the bodies move, must keep their accuracy however far the bodies
-   !> have gone. A velocity's against rtol (|v| + v_ref), a dissipated energy's
-   !> against rtol e_ref (region%scale). Every weight is multiplied by the square
-   !> root of the number of values, so that CVODE's root mean square of the weighted
-   !> errors is their 2-norm: the bodies that carry the errors (those in contact) are
-   !> few in a long region, and a mean over all its bodies would let their errors
-   !> grow with the region's size (a struck chain of 10^4 beads at rtol 1e-8 kept
-   !> its energy to 1.5e-4 only). No tolerance is below 2 sqrt(n) ulps of its value
-   !> (the value's own rounding): a ball dropped 25 cm has a displacement whose ulp
-   !> is 5e-17 m, above rtol x_ref = 1e-17 m, and CVODE stopped with CV_TOO_MUCH_ACC
-   !> (its check: unit roundoff times the weighted norm of the state at most 1,
-   !> which this floor keeps at 1/2).
+   !> The error weights (CVODE's CVEwtFn): `error_weights` of the region.
    function chain_error_weights(y, ewt, user_data) result(ierr) bind(C)
       type(N_Vector) :: y, ewt
       type(c_ptr), value :: user_data
       integer(c_int) :: ierr
       type(chain_region), pointer :: region
       real(c_double), pointer :: yv(:), wv(:)
-      integer :: k, m
-      real(wp) :: root_n, floor
       call c_f_pointer(user_data, region)
       yv => FN_VGetArrayPointer(y)
       wv => FN_VGetArrayPointer(ewt)
-      m = region%m
-      root_n = sqrt(real(region_size(m), wp))
-      floor = 2.0_wp * epsilon(1.0_wp) * root_n
-      do k = 1, m
-         wv(3 * k - 2) = root_n / max(region%rtol * region%scale(1), floor * abs(yv(3 * k - 2)))
-         wv(3 * k - 1) = root_n / max(region%rtol * (abs(yv(3 * k - 1)) + region%scale(2)), &
-            & floor * abs(yv(3 * k - 1)))
-         wv(3 * k) = root_n / max(region%rtol * region%scale(3), floor * abs(yv(3 * k)))
-      end do
-      wv(3 * m + 1) = root_n / max(region%rtol * region%scale(3), floor * abs(yv(3 * m + 1)))
+      call error_weights(yv, region%rtol, region%scale, &
+         & sqrt(real(region_size(region%m), wp)), wv)
       ierr = 0
    end function chain_error_weights
 

@@ -32,6 +32,7 @@ module hcimpact_cvode_chain_system
    private
 
    public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
+   public :: error_weights
    public :: slot_state, dissipation_index, force_rate, upper_band, lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
       & slot_boundary_right
@@ -155,6 +156,48 @@ contains
       call contact_force_pair(region%law(j)%stiffness, region%law(j)%exponent, &
          & region%law(j)%damping, d, ql, vl, qr, vr, element)
    end subroutine slot_state
+
+   !> The error weights of a state of bodies (CVODE's CVEwtFn), for the serial region
+   !> and a rank's block alike: y holds (u, v, e) per body and, serial, the region's
+   !> last dissipated energy after them (any value past the bodies' is an energy).
+   !> A displacement's error is measured against rtol x_ref, not against rtol |u|:
+   !> the deformations, differences of displacements that grow as the bodies move,
+   !> must keep their accuracy however far the bodies have gone. A velocity's against
+   !> rtol (|v| + v_ref), a dissipated energy's against rtol e_ref (scale). Every
+   !> weight is multiplied by root_n, the square root of the number of values in the
+   !> whole system, so that CVODE's root mean square of the weighted errors is their
+   !> 2-norm: the bodies that carry the errors (those in contact) are few in a long
+   !> chain, and a mean over all its bodies would let their errors grow with its size
+   !> (a struck chain of 10^4 beads at rtol 1e-8 kept its energy to 1.5e-4 only). No
+   !> tolerance is below 2 root_n ulps of its value (the value's own rounding): a ball
+   !> dropped 25 cm has a displacement whose ulp is 5e-17 m, above rtol x_ref = 1e-17
+   !> m, and CVODE stopped with CV_TOO_MUCH_ACC (its check: unit roundoff times the
+   !> weighted norm of the state at most 1, which this floor keeps at 1/2).
+   pure subroutine error_weights(y, rtol, scale, root_n, w)
+      !> The state
+      real(wp), intent(in) :: y(:)
+      !> Relative tolerance
+      real(wp), intent(in) :: rtol
+      !> x_ref, v_ref, e_ref (region_scales)
+      real(wp), intent(in) :: scale(3)
+      !> Square root of the number of values of the whole system
+      real(wp), intent(in) :: root_n
+      !> The weights
+      real(wp), intent(out) :: w(:)
+      real(wp) :: floor
+      integer :: k, m
+      floor = 2.0_wp * epsilon(1.0_wp) * root_n
+      m = size(y) / 3
+      do k = 1, m
+         w(3 * k - 2) = root_n / max(rtol * scale(1), floor * abs(y(3 * k - 2)))
+         w(3 * k - 1) = root_n / max(rtol * (abs(y(3 * k - 1)) + scale(2)), &
+            & floor * abs(y(3 * k - 1)))
+         w(3 * k) = root_n / max(rtol * scale(3), floor * abs(y(3 * k)))
+      end do
+      do k = 3 * m + 1, size(y)
+         w(k) = root_n / max(rtol * scale(3), floor * abs(y(k)))
+      end do
+   end subroutine error_weights
 
    !> The natural scales of a region in the state y: the deformation x_ref (m), the
    !> smallest maximum compression of its contacts at its largest relative speed, or

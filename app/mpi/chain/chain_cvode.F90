@@ -43,7 +43,7 @@ module hcimpact_mpi_chain_cvode
    use hcimpact_cvode_sundials, only : N_Vector, SUNLinearSolver, FN_VGetArrayPointer, &
       & FN_VDestroy, FSUNLinSolFree, context_create, context_free, capture_errors
    use hcimpact_cvode_solver, only : cvode_flag_name
-   use hcimpact_cvode_chain_system, only : upper_band, lower_band
+   use hcimpact_cvode_chain_system, only : upper_band, lower_band, error_weights
    use hcimpact_mpi_chain_block, only : chain_block, exchange_halo, block_rhs
    use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSetUserData, &
       & FCVodeWFtolerances, FCVodeSetMaxNumSteps, FCVodeSetStopTime, FCVode, FCVodeFree, &
@@ -287,15 +287,11 @@ contains
       integer(c_int) :: ierr
       type(chain_integration), pointer :: run
       real(c_double), pointer :: yv(:), wv(:)
-      integer :: k
       call c_f_pointer(user_data, run)
       yv => FN_VGetArrayPointer(y)
       wv => FN_VGetArrayPointer(ewt)
-      do k = 1, run%block%m
-         wv(3 * k - 2) = run%root_n / (run%rtol * run%scale(1))
-         wv(3 * k - 1) = run%root_n / (run%rtol * (abs(yv(3 * k - 1)) + run%scale(2)))
-         wv(3 * k) = run%root_n / (run%rtol * run%scale(3))
-      end do
+      call error_weights(yv(1:3 * run%block%m), run%rtol, run%scale, run%root_n, &
+         & wv(1:3 * run%block%m))
       ierr = 0
    end function chain_error_weights
 
