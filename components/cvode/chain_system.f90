@@ -26,7 +26,7 @@
 module hcimpact_cvode_chain_system
    use hcimpact_kinds, only : wp
    use hcimpact_force_element, only : contact_force_type, contact_force_pair
-   use hcimpact_chain_types, only : contact_law
+   use hcimpact_chain_types, only : contact_law, kinetic_energy
    use hcimpact_cvode_report, only : solver_report
    implicit none
    private
@@ -208,9 +208,12 @@ contains
       type(chain_region), intent(in) :: region
       real(wp), intent(in) :: y(:)
       real(wp) :: scale(3)
-      real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total
+      ! exp of at most this is a double
+      real(wp), parameter :: max_log = 709.0_wp
+      real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total, lq
       type(contact_law) :: law
       integer :: k, j, m
+      logical :: ok
 
       m = region%m
       v_ref = 0.0_wp
@@ -232,18 +235,40 @@ contains
          else
             mu = region%mass(m)
          end if
+         ! where v_ref^2 or total g/c would leave the range of doubles (1e-300 kg at
+         ! 1e160 m/s), by logarithms: a compression beyond the range is taken as the
+         ! largest double, which x_ref never keeps
          x_max = 0.0_wp
-         if (v_ref > 0.0_wp) x_max = ((law%exponent + 1.0_wp) * mu * v_ref**2 &
-            & / (2.0_wp * law%stiffness))**(1.0_wp / (law%exponent + 1.0_wp))
-         if (region%gravity /= 0.0_wp) x_max = max(x_max, (total * abs(region%gravity) &
-            & / law%stiffness)**(1.0_wp / law%exponent))
+         if (v_ref > 0.0_wp) then
+            lq = log(law%exponent + 1.0_wp) + log(mu) + 2.0_wp * log(v_ref)
+            ! (the numerator, then the quotient)
+            ok = lq < max_log .and. v_ref < 1.0e150_wp
+            lq = lq - log(2.0_wp * law%stiffness)
+            if (ok .and. abs(lq) < max_log) then
+               x_max = ((law%exponent + 1.0_wp) * mu * v_ref**2 / (2.0_wp * law%stiffness)) &
+                  & **(1.0_wp / (law%exponent + 1.0_wp))
+            else
+               x_max = exp(min(max_log, lq / (law%exponent + 1.0_wp)))
+            end if
+         end if
+         if (region%gravity /= 0.0_wp) then
+            lq = log(total) + log(abs(region%gravity))
+            ok = lq < max_log
+            lq = lq - log(law%stiffness)
+            if (ok .and. abs(lq) < max_log) then
+               x_max = max(x_max, (total * abs(region%gravity) / law%stiffness) &
+                  & **(1.0_wp / law%exponent))
+            else
+               x_max = max(x_max, exp(min(max_log, lq / law%exponent)))
+            end if
+         end if
          if (x_max > 0.0_wp) x_ref = min(x_ref, x_max)
-         e_ref = max(e_ref, 0.5_wp * mu * v_ref**2)
+         e_ref = max(e_ref, kinetic_energy(mu, v_ref))
       end do
       if (.not. (x_ref > 0.0_wp .and. x_ref < huge(1.0_wp))) x_ref = 1.0e-6_wp
       if (.not. v_ref > 0.0_wp) v_ref = sqrt(abs(region%gravity) * x_ref)
       if (.not. v_ref > 0.0_wp) v_ref = 1.0_wp
-      if (.not. e_ref > 0.0_wp) e_ref = 0.5_wp * total * v_ref**2
+      if (.not. e_ref > 0.0_wp) e_ref = kinetic_energy(total, v_ref)
       scale = [x_ref, v_ref, e_ref]
    end function region_scales
 
