@@ -204,6 +204,7 @@ contains
       type(chain_engine) :: engine
       real(wp) :: t_stop, t_event, t_end
       integer :: what, slot
+      integer(int64) :: passes, max_passes
       logical :: until_rest
 
       call check_chain(chain, options, stat, result%message)
@@ -224,7 +225,19 @@ contains
          call schedule_all(engine)
       end if
 
+      ! every pass of the loop steps, handles an event or switches a region, each of
+      ! which the options bound; a pass that does none of them is bounded here too
+      passes = 0_int64
+      max_passes = 4_int64 * (min(options%max_steps, 2_int64**40) &
+         & + min(options%max_events, 2_int64**40)) + 1000_int64
       main: do
+         passes = passes + 1_int64
+         if (passes > max_passes) then
+            stat = hcimpact_err_no_convergence
+            write(engine%message, '(a, i0, a, es10.3, a)') "no progress after ", &
+               & max_passes, " passes of the event loop (at t = ", engine%time, " s)"
+            exit main
+         end if
          if (engine%first > 0 .and. .not. engine%region_begun) then
             call integrator%begin(engine, stat)
             if (stat /= hcimpact_ok) exit main
