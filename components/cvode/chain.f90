@@ -311,9 +311,13 @@ contains
       integer :: m
       real(wp), allocatable :: u(:), v(:)
       logical :: ended
+      ! steps in a row that left the time where it was, and how many are tolerated
+      integer :: stalled
+      integer, parameter :: max_stalled = 100
 
       stat = hcimpact_ok
       what = advance_reached
+      stalled = 0
       m = self%region%m
       if (t_stop < huge(1.0_wp)) then
          if (.not. t_stop > engine%time) return
@@ -346,6 +350,21 @@ contains
                & " s: " // cvode_flag_name(ierr) // report_detail(self%region%report)
             what = advance_failed
             return
+         end if
+         ! steps too small to move the time (t + h = t: forces that change on a scale
+         ! below the time's resolution) would go on until max_steps, 1e8 by default
+         if (tret(1) > engine%time) then
+            stalled = 0
+         else
+            stalled = stalled + 1
+            if (stalled > max_stalled) then
+               stat = hcimpact_err_solver
+               write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", engine%time, &
+                  & " s: ", max_stalled, " steps in a row did not advance the time (steps " &
+                  & // "below its resolution)"
+               what = advance_failed
+               return
+            end if
          end if
          engine%time = tret(1)
          engine%counters%steps = engine%counters%steps + 1

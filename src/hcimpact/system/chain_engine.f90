@@ -205,6 +205,10 @@ contains
       real(wp) :: t_stop, t_event, t_end
       integer :: what, slot
       integer(int64) :: passes, max_passes
+      ! clusters dissolved in a row at the same time, and how many are tolerated
+      integer :: idle_dissolves
+      integer, parameter :: max_idle_dissolves = 100
+      real(wp) :: t_dissolved
       logical :: until_rest
 
       call check_chain(chain, options, stat, result%message)
@@ -228,6 +232,8 @@ contains
       ! every pass of the loop steps, handles an event or switches a region, each of
       ! which the options bound; a pass that does none of them is bounded here too
       passes = 0_int64
+      idle_dissolves = 0
+      t_dissolved = -huge(1.0_wp)
       max_passes = 4_int64 * (min(options%max_steps, 2_int64**40) &
          & + min(options%max_events, 2_int64**40)) + 1000_int64
       main: do
@@ -274,6 +280,21 @@ contains
             case (advance_dissolved)
                call integrator%finish(engine)
                call dissolve_region(engine)
+               ! a cluster that forms and dissolves again and again without the time
+               ! advancing (seen at extreme scales) is no progress
+               if (engine%time > t_dissolved) then
+                  idle_dissolves = 0
+               else
+                  idle_dissolves = idle_dissolves + 1
+                  if (idle_dissolves > max_idle_dissolves) then
+                     stat = hcimpact_err_no_convergence
+                     write(engine%message, '(a, i0, a, es10.3, a)') "a cluster formed and " &
+                        & // "dissolved ", max_idle_dissolves, " times at t = ", engine%time, &
+                        & " s without the time advancing"
+                     exit main
+                  end if
+               end if
+               t_dissolved = engine%time
                cycle main
             case (advance_captured)
                engine%region_rested = .true.
