@@ -86,8 +86,7 @@ contains
       outcome%restitution = k%hi
       t = (1.0_wp - k) * (k + 1.0_wp)
       outcome%energy_loss_ratio = t%hi
-      t = -(k * contact%velocity)
-      outcome%rebound_velocity = t%hi
+      outcome%rebound_velocity = rebound_velocity(model)
       outcome%max_compression = model%x_max%hi
       t = model%time_unit * dur(1)
       outcome%compression_time = t%hi
@@ -212,8 +211,7 @@ contains
          if (branch == compression_branch) then
             v = contact%velocity
          else
-            t = -(model%f%tr%k * contact%velocity)
-            v = t%hi
+            v = rebound_velocity(model)
          end if
          return
       end if
@@ -399,9 +397,8 @@ contains
          return
       end if
       if (.not. (t < contact_time .and. tau%hi < e%hi)) then
-         e = -(model%f%tr%k * model%velocity)
          x = 0.0_wp
-         v = e%hi
+         v = rebound_velocity(model)
          f = 0.0_wp
          return
       end if
@@ -480,13 +477,21 @@ contains
       !> The velocity in m/s
       real(wp), intent(in) :: v
       real(wp) :: bounded
-      type(dd_real) :: rebound
       if (phase == compression_phase) then
          bounded = min(v, model%velocity)
       else
-         rebound = -(model%f%tr%k * model%velocity)
-         bounded = max(v, rebound%hi)
+         bounded = max(v, rebound_velocity(model))
       end if
    end function within_branch
+
+   !> The rebound velocity -k V, rounded once from k in double-double: the outcome's,
+   !> and the end of every velocity of the restitution.
+   pure function rebound_velocity(model) result(v)
+      type(power_model), intent(in) :: model
+      real(wp) :: v
+      type(dd_real) :: t
+      t = -(model%f%tr%k * model%velocity)
+      v = t%hi
+   end function rebound_velocity
 
 end module hcimpact_power_impact
