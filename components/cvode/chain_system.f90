@@ -24,6 +24,7 @@
 !> The starts and ends of contacts, and their extrema, are found by the driver from each
 !> step's cubic Hermite interpolant of every slot's deformation (hcimpact_cvode_chain).
 module hcimpact_cvode_chain_system
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp
    use hcimpact_force_element, only : contact_force_type, contact_force_pair
    use hcimpact_chain_types, only : contact_law, kinetic_energy
@@ -172,7 +173,11 @@ contains
    !> tolerance is below 2 root_n ulps of its value (the value's own rounding): a ball
    !> dropped 25 cm has a displacement whose ulp is 5e-17 m, above rtol x_ref = 1e-17
    !> m, and CVODE stopped with CV_TOO_MUCH_ACC (its check: unit roundoff times the
-   !> weighted norm of the state at most 1, which this floor keeps at 1/2).
+   !> weighted norm of the state at most 1, which this floor keeps at 1/2). Nor is any
+   !> below root_n times the smallest normal double, so that no weight overflows: the
+   !> dissipated energy of bodies of 1e-300 kg has rtol e_ref = 1e-310, whose
+   !> reciprocal is +Inf, and CVODE failed at t = 0 (CV_CONV_FAILURE); such energies
+   !> are subnormal, with fewer digits than any tolerance asks.
    pure subroutine error_weights(y, rtol, scale, root_n, w)
       !> The state
       real(wp), intent(in) :: y(:)
@@ -184,18 +189,19 @@ contains
       real(wp), intent(in) :: root_n
       !> The weights
       real(wp), intent(out) :: w(:)
-      real(wp) :: floor
+      real(wp) :: floor, least
       integer :: k, m
       floor = 2.0_wp * epsilon(1.0_wp) * root_n
+      least = tiny(1.0_wp) * root_n
       m = size(y) / 3
       do k = 1, m
-         w(3 * k - 2) = root_n / max(rtol * scale(1), floor * abs(y(3 * k - 2)))
+         w(3 * k - 2) = root_n / max(rtol * scale(1), floor * abs(y(3 * k - 2)), least)
          w(3 * k - 1) = root_n / max(rtol * (abs(y(3 * k - 1)) + scale(2)), &
-            & floor * abs(y(3 * k - 1)))
-         w(3 * k) = root_n / max(rtol * scale(3), floor * abs(y(3 * k)))
+            & floor * abs(y(3 * k - 1)), least)
+         w(3 * k) = root_n / max(rtol * scale(3), floor * abs(y(3 * k)), least)
       end do
       do k = 3 * m + 1, size(y)
-         w(k) = root_n / max(rtol * scale(3), floor * abs(y(k)))
+         w(k) = root_n / max(rtol * scale(3), floor * abs(y(k)), least)
       end do
    end subroutine error_weights
 
@@ -279,8 +285,9 @@ contains
       real(wp), intent(out) :: dy(:)
       logical, intent(out) :: ok
       type(contact_force_type) :: e
-      real(wp) :: x, w
+      real(wp) :: x, w, a
       integer :: k, j, m
+      logical :: within
 
       m = region%m
       ok = .true.
@@ -290,14 +297,64 @@ contains
       end do
       do j = 0, m
          call slot_state(region, j, t, y, x, w, e)
-         if (.not. (abs(e%force) <= huge(1.0_wp) .and. abs(e%dissipation) <= huge(1.0_wp))) &
+         ! (ieee_is_finite, not a comparison: a NaN compared traps in the Debug build)
+         if (.not. (ieee_is_finite(e%force) .and. ieee_is_finite(e%dissipation))) &
             & ok = .false.
          ! +F on the right body of the slot, -F on the left one
-         if (j >= 1) dy(3 * j - 1) = dy(3 * j - 1) - e%force / region%mass(j)
-         if (j < m) dy(3 * j + 2) = dy(3 * j + 2) + e%force / region%mass(j + 1)
+         if (j >= 1) then
+            call acceleration_of(e%force, region%mass(j), a, within)
+            call add_within(dy(3 * j - 1), -a, within)
+            ok = ok .and. within
+         end if
+         if (j < m) then
+            call acceleration_of(e%force, region%mass(j + 1), a, within)
+            call add_within(dy(3 * j + 2), a, within)
+            ok = ok .and. within
+         end if
          dy(dissipation_index(m, j)) = e%dissipation
       end do
    end subroutine region_rhs
+
+   !> The acceleration f/m of a force f on a mass m > 0, and whether it lies within a
+   !> quarter of the largest double, so that the few terms of a body (gravity, the
+   !> forces of its two slots) or of a Jacobian entry add up without overflow; beyond,
+   !> a is that bound with the sign of f. Formed without an overflow (the Debug build
+   !> traps on it): a body of subnormal mass has accelerations beyond the range of
+   !> doubles as soon as the force is normal.
+   elemental subroutine acceleration_of(f, m, a, within)
+      real(wp), intent(in) :: f, m
+      real(wp), intent(out) :: a
+      logical, intent(out) :: within
+      real(wp), parameter :: bound = 0.25_wp * huge(1.0_wp)
+      ! (nested: Fortran may evaluate both sides of .or., and m bound overflows for m >= 4)
+      within = .false.
+      a = 0.0_wp
+      if (.not. ieee_is_finite(f)) return
+      a = sign(huge(1.0_wp), f)
+      if (m >= 1.0_wp) then
+         a = f / m
+      else if (abs(f) <= m * bound) then
+         a = f / m
+      end if
+      within = abs(a) <= bound
+      if (.not. within) a = sign(bound, f)
+   end subroutine acceleration_of
+
+   !> total + a unless that sum leaves the range of doubles (total is then unchanged
+   !> and within false), formed without an overflow
+   elemental subroutine add_within(total, a, within)
+      real(wp), intent(inout) :: total
+      real(wp), intent(in) :: a
+      logical, intent(inout) :: within
+      real(wp), parameter :: bound = 0.25_wp * huge(1.0_wp)
+      if (abs(total) <= bound .and. abs(a) <= bound) then
+         total = total + a
+      else if (abs(0.5_wp * total + 0.5_wp * a) <= 0.5_wp * huge(1.0_wp)) then
+         total = total + a
+      else
+         within = .false.
+      end if
+   end subroutine add_within
 
    !> The Jacobian into band storage (SUNDIALS' band matrix seen as a Fortran array):
    !> J(row, col) is band(smu + row - col + 1, col), smu the stored upper bandwidth.
@@ -308,8 +365,9 @@ contains
       integer, intent(in) :: smu
       real(wp), intent(inout) :: band(:, :)
       type(contact_force_type) :: e
-      real(wp) :: x, w, fx, fv, ml, mr
+      real(wp) :: x, w, fx, fv, axl, avl, axr, avr
       integer :: k, j, m, l, r
+      logical :: within
 
       m = region%m
       do k = 1, m
@@ -324,25 +382,32 @@ contains
          case (slot_pair)
             l = j
             r = j + 1
-            ml = region%mass(l)
-            mr = region%mass(r)
-            ! x = ... + u_l - u_r, w = v_l - v_r
-            call band_add(band, smu, 3 * l - 1, 3 * l - 2, -fx / ml)
-            call band_add(band, smu, 3 * l - 1, 3 * r - 2, fx / ml)
-            call band_add(band, smu, 3 * l - 1, 3 * l - 1, -fv / ml)
-            call band_add(band, smu, 3 * l - 1, 3 * r - 1, fv / ml)
-            call band_add(band, smu, 3 * r - 1, 3 * l - 2, fx / mr)
-            call band_add(band, smu, 3 * r - 1, 3 * r - 2, -fx / mr)
-            call band_add(band, smu, 3 * r - 1, 3 * l - 1, fv / mr)
-            call band_add(band, smu, 3 * r - 1, 3 * r - 1, -fv / mr)
+            ! x = ... + u_l - u_r, w = v_l - v_r (the entries bounded by a quarter of
+            ! the largest double: acceleration_of)
+            call acceleration_of(fx, region%mass(l), axl, within)
+            call acceleration_of(fv, region%mass(l), avl, within)
+            call acceleration_of(fx, region%mass(r), axr, within)
+            call acceleration_of(fv, region%mass(r), avr, within)
+            call band_add(band, smu, 3 * l - 1, 3 * l - 2, -axl)
+            call band_add(band, smu, 3 * l - 1, 3 * r - 2, axl)
+            call band_add(band, smu, 3 * l - 1, 3 * l - 1, -avl)
+            call band_add(band, smu, 3 * l - 1, 3 * r - 1, avl)
+            call band_add(band, smu, 3 * r - 1, 3 * l - 2, axr)
+            call band_add(band, smu, 3 * r - 1, 3 * r - 2, -axr)
+            call band_add(band, smu, 3 * r - 1, 3 * l - 1, avr)
+            call band_add(band, smu, 3 * r - 1, 3 * r - 1, -avr)
          case (slot_left_wall)
             ! x = -(gap + u_1), w = -v_1; +F on body 1
-            call band_add(band, smu, 2, 1, -fx / region%mass(1))
-            call band_add(band, smu, 2, 2, -fv / region%mass(1))
+            call acceleration_of(fx, region%mass(1), axl, within)
+            call acceleration_of(fv, region%mass(1), avl, within)
+            call band_add(band, smu, 2, 1, -axl)
+            call band_add(band, smu, 2, 2, -avl)
          case (slot_right_wall)
             ! x = u_m - gap, w = v_m; -F on body m
-            call band_add(band, smu, 3 * m - 1, 3 * m - 2, -fx / region%mass(m))
-            call band_add(band, smu, 3 * m - 1, 3 * m - 1, -fv / region%mass(m))
+            call acceleration_of(fx, region%mass(m), axr, within)
+            call acceleration_of(fv, region%mass(m), avr, within)
+            call band_add(band, smu, 3 * m - 1, 3 * m - 2, -axr)
+            call band_add(band, smu, 3 * m - 1, 3 * m - 1, -avr)
          end select
       end do
    end subroutine region_jacobian

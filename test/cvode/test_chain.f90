@@ -19,7 +19,7 @@ module test_cvode_chain
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_size, hcimpact_err_not_finite, &
       & hcimpact_err_mass, hcimpact_err_domain, hcimpact_err_stiffness, &
       & hcimpact_err_exponent, hcimpact_err_damping, hcimpact_err_no_convergence, &
-      & hcimpact_err_unavailable
+      & hcimpact_err_unavailable, hcimpact_err_solver
    use hcimpact_contact, only : contact_type, outcome_type
    use hcimpact_impact_model, only : impact
    use hcimpact_restitution_law, only : restitution
@@ -81,6 +81,7 @@ contains
          & new_unittest("touching-at-rest", test_touching_at_rest), &
          & new_unittest("bad-input", test_bad_input), &
          & new_unittest("energy-range", test_energy_range), &
+         & new_unittest("tiny-masses", test_tiny_masses), &
          & new_unittest("dilute-stays-exact", test_dilute_exact), &
          & new_unittest("clusters-form-dissolve", test_clusters), &
          & new_unittest("error-independent-of-size", test_size_independent), &
@@ -1336,6 +1337,52 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_energy_range
+
+   !> Bodies of 2.2e-319 kg (subnormal) to 1e-200 kg, touching, one struck at 1 m/s:
+   !> integrated, the two velocities after the contact are those of the closed forms
+   !> within 100 rtol (the dissipated energy, 1e-319 J, had a tolerance rtol e_ref that
+   !> underflowed: a weight of +Inf, and CVODE failed at t = 0 with CV_CONV_FAILURE).
+   !> With a gap of 1 mm the contact (1e-84 s and shorter) begins at t = 1 ms, whose
+   !> ulp is 2e-19 s: the integrated path cannot step through it and says so
+   !> (hcimpact_err_solver, "did not advance the time"); method auto answers it by the
+   !> closed forms, the same velocities as touching.
+   subroutine test_tiny_masses(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: masses(5) = [2.2e-319_wp, 1.0e-310_wp, 2.3e-308_wp, &
+         & 1.0e-300_wp, 1.0e-200_wp], rtol = 1.0e-10_wp
+      type(chain_type) :: chain
+      type(chain_result) :: exact, integrated, gap
+      integer :: k, stat
+      do k = 1, size(masses)
+         chain = steel_row(2, 1.0_wp, steel_damping, 0.0_wp)
+         chain%mass = masses(k)
+         call run(error, chain, opts(method_auto, rtol), exact, "touching, auto, m = " &
+            & // format_real(masses(k)))
+         if (allocated(error)) return
+         call run(error, chain, opts(method_integrated, rtol), integrated, &
+            & "touching, integrated, m = " // format_real(masses(k)))
+         if (allocated(error)) return
+         call check(error, maxval(abs(integrated%velocities - exact%velocities)) <= 100 * rtol, &
+            & "m = " // format_real(masses(k)) // ": integrated " &
+            & // format_real(integrated%velocities(1)) // ", " &
+            & // format_real(integrated%velocities(2)) // " against the closed forms' " &
+            & // format_real(exact%velocities(1)) // ", " // format_real(exact%velocities(2)))
+         if (allocated(error)) return
+         chain%gap = 1.0e-3_wp
+         call chain_simulate(chain, gap, stat, opts(method_integrated, rtol))
+         call check(error, stat == hcimpact_err_solver .and. index(gap%message, &
+            & "did not advance the time") > 0, "gap 1 mm, integrated, m = " &
+            & // format_real(masses(k)) // ": status " // int_text(stat) // " (" &
+            & // trim(gap%message) // ")")
+         if (allocated(error)) return
+         call run(error, chain, opts(method_auto, rtol), gap, "gap 1 mm, auto, m = " &
+            & // format_real(masses(k)))
+         if (allocated(error)) return
+         call check(error, all(gap%velocities == exact%velocities), "gap 1 mm, auto, m = " &
+            & // format_real(masses(k)) // ": not the velocities of the touching bodies")
+         if (allocated(error)) return
+      end do
+   end subroutine test_tiny_masses
 
    ! ==================================================================================
    ! The exact/integrated decision
