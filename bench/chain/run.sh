@@ -22,6 +22,12 @@
 #                    load average is below L (the machine is shared)
 #   --build DIR      build directory (default build/bench-chain)
 #   --no-build       reuse the binary already in the build directory
+#   --sundials7 DIR  build against the SUNDIALS 7.1.1 that `bash .ci/sundials7-check` left
+#                    in DIR (its work directory, build/sundials7-check): compiled by
+#                    SUNDIALS' own CMake in Release (-O3), where Debian 12's 6.4.1 is
+#                    compiled without optimisation. Build directory build/bench-chain7,
+#                    results in bench/chain/results-sundials7, the generated sections of
+#                    doc/chains-bench-sundials7.md and doc/figures/sundials7/
 # Environment: PYTHON (default python3), CMAKE (default cmake).
 #
 # A full run takes about 30 minutes on one core. Timings depend on the machine and its
@@ -37,6 +43,7 @@ only="scaling,memory,scipy,dilute"
 wait_quiet=""
 build="build/bench-chain"
 do_build=1
+sundials7=""
 while [ $# -gt 0 ]; do
     case "$1" in
         --quick) quick=1 ;;
@@ -44,7 +51,8 @@ while [ $# -gt 0 ]; do
         --wait-quiet) shift; wait_quiet="$1" ;;
         --build) shift; build="$1" ;;
         --no-build) do_build=0 ;;
-        -h|--help) sed -n '4,29p' "$0"; exit 0 ;;
+        --sundials7) shift; sundials7=$(cd "$1" && pwd) ;;
+        -h|--help) sed -n '4,35p' "$0"; exit 0 ;;
         *) echo "run.sh: unknown option $1" >&2; exit 2 ;;
     esac
     shift
@@ -60,11 +68,30 @@ if [ "$quick" -eq 1 ]; then
     figures="$out"
     mkdir -p "$out"
     cp doc/chains-bench.md "$doc"
+elif [ -n "$sundials7" ]; then
+    out="bench/chain/results-sundials7"
+    doc="doc/chains-bench-sundials7.md"
+    figures="doc/figures/sundials7"
+    [ "$build" = "build/bench-chain" ] && build="build/bench-chain7"
+    mkdir -p "$out"
 else
     out="bench/chain/results"
     doc="doc/chains-bench.md"
     figures="doc/figures"
     mkdir -p "$out"
+fi
+
+# the configuration of the SUNDIALS to build against: Debian's (found by CMake) or the
+# one .ci/sundials7-check built (CVODES, static, with its stand-in Fortran modules)
+sundials_flags=""
+sundials_config=/usr/include/sundials/sundials_config.h
+if [ -n "$sundials7" ]; then
+    lib="$sundials7/prefix/lib"
+    for f in "$lib/libsundials_cvodes.a" "$lib/libhcimpact_sundials7_fmod_shim.a"; do
+        [ -f "$f" ] || { echo "run.sh: $f is missing (run bash .ci/sundials7-check)" >&2; exit 2; }
+    done
+    sundials_config="$sundials7/prefix/include/sundials/sundials_config.h"
+    sundials_flags=$(bash .ci/sundials7/configure-flags "$sundials7/prefix" | tr '\n' ' ')
 fi
 
 if [ "$do_build" -eq 1 ]; then
@@ -75,7 +102,8 @@ if [ "$do_build" -eq 1 ]; then
     set -x
     $CMAKE -S . -B "$build" $generator -DCMAKE_BUILD_TYPE=Release -DBUILD_SHARED_LIBS=ON \
         -DHCIMPACT_BUILD_BENCH=ON -DHCIMPACT_WITH_CVODE=ON -DHCIMPACT_WITH_LAPACK=OFF \
-        -DBUILD_TESTING=OFF -DHCIMPACT_BUILD_EXAMPLES=OFF -DHCIMPACT_BUILD_APP=OFF
+        -DBUILD_TESTING=OFF -DHCIMPACT_BUILD_EXAMPLES=OFF -DHCIMPACT_BUILD_APP=OFF \
+        $sundials_flags
     $CMAKE --build "$build" --target bench_chain
     { set +x; } 2>/dev/null
 fi
@@ -98,7 +126,8 @@ if [ "$only" = "scaling,memory,scipy,dilute" ] || [ ! -f "$machine" ]; then
         echo "kernel: $(uname -sr)"
         echo "compiler: $(gfortran --version | head -n 1)"
         echo "sundials: $(sed -n 's/^#define SUNDIALS_VERSION "\(.*\)"/\1/p' \
-            /usr/include/sundials/sundials_config.h 2>/dev/null || echo unknown)"
+            "$sundials_config" 2>/dev/null || echo unknown)$([ -n "$sundials7" ] &&
+            echo " (CVODES, built by .ci/sundials7-check in Release: -O3)")"
         echo "python: $($PYTHON -c 'import sys, numpy, scipy; print(sys.version.split()[0],
               "numpy", numpy.__version__, "scipy", scipy.__version__)')"
         echo "libraries: $(ls "$build"/libhcimpact.so.*.*.* "$build"/libhcimpact_cvode.so.*.*.* \
@@ -115,7 +144,7 @@ before_part() {
             waited=$((waited + 30))
         done
     fi
-    echo "load before $1: $(cut -d' ' -f1-3 /proc/loadavg) ($(date -u '+%H:%M UTC'))" \
+    echo "load before $1: $(cut -d' ' -f1-3 /proc/loadavg) ($(date -u '+%Y-%m-%d %H:%M UTC'))" \
         >> "$machine"
 }
 
