@@ -43,8 +43,11 @@
 #   --no-value-profile  no comparison guidance (no trace-cmp, no -use_value_profile):
 #                     the C side's edges only, for comparison
 #   --no-seed-corpus  do not read the committed corpus bench/fuzz/corpus
-#   --with-chain      also fuzz hcimpact_chain_simulate (HCIMPACT_FUZZ_CHAIN=1): off by
-#                     default until its known findings are fixed (doc/robustness.md)
+#   --with-chain      fuzz hcimpact_chain_simulate with NULL options (the library's
+#                     defaults: up to 1e8 steps) for any system (HCIMPACT_FUZZ_CHAIN=1);
+#                     by default NULL options go only with calls that fail before any
+#                     work, so that the work per input stays bounded (doc/robustness.md)
+#   --without-chain   leave hcimpact_chain_simulate out (HCIMPACT_FUZZ_CHAIN=0)
 #   --merge-corpus    after the run, add to bench/fuzz/corpus the inputs of the run's
 #                     corpus that bring new features (libFuzzer -merge=1)
 # Exit status: 0 no finding; 1 a crash, hang, sanitizer report or contract violation;
@@ -85,6 +88,7 @@ while [ $# -gt 0 ]; do
     --no-seed-corpus) seed_corpus=0; shift ;;
     --merge-corpus) merge_corpus=1; shift ;;
     --with-chain) export HCIMPACT_FUZZ_CHAIN=1; shift ;;
+    --without-chain) export HCIMPACT_FUZZ_CHAIN=0; shift ;;
     *) echo "unknown option $1" >&2; exit 2 ;;
   esac
 done
