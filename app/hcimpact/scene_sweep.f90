@@ -76,14 +76,17 @@ contains
       allocate(done(size(speeds)))
       call checkpoint_start(checkpoint, contact, speeds, out, stats, done, resumed, ck, error)
       if (allocated(error)) return
-      finished = resumed
-      call progress_begin(label, size(speeds))
+      ! a block the checkpoint holds whole is skipped, one it holds in part computed
+      ! again (the same doubles): the progress starts from the whole ones
+      finished = 0
       do first = 1, size(speeds), block
          last = min(first + block - 1, size(speeds))
-         ! a block the checkpoint holds whole is skipped, one it holds in part computed
-         ! again (the same doubles)
+         if (all(done(first:last))) finished = finished + last - first + 1
+      end do
+      call progress_begin(label, size(speeds), finished)
+      do first = 1, size(speeds), block
+         last = min(first + block - 1, size(speeds))
          if (all(done(first:last))) cycle
-         finished = finished - count(done(first:last))
          ! The impacts are independent: in parallel when the program is built with
          ! OpenMP (the library's array threshold and schedule); the progress line is
          ! drawn by the first thread alone.

@@ -222,7 +222,6 @@ contains
       todo = pack(todo, [(.not. all(done((k - 1) * chunk + 1:min(k * chunk, n))), &
          & k = 1, size(todo))])
       n_chunks = size(todo)
-      call progress_begin(label, n)
       next = 1
       do k = 1, in_flight
          do rank = 1, n_ranks - 1
@@ -233,6 +232,7 @@ contains
       end do
       received = 0
       finished = n - sum([(min(chunk, n - (todo(k) - 1) * chunk), k = 1, n_chunks)])
+      call progress_begin(label, n, finished)
       do while (received < n_chunks)
          arrived = .false.
          if (n_ranks > 1) call MPI_Iprobe(MPI_ANY_SOURCE, tag_result, MPI_COMM_WORLD, &
