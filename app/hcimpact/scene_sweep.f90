@@ -14,10 +14,12 @@ module hcimpact_scene_sweep
    use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
    use hcimpact_scene_checkpoint, only : checkpoint_type, checkpoint_start, &
       & checkpoint_record, checkpoint_finish
+   use hcimpact_scene_system_items, only : compute_system_item
    implicit none
    private
 
-   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts
+   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts, &
+      & sweep_systems
 
    !> Impacts of a block: what a killed run loses at most
    integer, parameter :: block = 1024
@@ -42,11 +44,16 @@ contains
    subroutine sweep_end()
    end subroutine sweep_end
 
-   !> How the impacts of a sweep are computed, for the plan.
-   function sweep_description() result(text)
+   !> How the items of a sweep are computed, for the plan: impacts, or whole runs of a
+   !> system (`systems`, one at a time per thread).
+   function sweep_description(systems) result(text)
+      logical, intent(in), optional :: systems
       character(len=:), allocatable :: text
       text = "on this process"
       !$ text = "on this process, shared among OpenMP threads"
+      if (present(systems)) then
+         !$ if (systems) text = text // " one run at a time"
+      end if
    end function sweep_description
 
    !> The impacts of `contact` at each of `speeds` (its velocity replaced), with the
@@ -109,5 +116,33 @@ contains
       call checkpoint_finish(ck, error)
       call progress_end()
    end subroutine sweep_impacts
+
+   !> The runs of a sweep of systems (the output system_sweep): `outputs(:, k)` from
+   !> `inputs(:, k)` (hcimpact_scene_system_items), with the progress shown under
+   !> `label`; shared among OpenMP threads one item at a time (their costs differ by
+   !> orders of magnitude).
+   subroutine sweep_systems(inputs, outputs, label)
+      !> The items' columns
+      real(wp), intent(in) :: inputs(:, :)
+      !> Their results' columns
+      real(wp), intent(out) :: outputs(:, :)
+      !> The progress line's label
+      character(len=*), intent(in) :: label
+      integer :: k, finished, mine
+      call progress_begin(label, size(inputs, 2))
+      finished = 0
+      !$omp parallel do private(mine) schedule(dynamic, 1)
+      do k = 1, size(inputs, 2)
+         call compute_system_item(inputs(:, k), outputs(:, k))
+         !$omp atomic capture
+         finished = finished + 1
+         mine = finished
+         !$omp end atomic
+         !$ if (omp_get_thread_num() /= 0) cycle
+         call progress_step(mine)
+      end do
+      !$omp end parallel do
+      call progress_end()
+   end subroutine sweep_systems
 
 end module hcimpact_scene_sweep

@@ -21,6 +21,9 @@ module hcimpact_scene_sweep
    use hcimpact_kinds, only : wp
    use hcimpact_impact_model, only : contact_type, outcome_type
    use hcimpact_mpi_sweep, only : mpi_impact_sweep, sweep_listener, mpi_sweep_max_chunk
+   use hcimpact_mpi_hand_out, only : mpi_hand_out, sweep_worker, items_listener
+   use hcimpact_status, only : hcimpact_ok
+   use hcimpact_scene_system_items, only : compute_system_item
    use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
    use hcimpact_scene_text, only : str
    use hcimpact_scene_system, only : pause_microseconds
@@ -29,10 +32,28 @@ module hcimpact_scene_sweep
    implicit none
    private
 
-   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts
+   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts, &
+      & sweep_systems
 
-   !> Messages of rank 0 to the others between sweeps: a sweep begins, the program ends
-   integer, parameter :: tag_sweep = 1, tag_stop = 2
+   !> Messages of rank 0 to the others between sweeps: a sweep of impacts begins, the
+   !> program ends, a sweep of systems begins
+   integer, parameter :: tag_sweep = 1, tag_stop = 2, tag_systems = 3
+   !> Most systems of a chunk: each is a whole run, costly and of very different costs
+   integer, parameter :: systems_chunk = 4
+
+   !> The worker of a sweep of systems: one whole run of a system
+   type, extends(sweep_worker) :: system_worker
+   contains
+      procedure :: compute => compute_system
+      procedure :: verdict => every_row
+   end type system_worker
+
+   !> Rank 0's listener of a sweep of systems: the progress
+   type, extends(items_listener) :: systems_progress
+      integer :: finished = 0
+   contains
+      procedure :: items_done => count_systems
+   end type systems_progress
    !> How long a rank without work sleeps before it looks for a message again, in
    !> microseconds: waiting in MPI_Probe would spin and take a core from rank 0 (which
    !> runs the rest of the scene and writes the files) and from other jobs of a shared
@@ -99,6 +120,8 @@ contains
       type(contact_type) :: no_contacts(0)
       type(outcome_type) :: no_outcomes(0)
       integer :: no_stats(0), message(1), status
+      type(system_worker) :: systems
+      real(wp) :: no_items(0, 0)
       logical :: arrived
       code = 0
       do
@@ -108,8 +131,14 @@ contains
             call pause_microseconds(idle_pause)
          end do
          call MPI_Recv(message, 1, MPI_INTEGER, 0, probe%MPI_TAG, MPI_COMM_WORLD, probe)
-         if (probe%MPI_TAG /= tag_sweep) exit
-         call mpi_impact_sweep(MPI_COMM_WORLD, no_contacts, no_outcomes, no_stats, status)
+         select case (probe%MPI_TAG)
+         case (tag_sweep)
+            call mpi_impact_sweep(MPI_COMM_WORLD, no_contacts, no_outcomes, no_stats, status)
+         case (tag_systems)
+            call mpi_hand_out(MPI_COMM_WORLD, systems, no_items, no_items, status)
+         case default
+            exit
+         end select
       end do
    end subroutine sweep_serve
 
@@ -121,13 +150,22 @@ contains
       finished = .true.
    end subroutine sweep_end
 
-   !> How the impacts of a sweep are computed, for the plan.
-   function sweep_description() result(text)
+   !> How the items of a sweep are computed, for the plan: impacts, or whole runs of a
+   !> system (`systems`).
+   function sweep_description(systems) result(text)
+      logical, intent(in), optional :: systems
       character(len=:), allocatable :: text
+      logical :: of_systems
+      of_systems = .false.
+      if (present(systems)) of_systems = systems
       if (.not. started) then
          text = "on this process (not started by an MPI launcher: MPI not used)"
       else if (n_ranks == 1) then
          text = "on this process (MPI, 1 rank)"
+      else if (of_systems) then
+         text = "over " // str(n_ranks) // " MPI ranks: chunks of up to " &
+            & // str(systems_chunk) // " runs handed out by rank 0 on request (rank 0" &
+            & // " computes too), the results put back in order"
       else
          text = "over " // str(n_ranks) // " MPI ranks: chunks of up to " &
             & // str(mpi_sweep_max_chunk) &
@@ -193,6 +231,51 @@ contains
       self%known(first:last) = .true.
       call progress_step(self%finished)
    end subroutine record_chunk
+
+   !> The runs of a sweep of systems (the output system_sweep) on rank 0, handed out to
+   !> every rank a few at a time: `outputs(:, k)` from `inputs(:, k)`
+   !> (hcimpact_scene_system_items), the same doubles as on one process.
+   subroutine sweep_systems(inputs, outputs, label)
+      !> The items' columns
+      real(wp), intent(in) :: inputs(:, :)
+      !> Their results' columns
+      real(wp), intent(out) :: outputs(:, :)
+      !> The progress line's label
+      character(len=*), intent(in) :: label
+      type(system_worker) :: worker
+      type(systems_progress) :: progress
+      integer :: status
+      call progress_begin(label, size(inputs, 2))
+      if (started) call tell_ranks(tag_systems)
+      outputs = 0.0_wp
+      call mpi_hand_out(MPI_COMM_WORLD, worker, inputs, outputs, status, listener=progress, &
+         & max_chunk=systems_chunk)
+      call progress_end()
+   end subroutine sweep_systems
+
+   !> One run of a system, on any rank.
+   subroutine compute_system(self, input, output)
+      class(system_worker), intent(inout) :: self
+      real(wp), intent(in) :: input(:)
+      real(wp), intent(out) :: output(:)
+      call compute_system_item(input, output)
+   end subroutine compute_system
+
+   !> Every run's status is in its row: the sweep itself succeeds.
+   integer function every_row(self, outputs) result(status)
+      class(system_worker), intent(in) :: self
+      real(wp), intent(in) :: outputs(:, :)
+      status = hcimpact_ok
+   end function every_row
+
+   !> Rank 0: runs are done; the progress.
+   subroutine count_systems(self, first, outputs)
+      class(systems_progress), intent(inout) :: self
+      integer, intent(in) :: first
+      real(wp), intent(in) :: outputs(:, :)
+      self%finished = self%finished + size(outputs, 2)
+      call progress_step(self%finished)
+   end subroutine count_systems
 
    !> Rank 0 sends every other rank a message with `tag` (a sweep begins, the program
    !> ends).
