@@ -13,7 +13,8 @@ module hcimpact_scene_sweep
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
    use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
    use hcimpact_scene_checkpoint, only : checkpoint_type, checkpoint_start, &
-      & checkpoint_record, checkpoint_finish
+      & checkpoint_record, checkpoint_finish, checkpoint_start_columns, &
+      & checkpoint_record_columns
    use hcimpact_scene_system_items, only : compute_system_item
    implicit none
    private
@@ -120,28 +121,45 @@ contains
    !> The runs of a sweep of systems (the output system_sweep): `outputs(:, k)` from
    !> `inputs(:, k)` (hcimpact_scene_system_items), with the progress shown under
    !> `label`; shared among OpenMP threads one item at a time (their costs differ by
-   !> orders of magnitude).
-   subroutine sweep_systems(inputs, outputs, label)
+   !> orders of magnitude). Each run's result goes to the checkpoint as it ends; those
+   !> the checkpoint holds are taken from it.
+   subroutine sweep_systems(inputs, outputs, label, checkpoint, resumed, error)
       !> The items' columns
       real(wp), intent(in) :: inputs(:, :)
       !> Their results' columns
       real(wp), intent(out) :: outputs(:, :)
       !> The progress line's label
       character(len=*), intent(in) :: label
+      !> The checkpoint file, or "" for none
+      character(len=*), intent(in) :: checkpoint
+      !> How many runs came from the checkpoint
+      integer, intent(out) :: resumed
+      !> Why the checkpoint could not be written (the runs are all computed)
+      character(len=:), allocatable, intent(out) :: error
+      type(checkpoint_type) :: ck
+      logical, allocatable :: done(:)
       integer :: k, finished, mine
-      call progress_begin(label, size(inputs, 2))
-      finished = 0
+      allocate(done(size(inputs, 2)))
+      outputs = 0.0_wp
+      call checkpoint_start_columns(checkpoint, inputs, outputs, done, resumed, ck, error)
+      if (allocated(error)) return
+      call progress_begin(label, size(inputs, 2), resumed)
+      finished = resumed
       !$omp parallel do private(mine) schedule(dynamic, 1)
       do k = 1, size(inputs, 2)
+         if (done(k)) cycle
          call compute_system_item(inputs(:, k), outputs(:, k))
-         !$omp atomic capture
+         ! one writer of the checkpoint at a time
+         !$omp critical (system_checkpoint)
+         call checkpoint_record_columns(ck, k, outputs(:, k:k), error)
          finished = finished + 1
          mine = finished
-         !$omp end atomic
+         !$omp end critical (system_checkpoint)
          !$ if (omp_get_thread_num() /= 0) cycle
          call progress_step(mine)
       end do
       !$omp end parallel do
+      call checkpoint_finish(ck, error)
       call progress_end()
    end subroutine sweep_systems
 

@@ -12,7 +12,8 @@ module hcimpact_scene_systems
    use hcimpact_chain_types, only : by_closed_forms, by_integration, method_exact
    use hcimpact_scene_ode, only : ode_available, ode_missing
    use hcimpact_scene_model, only : scene_type
-   use hcimpact_scene_output, only : results_type, csv_type, csv_open, csv_row, csv_close
+   use hcimpact_scene_output, only : results_type, csv_type, csv_open, csv_row, csv_close, &
+      & checkpoint_path
    use hcimpact_scene_system_items, only : system_item_count, system_item_inputs, &
       & item_variation, result_length, result_status, result_time, result_contacts, &
       & result_closed_forms, result_integrated, result_clusters, result_energy_error, &
@@ -49,14 +50,17 @@ contains
       character(len=:), allocatable, intent(out) :: error
       real(wp), allocatable :: inputs(:, :), outputs(:, :)
       real(wp) :: t0, elapsed
-      integer :: n, items, failed, first_failed, k
+      character(len=:), allocatable :: note
+      integer :: n, items, failed, first_failed, k, resumed
 
       n = sc%system%n
       t0 = wall_clock()
       inputs = system_item_inputs(sc%system)
       items = size(inputs, 2)
       allocate(outputs(result_length(n), items))
-      call sweep_systems(inputs, outputs, "system_sweep")
+      call sweep_systems(inputs, outputs, "system_sweep", checkpoint_path(res, &
+         & "system_sweep"), resumed, error)
+      if (allocated(error)) return
       elapsed = wall_clock() - t0
       call print_table(sc, outputs)
       call write_rows(sc, outputs, res, error)
@@ -68,8 +72,10 @@ contains
          failed = failed + 1
          if (first_failed == 0) first_failed = k
       end do
+      note = ""
+      if (resumed > 0) note = " (" // str(resumed) // " from the checkpoint of an earlier run)"
       call say_text(pad("system_sweep", 12), count_str(items, "run") // " of the " &
-         & // str(n) // "-body system, " // str(failed) // " failed: " &
+         & // str(n) // "-body system" // note // ", " // str(failed) // " failed: " &
          & // duration_str(elapsed) // files_note(res, "system_sweep.csv"))
       if (failed > 0) call say_text("  ", "variation " // str(first_failed) // " (the first" &
          & // " that failed): " // failure_text(sc, nint(outputs(result_status, first_failed))))

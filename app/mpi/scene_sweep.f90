@@ -28,7 +28,8 @@ module hcimpact_scene_sweep
    use hcimpact_scene_text, only : str
    use hcimpact_scene_system, only : pause_microseconds
    use hcimpact_scene_checkpoint, only : checkpoint_type, checkpoint_start, &
-      & checkpoint_record, checkpoint_finish
+      & checkpoint_record, checkpoint_finish, checkpoint_start_columns, &
+      & checkpoint_record_columns
    implicit none
    private
 
@@ -48,12 +49,19 @@ module hcimpact_scene_sweep
       procedure :: verdict => every_row
    end type system_worker
 
-   !> Rank 0's listener of a sweep of systems: the progress
-   type, extends(items_listener) :: systems_progress
+   !> Rank 0's listener of a sweep of systems: each chunk's results to the checkpoint
+   !> (flushed), and the progress
+   type, extends(items_listener) :: systems_recorder
+      !> The checkpoint being written
+      type(checkpoint_type) :: ck
+      !> The runs done so far, and how many (those of the checkpoint included)
+      logical, allocatable :: known(:)
       integer :: finished = 0
+      !> Why the checkpoint could not be written
+      character(len=:), allocatable :: error
    contains
-      procedure :: items_done => count_systems
-   end type systems_progress
+      procedure :: items_done => record_systems
+   end type systems_recorder
    !> How long a rank without work sleeps before it looks for a message again, in
    !> microseconds: waiting in MPI_Probe would spin and take a core from rank 0 (which
    !> runs the rest of the scene and writes the files) and from other jobs of a shared
@@ -234,23 +242,40 @@ contains
 
    !> The runs of a sweep of systems (the output system_sweep) on rank 0, handed out to
    !> every rank a few at a time: `outputs(:, k)` from `inputs(:, k)`
-   !> (hcimpact_scene_system_items), the same doubles as on one process.
-   subroutine sweep_systems(inputs, outputs, label)
+   !> (hcimpact_scene_system_items), the same doubles as on one process. Each chunk's
+   !> results go to the checkpoint as they come in; those it holds are not handed out.
+   subroutine sweep_systems(inputs, outputs, label, checkpoint, resumed, error)
       !> The items' columns
       real(wp), intent(in) :: inputs(:, :)
       !> Their results' columns
       real(wp), intent(out) :: outputs(:, :)
       !> The progress line's label
       character(len=*), intent(in) :: label
+      !> The checkpoint file, or "" for none
+      character(len=*), intent(in) :: checkpoint
+      !> How many runs came from the checkpoint
+      integer, intent(out) :: resumed
+      !> Why the checkpoint could not be written (the runs are all computed: the other
+      !> ranks must not be left with chunks nobody takes)
+      character(len=:), allocatable, intent(out) :: error
       type(system_worker) :: worker
-      type(systems_progress) :: progress
+      type(systems_recorder) :: recorder
+      logical, allocatable :: held(:)
       integer :: status
-      call progress_begin(label, size(inputs, 2))
-      if (started) call tell_ranks(tag_systems)
+      allocate(recorder%known(size(inputs, 2)))
       outputs = 0.0_wp
-      call mpi_hand_out(MPI_COMM_WORLD, worker, inputs, outputs, status, listener=progress, &
-         & max_chunk=systems_chunk)
+      call checkpoint_start_columns(checkpoint, inputs, outputs, recorder%known, resumed, &
+         & recorder%ck, error)
+      if (allocated(error)) return
+      recorder%finished = resumed
+      call progress_begin(label, size(inputs, 2), resumed)
+      if (started) call tell_ranks(tag_systems)
+      held = recorder%known
+      call mpi_hand_out(MPI_COMM_WORLD, worker, inputs, outputs, status, held, recorder, &
+         & systems_chunk)
+      call checkpoint_finish(recorder%ck, recorder%error)
       call progress_end()
+      if (allocated(recorder%error)) call move_alloc(recorder%error, error)
    end subroutine sweep_systems
 
    !> One run of a system, on any rank.
@@ -268,14 +293,18 @@ contains
       status = hcimpact_ok
    end function every_row
 
-   !> Rank 0: runs are done; the progress.
-   subroutine count_systems(self, first, outputs)
-      class(systems_progress), intent(inout) :: self
+   !> Rank 0: runs are done: their results to the checkpoint, the progress.
+   subroutine record_systems(self, first, outputs)
+      class(systems_recorder), intent(inout) :: self
       integer, intent(in) :: first
       real(wp), intent(in) :: outputs(:, :)
-      self%finished = self%finished + size(outputs, 2)
+      integer :: last
+      last = first + size(outputs, 2) - 1
+      call checkpoint_record_columns(self%ck, first, outputs, self%error)
+      self%finished = self%finished + count(.not. self%known(first:last))
+      self%known(first:last) = .true.
       call progress_step(self%finished)
-   end subroutine count_systems
+   end subroutine record_systems
 
    !> Rank 0 sends every other rank a message with `tag` (a sweep begins, the program
    !> ends).
