@@ -179,7 +179,8 @@ contains
 
    !> The inverse of `packed_contact`.
    pure function unpacked_contact(values) result(contact)
-      real(wp), intent(in) :: values(per_contact)
+      ! assumed shape: a column of the caller's array, never copied
+      real(wp), intent(in) :: values(:)
       type(contact_type) :: contact
       contact = contact_type(mass=values(1), stiffness=values(2), exponent=values(3), &
          & damping=values(4), velocity=values(5))
@@ -198,7 +199,8 @@ contains
 
    !> The inverse of `packed_outcome`.
    pure subroutine unpack_outcome(values, out, stat)
-      real(wp), intent(in) :: values(per_outcome)
+      ! assumed shape: a column of the caller's array, never copied
+      real(wp), intent(in) :: values(:)
       type(outcome_type), intent(inout) :: out
       integer, intent(inout) :: stat
       out%restitution = values(1)
