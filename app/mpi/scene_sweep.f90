@@ -1,16 +1,18 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> The impacts of a sweep (the outputs summary and sweep) over the ranks of MPI, in
-!> CMake builds with the MPI component (doc/mpi.md). It replaces
-!> app/hcimpact/scene_sweep.f90, the module of the same name and interface that
-!> computes every impact on one process.
+!> The impacts of a sweep (the outputs summary and sweep) and the runs of a sweep of
+!> systems (the output system_sweep) over the ranks of MPI, in CMake builds with the
+!> MPI component (doc/mpi.md). It replaces app/hcimpact/scene_sweep.f90, the module of
+!> the same name and interface that computes every item on one process.
 !>
 !> Rank 0 runs the scene (reads it, plans, writes every file and the console); the
-!> other ranks wait for sweeps. For each sweep rank 0 tells them one begins, and every
-!> rank enters the component's collective `mpi_impact_sweep` (hcimpact_mpi_sweep: the
-!> dynamic hand-out of chunks, the results put back in order, bit for bit those of
-!> one process). Rank 0 is told of every chunk as it is done and writes its outcomes
-!> to the sweep's checkpoint (hcimpact_scene_checkpoint) and shows the progress; a
-!> rerun gives the library what the checkpoint holds, and only the rest is handed out.
+!> other ranks wait for sweeps. For each sweep rank 0 tells them one begins (and of
+!> which kind), and every rank enters the component's collective hand-out
+!> (hcimpact_mpi_sweep's `mpi_impact_sweep` for impacts, hcimpact_mpi_hand_out's
+!> `mpi_hand_out` with a system worker for systems: chunks handed out dynamically, the
+!> results put back in order, bit for bit those of one process). Rank 0 is told of
+!> every chunk as it is done and writes its results to the sweep's checkpoint
+!> (hcimpact_scene_checkpoint) and shows the progress; a rerun gives the hand-out
+!> what the checkpoint holds, and only the rest is handed out.
 !>
 !> A rank that dies takes the run down (MPI's default error handler, and `mpirun`
 !> ends the job): rank 0 never renames its `.partial` files, so nothing is left that
