@@ -2,9 +2,9 @@
 #
 # Install rules: the library and the built components, the .mod files, the C
 # headers, the CMake package hcimpact (targets hcimpact::hcimpact, hcimpact::cvode,
-# hcimpact::lapack) and the pkg-config files. Layout, relative to the prefix:
+# hcimpact::lapack, hcimpact::mpi) and the pkg-config files. Layout, relative to the prefix:
 #
-#   lib/libhcimpact{,_cvode,_lapack}.{a,so}         (CMAKE_INSTALL_LIBDIR)
+#   lib/libhcimpact{,_cvode,_lapack,_mpi}.{a,so}    (CMAKE_INSTALL_LIBDIR)
 #   include/hcimpact*.h                             (CMAKE_INSTALL_INCLUDEDIR)
 #   include/hcimpact/<compiler>-<major>/*.mod       (HCIMPACT_INSTALL_MODULEDIR)
 #   lib/cmake/hcimpact/hcimpact-config.cmake, -config-version.cmake,
@@ -67,6 +67,9 @@ endif()
 if(TARGET hcimpact_lapack)
   list(APPEND _hcimpact_public_modules hcimpact_calibration)
 endif()
+if(TARGET hcimpact_mpi)
+  list(APPEND _hcimpact_public_modules hcimpact_mpi_sweep hcimpact_mpi_hand_out)
+endif()
 list(TRANSFORM _hcimpact_public_modules PREPEND "${HCIMPACT_MODULE_DIR}/")
 list(TRANSFORM _hcimpact_public_modules APPEND ".mod")
 install(
@@ -90,6 +93,7 @@ endif()
 # Why each component that was not built is missing, for the package's messages.
 set(HCIMPACT_PACKAGE_CVODE_STATUS "${HCIMPACT_CVODE_STATUS}")
 set(HCIMPACT_PACKAGE_LAPACK_STATUS "${HCIMPACT_LAPACK_STATUS}")
+set(HCIMPACT_PACKAGE_MPI_STATUS "${HCIMPACT_MPI_COMPONENT_STATUS}")
 # Where the build found SUNDIALS: a hint (not a requirement) for the consumer's search.
 set(HCIMPACT_PACKAGE_SUNDIALS_HINT "")
 if(HCIMPACT_SUNDIALS_INCLUDE_DIR)
@@ -194,9 +198,12 @@ install(FILES "${PROJECT_BINARY_DIR}/hcimpact.pc" DESTINATION "${HCIMPACT_INSTAL
 
 set(_hcimpact_pc_cvode_what "the ODE path through SUNDIALS CVODE (hcimpact_simulate)")
 set(_hcimpact_pc_lapack_what "calibration with LAPACK (hcimpact_fit_*)")
+set(_hcimpact_pc_mpi_what "sweeps of impacts over the ranks of an MPI communicator (hcimpact_mpi_impact_sweep)")
 foreach(_hcimpact_component IN LISTS HCIMPACT_PACKAGE_COMPONENTS)
   get_target_property(_hcimpact_deps hcimpact_${_hcimpact_component} LINK_LIBRARIES)
   list(REMOVE_ITEM _hcimpact_deps hcimpact)
+  # (a dependency linked both privately and publicly, as MPI by the mpi component)
+  list(REMOVE_DUPLICATES _hcimpact_deps)
   _hcimpact_pc_link_flags(HCIMPACT_PC_LIBS_PRIVATE ${_hcimpact_deps})
   set(HCIMPACT_PC_NAME "hcimpact-${_hcimpact_component}")
   set(HCIMPACT_PC_DESCRIPTION "hcimpact component ${_hcimpact_component}: ${_hcimpact_pc_${_hcimpact_component}_what}")

@@ -102,6 +102,10 @@ contains
       call p("  &left_wall, &right_wall   stiffness, exponent, b (or restitution, at_speed),")
       call p("            gap (m, to the end body), or young and poisson for Hertz's constant")
       call p("  &sampling samples = 201                 times of the motion output")
+      call p("  &system_sweep striker_speed = 0.5, 1    variations of the system for the")
+      call p("            gap = 0, 1e-4, b = 0, 0.05    output system_sweep: body 1's speed,")
+      call p("            combine = ""product"" (""list"")  every pair's gap and damping; every")
+      call p("                                          combination, or the lists side by side")
       call p("")
       call p("Outputs (files in the results directory):")
       do i = 1, n_outputs

@@ -19,7 +19,8 @@ module hcimpact_scene_model
    public :: n_outputs, output_names, output_files, output_descriptions, output_index
    public :: add_outputs, output_choices
    public :: out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
-      & out_lambertw, out_legacy, out_cvode, out_contacts, out_final, out_motion
+      & out_lambertw, out_legacy, out_cvode, out_contacts, out_final, out_motion, &
+      & out_system_sweep
    public :: figure_outputs, system_outputs, default_scene_lines, max_speeds
    public :: scene_line_length, max_scene_lines, max_bodies
    public :: unset_bits, is_unset
@@ -45,9 +46,10 @@ module hcimpact_scene_model
    !> The outputs a scene can ask for
    integer, parameter :: out_summary = 1, out_sweep = 2, out_histories = 3, &
       & out_phase = 4, out_loops = 5, out_restitution = 6, out_lambertw = 7, &
-      & out_legacy = 8, out_cvode = 9, out_contacts = 10, out_final = 11, out_motion = 12
+      & out_legacy = 8, out_cvode = 9, out_contacts = 10, out_final = 11, out_motion = 12, &
+      & out_system_sweep = 13
    !> Number of outputs
-   integer, parameter :: n_outputs = 12
+   integer, parameter :: n_outputs = 13
 
    !> The built-in default scene, as the text of a scene file: the seed's steel ball
    !> (MODEL.md). example/scenes/steel_ball.nml holds the same text.
@@ -72,14 +74,14 @@ module hcimpact_scene_model
       & "/"]
 
    !> Their names in scene files and on the command line
-   character(len=*), parameter :: output_names(n_outputs) = [character(len=11) :: &
+   character(len=*), parameter :: output_names(n_outputs) = [character(len=12) :: &
       & "summary", "sweep", "histories", "phase", "loops", "restitution", "lambertw", &
-      & "legacy", "cvode", "contacts", "final", "motion"]
+      & "legacy", "cvode", "contacts", "final", "motion", "system_sweep"]
    !> The files each writes in the results directory
    character(len=*), parameter :: output_files(n_outputs) = [character(len=44) :: &
       & "summary.csv", "sweep.csv", "histories.csv", "phase.csv", "loops.csv", &
       & "restitution.csv", "lambertw.csv velocity_z.csv motion_z.csv", "legacy.csv", &
-      & "cvode.csv", "contacts.csv", "final.csv", "motion.csv forces.csv"]
+      & "cvode.csv", "contacts.csv", "final.csv", "motion.csv forces.csv", "system_sweep.csv"]
    !> What each is
    character(len=*), parameter :: output_descriptions(n_outputs) = [character(len=100) :: &
       & "per speed: k, energy lost, x_max, peak force and its time, the times", &
@@ -93,14 +95,15 @@ module hcimpact_scene_model
       & "SUNDIALS CVODE against the closed form: errors, time, counters", &
       & "a system: every contact (pair, times, speeds, peak force, how computed)", &
       & "a system: every body's state at the start and at the end", &
-      & "a system: positions, velocities and pair forces against time"]
+      & "a system: positions, velocities and pair forces against time", &
+      & "a system: the whole run for each variation of &system_sweep (final velocities, ...)"]
    !> The outputs behind the figures (`figures`): the seed's figures 1-8 of one
    !> impact, figures 11-13 of a system of bodies
    logical, parameter :: figure_outputs(n_outputs) = [.true., .true., .true., .true., &
-      & .true., .true., .true., .false., .false., .true., .true., .true.]
+      & .true., .true., .true., .false., .false., .true., .true., .true., .false.]
    !> The outputs of a system of bodies (the others are those of one impact)
    logical, parameter :: system_outputs(n_outputs) = [.false., .false., .false., .false., &
-      & .false., .false., .false., .false., .false., .true., .true., .true.]
+      & .false., .false., .false., .false., .false., .true., .true., .true., .true.]
 
    !> One body. Unset reals are NaN.
    type :: body_type
@@ -158,6 +161,11 @@ module hcimpact_scene_model
       real(wp) :: t_end = -1.0_wp, rtol = 1.0e-10_wp
       !> hcimpact_chain_types' method and integrator codes
       integer :: method = method_auto, integrator = integrator_bdf
+      !> The variations of the output system_sweep (&system_sweep): the speeds of body 1
+      !> (m/s), the gaps of every pair (m) and the damping of every pair (s/m), each
+      !> empty when not varied; their product, or the lists side by side
+      real(wp), allocatable :: vary_speed(:), vary_gap(:), vary_damping(:)
+      logical :: vary_product = .true.
    end type system_type
 
    !> A validated scene

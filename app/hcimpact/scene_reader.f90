@@ -37,6 +37,9 @@ module hcimpact_scene_reader
       & body_restitution => restitution, body_at_speed => at_speed, &
       & body_gravity => gravity, body_t_end => t_end, body_rtol => rtol, &
       & body_method => method, body_integrator => integrator
+   use hcimpact_scene_variations, only : read_variations, max_variations, &
+      & variations_text_length, vary_speed => striker_speed, vary_gap => gap, &
+      & vary_b => b, vary_combine => combine
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
       & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
       & integrator_adams
@@ -58,11 +61,11 @@ module hcimpact_scene_reader
 
    integer, parameter :: g_scene = 1, g_body1 = 2, g_body2 = 3, g_wall = 4, g_contact = 5, &
       & g_damping = 6, g_sampling = 7, g_bodies = 8, g_left_wall = 9, g_right_wall = 10, &
-      & n_groups = 10
+      & g_system_sweep = 11, n_groups = 11
    !> The groups of a scene file
-   character(len=*), parameter :: group_names(n_groups) = [character(len=10) :: "scene", &
+   character(len=*), parameter :: group_names(n_groups) = [character(len=12) :: "scene", &
       & "body1", "body2", "wall", "contact", "damping", "sampling", "bodies", "left_wall", &
-      & "right_wall"]
+      & "right_wall", "system_sweep"]
    !> The variables each group takes
    character(len=*), parameter :: group_variables(n_groups) = [character(len=160) :: &
       & "title, speeds, outputs", &
@@ -75,7 +78,8 @@ module hcimpact_scene_reader
       & "mass, radius, density, young, poisson, velocity, gap, stiffness, exponent, b, " &
       & // "restitution, at_speed, gravity, t_end, rtol, method, integrator", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
-      & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson"]
+      & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
+      & "striker_speed, gap, b, combine"]
    !> Names that take a list of values
    character(len=*), parameter :: array_variables(3) = [character(len=10) :: "speeds", &
       & "outputs", "tolerances"]
@@ -84,8 +88,8 @@ module hcimpact_scene_reader
       & "density", "young", "poisson", "velocity", "gap", "stiffness", "exponent", "b", &
       & "restitution", "at_speed"]
    !> Names whose values are text (they need quotes)
-   character(len=*), parameter :: text_variables(5) = [character(len=13) :: "title", &
-      & "outputs", "sweep_spacing", "method", "integrator"]
+   character(len=*), parameter :: text_variables(6) = [character(len=13) :: "title", &
+      & "outputs", "sweep_spacing", "method", "integrator", "combine"]
 
    !> Marks an integer the file did not set (a file that writes this value is caught by
    !> looking for the name in the text, `given`)
@@ -392,7 +396,7 @@ contains
          call load_system(src, sc, error)
          return
       end if
-      do i = g_bodies, g_right_wall
+      do i = g_bodies, g_system_sweep
          if (.not. src%groups(i)%present) cycle
          error = at(src, i, "") // "&" // trim(group_names(i)) // " belongs to a system of" &
             & // " bodies: give the bodies in &bodies (doc/scenes.md)"
@@ -733,6 +737,8 @@ contains
          read(rec, nml=left_wall, iostat=ios, iomsg=msg)
       case (g_right_wall)
          read(rec, nml=right_wall, iostat=ios, iomsg=msg)
+      case (g_system_sweep)
+         call read_variations(rec, ios, msg)
       case default
          read(rec, nml=sampling, iostat=ios, iomsg=msg)
       end select
@@ -882,6 +888,9 @@ contains
             & .and. is_number(token)) then
             text = "too many values for " // owner // " (at most " // str(max_bodies) &
                & // " bodies)"
+         else if (len(owner) > 0 .and. gid == g_system_sweep .and. is_number(token)) then
+            text = "too many values for " // owner // " (at most " // str(max_variations) &
+               & // ")"
          else if (len(owner) > 0 .and. any(lower(owner) == array_variables) &
             & .and. (is_number(token) .or. token(1:1) == '"' .or. token(1:1) == "'")) then
             text = "too many values for " // owner // " (at most " // str(max_speeds) &
@@ -1771,6 +1780,8 @@ contains
          error = at(src, g_bodies, "") // trim(message) // " (" // status_message(stat) // ")"
          return
       end if
+      call load_variations(src, sys, error)
+      if (allocated(error)) return
       sc%system = sys
 
    contains
@@ -1966,6 +1977,80 @@ contains
       error = at(src, g_bodies, name) // name // " = '" // trim(text) // "': use " &
          & // join(words, ", ")
    end subroutine choose
+
+   !> &system_sweep: the variations of the output system_sweep (none: the system alone).
+   !> Speeds finite, gaps and damping finite and >= 0, "product" (default) or "list" (the
+   !> lists given of one length), at most `max_system_items` variations. A variation the
+   !> library refuses (check_chain) gets its status in its row, as one that fails.
+   subroutine load_variations(src, sys, error)
+      type(scene_source), intent(in) :: src
+      type(system_type), intent(inout) :: sys
+      character(len=:), allocatable, intent(out) :: error
+      integer, parameter :: max_system_items = 100000
+      integer :: n_speed, n_gap, n_b, items
+      allocate(sys%vary_speed(0), sys%vary_gap(0), sys%vary_damping(0))
+      sys%vary_product = .true.
+      call read_group(src, g_system_sweep, error)
+      if (allocated(error)) return
+      if (.not. src%groups(g_system_sweep)%present) return
+      call count_list(src, g_system_sweep, "striker_speed", vary_speed, n_speed, error)
+      if (.not. allocated(error)) call count_list(src, g_system_sweep, "gap", vary_gap, n_gap, &
+         & error)
+      if (.not. allocated(error)) call count_list(src, g_system_sweep, "b", vary_b, n_b, error)
+      if (allocated(error)) return
+      ! finite first: an ordered comparison with NaN would trap in the Debug build
+      if (.not. all(ieee_is_finite(vary_speed(1:n_speed)))) then
+         error = at(src, g_system_sweep, "striker_speed") // "every striker_speed must be" &
+            & // " a finite number" // finite_hint
+      else if (.not. all(ieee_is_finite(vary_gap(1:n_gap)))) then
+         error = at(src, g_system_sweep, "gap") // "every gap must be a finite number" &
+            & // finite_hint
+      else if (.not. all(ieee_is_finite(vary_b(1:n_b)))) then
+         error = at(src, g_system_sweep, "b") // "every b must be a finite number" // finite_hint
+      else if (any(vary_gap(1:n_gap) < 0.0_wp)) then
+         error = at(src, g_system_sweep, "gap") // "a gap is negative: gaps are >= 0 (m)"
+      else if (any(vary_b(1:n_b) < 0.0_wp)) then
+         error = at(src, g_system_sweep, "b") // "a damping b is negative: b >= 0 (s/m)"
+      else if (n_speed + n_gap + n_b == 0) then
+         error = at(src, g_system_sweep, "") // "&system_sweep varies nothing: give" &
+            & // " striker_speed, gap or b (lists of values)"
+      else if (n_gap > 0 .and. sys%n < 2) then
+         error = at(src, g_system_sweep, "gap") // "one body has no gap to vary"
+      else if (n_b > 0 .and. sys%n < 2) then
+         error = at(src, g_system_sweep, "b") // "one body has no pair to damp"
+      end if
+      if (allocated(error)) return
+      select case (lower(trim(vary_combine)))
+      case ("", "product")
+         sys%vary_product = .true.
+         items = max(n_speed, 1) * max(n_gap, 1) * max(n_b, 1)
+      case ("list")
+         sys%vary_product = .false.
+         items = max(n_speed, n_gap, n_b)
+         if (any([n_speed, n_gap, n_b] /= items .and. [n_speed, n_gap, n_b] /= 0)) then
+            error = at(src, g_system_sweep, "combine") // "combine = ""list"" takes the lists" &
+               & // " side by side: give them of one length (striker_speed " // str(n_speed) &
+               & // ", gap " // str(n_gap) // ", b " // str(n_b) // " values)"
+            return
+         end if
+      case default
+         error = at(src, g_system_sweep, "combine") // "combine = '" // trim(vary_combine) &
+            & // "': give ""product"" (every combination) or ""list"" (side by side)"
+         return
+      end select
+      if (len_trim(vary_combine) >= variations_text_length) then
+         error = at(src, g_system_sweep, "combine") // "combine is too long"
+         return
+      end if
+      if (items > max_system_items) then
+         error = at(src, g_system_sweep, "") // str(items) // " variations: at most " &
+            & // str(max_system_items)
+         return
+      end if
+      sys%vary_speed = vary_speed(1:n_speed)
+      sys%vary_gap = vary_gap(1:n_gap)
+      sys%vary_damping = vary_b(1:n_b)
+   end subroutine load_variations
 
    !> &left_wall or &right_wall: the law with the end body `end_body` (stiffness, or
    !> Hertz's constant of the body's sphere on the flat wall from young and poisson),

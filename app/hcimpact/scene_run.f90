@@ -33,7 +33,7 @@ module hcimpact_scene_run
    use hcimpact_scene_model, only : scene_type, n_outputs, output_names, output_files, &
       & out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
       & out_lambertw, out_legacy, out_cvode, out_contacts, out_final, out_motion, &
-      & system_outputs, nan
+      & out_system_sweep, system_outputs, nan
    use hcimpact_scene_chain, only : system_method, system_needs_ode, describe_system, &
       & write_system_parameters, run_system
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
@@ -44,6 +44,7 @@ module hcimpact_scene_run
       & rule_names => damping_rule_names, legacy_chi => legacy_damping
    use hcimpact_scene_system, only : wall_clock
    use hcimpact_scene_sweep, only : sweep_impacts, sweep_description
+   use hcimpact_scene_systems, only : system_sweep_method, run_system_sweep
    use hcimpact_scene_console, only : console_begin, console_log, console_failed, &
       & console_reason, say, emit, say_wrapped, say_text, shout, files_note, pad, str_int64, &
       & progress_begin, progress_step, progress_clear, progress_end
@@ -107,7 +108,7 @@ contains
          uses(c_lambertw) = .true.
       case (out_cvode)
          uses([c_impact, c_ode]) = .true.
-      case (out_contacts, out_final, out_motion)
+      case (out_contacts, out_final, out_motion, out_system_sweep)
          uses(c_system) = .true.
       end select
    end function needs
@@ -149,6 +150,8 @@ contains
             & // count_str(ns, "speed") // ", against the closed forms"
       case (out_contacts, out_final, out_motion)
          text = system_method(sc, k)
+      case (out_system_sweep)
+         text = system_sweep_method(sc)
       case default
          text = ""
       end select
@@ -191,6 +194,7 @@ contains
       if (.not. all(used)) call say_wrapped("  not needed: ", pack(component_names, .not. used))
       if (sc%wanted(out_summary) .or. sc%wanted(out_sweep)) call say_text("  impacts: ", &
          & sweep_description())
+      if (sc%wanted(out_system_sweep)) call say_text("  runs: ", sweep_description(.true.))
       if (sc%wanted(out_cvode)) then
          if (.not. ode_available) then
             call shout("error: the output 'cvode' needs the CVODE component: " // ode_missing)
@@ -236,8 +240,8 @@ contains
       do k = 1, n_outputs
          if (allocated(error)) exit
          if (.not. sc%wanted(k)) cycle
-         ! one run of a system gives all its outputs
-         if (system_outputs(k) .and. system_done) cycle
+         ! one run of a system gives all its outputs (the sweep of systems is its own)
+         if (system_outputs(k) .and. system_done .and. k /= out_system_sweep) cycle
          select case (k)
          case (out_summary)
             call run_summary(sc, sc%speeds, "summary", res, .true., error)
@@ -260,6 +264,8 @@ contains
          case (out_contacts, out_final, out_motion)
             call run_system(sc, res, error, unavailable)
             system_done = .true.
+         case (out_system_sweep)
+            call run_system_sweep(sc, res, error)
          end select
          if (allocated(error)) then
             call shout("error: " // trim(output_names(k)) // ": " // error)

@@ -13,11 +13,14 @@ module hcimpact_scene_sweep
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
    use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
    use hcimpact_scene_checkpoint, only : checkpoint_type, checkpoint_start, &
-      & checkpoint_record, checkpoint_finish
+      & checkpoint_record, checkpoint_finish, checkpoint_start_columns, &
+      & checkpoint_record_columns
+   use hcimpact_scene_system_items, only : compute_system_item
    implicit none
    private
 
-   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts
+   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts, &
+      & sweep_systems
 
    !> Impacts of a block: what a killed run loses at most
    integer, parameter :: block = 1024
@@ -42,11 +45,16 @@ contains
    subroutine sweep_end()
    end subroutine sweep_end
 
-   !> How the impacts of a sweep are computed, for the plan.
-   function sweep_description() result(text)
+   !> How the items of a sweep are computed, for the plan: impacts, or whole runs of a
+   !> system (`systems`, one at a time per thread).
+   function sweep_description(systems) result(text)
+      logical, intent(in), optional :: systems
       character(len=:), allocatable :: text
       text = "on this process"
       !$ text = "on this process, shared among OpenMP threads"
+      if (present(systems)) then
+         !$ if (systems) text = text // " one run at a time"
+      end if
    end function sweep_description
 
    !> The impacts of `contact` at each of `speeds` (its velocity replaced), with the
@@ -76,14 +84,17 @@ contains
       allocate(done(size(speeds)))
       call checkpoint_start(checkpoint, contact, speeds, out, stats, done, resumed, ck, error)
       if (allocated(error)) return
-      finished = resumed
-      call progress_begin(label, size(speeds))
+      ! a block the checkpoint holds whole is skipped, one it holds in part computed
+      ! again (the same doubles): the progress starts from the whole ones
+      finished = 0
       do first = 1, size(speeds), block
          last = min(first + block - 1, size(speeds))
-         ! a block the checkpoint holds whole is skipped, one it holds in part computed
-         ! again (the same doubles)
+         if (all(done(first:last))) finished = finished + last - first + 1
+      end do
+      call progress_begin(label, size(speeds), finished)
+      do first = 1, size(speeds), block
+         last = min(first + block - 1, size(speeds))
          if (all(done(first:last))) cycle
-         finished = finished - count(done(first:last))
          ! The impacts are independent: in parallel when the program is built with
          ! OpenMP (the library's array threshold and schedule); the progress line is
          ! drawn by the first thread alone.
@@ -106,5 +117,50 @@ contains
       call checkpoint_finish(ck, error)
       call progress_end()
    end subroutine sweep_impacts
+
+   !> The runs of a sweep of systems (the output system_sweep): `outputs(:, k)` from
+   !> `inputs(:, k)` (hcimpact_scene_system_items), with the progress shown under
+   !> `label`; shared among OpenMP threads one item at a time (their costs differ by
+   !> orders of magnitude). Each run's result goes to the checkpoint as it ends; those
+   !> the checkpoint holds are taken from it.
+   subroutine sweep_systems(inputs, outputs, label, checkpoint, resumed, error)
+      !> The items' columns
+      real(wp), intent(in) :: inputs(:, :)
+      !> Their results' columns
+      real(wp), intent(out) :: outputs(:, :)
+      !> The progress line's label
+      character(len=*), intent(in) :: label
+      !> The checkpoint file, or "" for none
+      character(len=*), intent(in) :: checkpoint
+      !> How many runs came from the checkpoint
+      integer, intent(out) :: resumed
+      !> Why the checkpoint could not be written (the runs are all computed)
+      character(len=:), allocatable, intent(out) :: error
+      type(checkpoint_type) :: ck
+      logical, allocatable :: done(:)
+      integer :: k, finished, mine
+      allocate(done(size(inputs, 2)))
+      outputs = 0.0_wp
+      call checkpoint_start_columns(checkpoint, inputs, outputs, done, resumed, ck, error)
+      if (allocated(error)) return
+      call progress_begin(label, size(inputs, 2), resumed)
+      finished = resumed
+      !$omp parallel do private(mine) schedule(dynamic, 1)
+      do k = 1, size(inputs, 2)
+         if (done(k)) cycle
+         call compute_system_item(inputs(:, k), outputs(:, k))
+         ! one writer of the checkpoint at a time
+         !$omp critical (system_checkpoint)
+         call checkpoint_record_columns(ck, k, outputs(:, k:k), error)
+         finished = finished + 1
+         mine = finished
+         !$omp end critical (system_checkpoint)
+         !$ if (omp_get_thread_num() /= 0) cycle
+         call progress_step(mine)
+      end do
+      !$omp end parallel do
+      call checkpoint_finish(ck, error)
+      call progress_end()
+   end subroutine sweep_systems
 
 end module hcimpact_scene_sweep

@@ -1,57 +1,89 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> The impacts of a sweep (the outputs summary and sweep) over the ranks of MPI, in
-!> CMake builds with HCIMPACT_WITH_MPI (doc/mpi.md). It replaces
-!> app/hcimpact/scene_sweep.f90, the module of the same name and interface that
-!> computes every impact on one process.
+!> The impacts of a sweep (the outputs summary and sweep) and the runs of a sweep of
+!> systems (the output system_sweep) over the ranks of MPI, in CMake builds with the
+!> MPI component (doc/mpi.md). It replaces app/hcimpact/scene_sweep.f90, the module of
+!> the same name and interface that computes every item on one process.
 !>
 !> Rank 0 runs the scene (reads it, plans, writes every file and the console); the
-!> other ranks only compute impacts. A sweep is cut into chunks of consecutive speeds;
-!> rank 0 sends each other rank two chunks, and another one each time a chunk's
-!> results come back (point-to-point messages, so that a slow chunk, or a slow rank,
-!> holds up no other), and computes a chunk itself whenever no result is waiting.
-!> The results land at their speed's index, so rank 0 then holds exactly the outcomes
-!> a serial run computes (each impact is computed alone, by the same code, from the
-!> same doubles) and writes the same files. Rank 0 writes each chunk's outcomes to the
-!> sweep's checkpoint as they arrive (hcimpact_scene_checkpoint); a rerun hands out
-!> only the chunks the checkpoint does not hold whole.
+!> other ranks wait for sweeps. For each sweep rank 0 tells them one begins (and of
+!> which kind), and every rank enters the component's collective hand-out
+!> (hcimpact_mpi_sweep's `mpi_impact_sweep` for impacts, hcimpact_mpi_hand_out's
+!> `mpi_hand_out` with a system worker for systems: chunks handed out dynamically, the
+!> results put back in order, bit for bit those of one process). Rank 0 is told of
+!> every chunk as it is done and writes its results to the sweep's checkpoint
+!> (hcimpact_scene_checkpoint) and shows the progress; a rerun gives the hand-out
+!> what the checkpoint holds, and only the rest is handed out.
 !>
 !> A rank that dies takes the run down (MPI's default error handler, and `mpirun`
 !> ends the job): rank 0 never renames its `.partial` files, so nothing is left that
 !> looks complete.
 module hcimpact_scene_sweep
    use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Comm_rank, MPI_Comm_size, MPI_Send, &
-      & MPI_Isend, MPI_Wait, MPI_Recv, MPI_Iprobe, MPI_Status, MPI_Request, &
-      & MPI_COMM_WORLD, MPI_DOUBLE_PRECISION, MPI_ANY_SOURCE, MPI_ANY_TAG, MPI_REQUEST_NULL, &
-      & MPI_STATUS_IGNORE
+      & MPI_Recv, MPI_Iprobe, MPI_Status, MPI_COMM_WORLD, MPI_INTEGER, MPI_ANY_TAG
    use hcimpact_kinds, only : wp
-   use hcimpact_impact_model, only : contact_type, outcome_type, impact
+   use hcimpact_impact_model, only : contact_type, outcome_type
+   use hcimpact_mpi_sweep, only : mpi_impact_sweep, sweep_listener, mpi_sweep_max_chunk
+   use hcimpact_mpi_hand_out, only : mpi_hand_out, sweep_worker, items_listener
+   use hcimpact_status, only : hcimpact_ok
+   use hcimpact_scene_system_items, only : compute_system_item
    use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
    use hcimpact_scene_text, only : str
    use hcimpact_scene_system, only : pause_microseconds
-   use hcimpact_scene_checkpoint, only : per_impact, packed, unpack, checkpoint_type, &
-      & checkpoint_start, checkpoint_record, checkpoint_finish
+   use hcimpact_scene_checkpoint, only : checkpoint_type, checkpoint_start, &
+      & checkpoint_record, checkpoint_finish, checkpoint_start_columns, &
+      & checkpoint_record_columns
    implicit none
    private
 
-   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts
+   public :: sweep_begin, sweep_serve, sweep_end, sweep_description, sweep_impacts, &
+      & sweep_systems
 
-   !> Message tags: a chunk to compute, its results, the end of the program
-   integer, parameter :: tag_work = 1, tag_result = 2, tag_stop = 3
-   !> Most impacts of a chunk (some milliseconds of work: a message's round trip, which
-   !> on a loaded machine can cost a time slice of the scheduler, stays small beside
-   !> it), and chunks handed to a rank ahead of its results (so that it never waits
-   !> for rank 0 between two chunks)
-   integer, parameter :: max_chunk = 1024, in_flight = 2
+   !> Messages of rank 0 to the others between sweeps: a sweep of impacts begins, the
+   !> program ends, a sweep of systems begins
+   integer, parameter :: tag_sweep = 1, tag_stop = 2, tag_systems = 3
+   !> Most systems of a chunk: each is a whole run, costly and of very different costs
+   integer, parameter :: systems_chunk = 4
+
+   !> The worker of a sweep of systems: one whole run of a system
+   type, extends(sweep_worker) :: system_worker
+   contains
+      procedure :: compute => compute_system
+      procedure :: verdict => every_row
+   end type system_worker
+
+   !> Rank 0's listener of a sweep of systems: each chunk's results to the checkpoint
+   !> (flushed), and the progress
+   type, extends(items_listener) :: systems_recorder
+      !> The checkpoint being written
+      type(checkpoint_type) :: ck
+      !> The runs done so far, and how many (those of the checkpoint included)
+      logical, allocatable :: known(:)
+      integer :: finished = 0
+      !> Why the checkpoint could not be written
+      character(len=:), allocatable :: error
+   contains
+      procedure :: items_done => record_systems
+   end type systems_recorder
    !> How long a rank without work sleeps before it looks for a message again, in
    !> microseconds: waiting in MPI_Probe would spin and take a core from rank 0 (which
-   !> writes the files after the sweep) and from other jobs of a shared machine
+   !> runs the rest of the scene and writes the files) and from other jobs of a shared
+   !> machine
    integer, parameter :: idle_pause = 200
-   !> Doubles of a chunk message (first index, count, the contact's mass, stiffness,
-   !> exponent and damping, the speeds) and of a result message (first index, count,
-   !> then per impact: the nine outcomes, the three evaluation counts, the status)
-   integer, parameter :: head = 2, n_contact = 4
-   integer, parameter :: work_size = head + n_contact + max_chunk, &
-      & result_size = head + per_impact * max_chunk
+
+   !> Rank 0's listener of a sweep: each chunk's outcomes to the checkpoint, and the
+   !> progress
+   type, extends(sweep_listener) :: sweep_recorder
+      !> The checkpoint being written
+      type(checkpoint_type) :: ck
+      !> The items the checkpoint held when the sweep began
+      logical, allocatable :: known(:)
+      !> Items done so far (those of the checkpoint included)
+      integer :: finished = 0
+      !> Why the checkpoint could not be written
+      character(len=:), allocatable :: error
+   contains
+      procedure :: chunk_done => record_chunk
+   end type sweep_recorder
 
    !> This process's rank and the number of ranks (the program runs one scene; the
    !> state of the run is kept here)
@@ -89,83 +121,64 @@ contains
       end do
    end function launched
 
-   !> The work of a rank other than 0: compute the chunks rank 0 sends until it says
-   !> the program ends.
+   !> The work of a rank other than 0: take part in every sweep rank 0 begins, until it
+   !> says the program ends.
    subroutine sweep_serve(code)
       !> Exit code of the process
       integer, intent(out) :: code
-      type(MPI_Status) :: status
-      type(MPI_Request) :: sending(in_flight)
-      type(contact_type) :: contact
-      type(outcome_type), allocatable :: out(:)
-      real(wp), allocatable :: work(:)
-      real(wp), allocatable, asynchronous :: results(:, :)
-      integer, allocatable :: stats(:)
-      integer :: count, i, slot
+      type(MPI_Status) :: probe
+      type(contact_type) :: no_contacts(0)
+      type(outcome_type) :: no_outcomes(0)
+      integer :: no_stats(0), message(1), status
+      type(system_worker) :: systems
+      real(wp) :: no_items(0, 0)
       logical :: arrived
       code = 0
-      allocate(out(max_chunk), work(work_size), results(result_size, in_flight), &
-         & stats(max_chunk))
-      ! the results go back without waiting for rank 0 to take them (it may be busy with
-      ! a chunk of its own), each from its own buffer until its send is complete
-      sending = MPI_REQUEST_NULL
-      slot = 1
       do
          do
-            call MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, arrived, status)
+            call MPI_Iprobe(0, MPI_ANY_TAG, MPI_COMM_WORLD, arrived, probe)
             if (arrived) exit
             call pause_microseconds(idle_pause)
          end do
-         if (status%MPI_TAG /= tag_work) then
-            call MPI_Recv(work, work_size, MPI_DOUBLE_PRECISION, 0, status%MPI_TAG, &
-               & MPI_COMM_WORLD, status)
-            do slot = 1, in_flight
-               call MPI_Wait(sending(slot), MPI_STATUS_IGNORE)
-            end do
+         call MPI_Recv(message, 1, MPI_INTEGER, 0, probe%MPI_TAG, MPI_COMM_WORLD, probe)
+         select case (probe%MPI_TAG)
+         case (tag_sweep)
+            call mpi_impact_sweep(MPI_COMM_WORLD, no_contacts, no_outcomes, no_stats, status)
+         case (tag_systems)
+            call mpi_hand_out(MPI_COMM_WORLD, systems, no_items, no_items, status)
+         case default
             exit
-         end if
-         call MPI_Recv(work, work_size, MPI_DOUBLE_PRECISION, 0, tag_work, MPI_COMM_WORLD, &
-            & status)
-         count = nint(work(2))
-         contact = contact_type(mass=work(3), stiffness=work(4), exponent=work(5), &
-            & damping=work(6))
-         call impacts_of(contact, work(head + n_contact + 1:head + n_contact + count), &
-            & out(1:count), stats(1:count))
-         call MPI_Wait(sending(slot), MPI_STATUS_IGNORE)
-         results(1:head, slot) = work(1:head)
-         do i = 1, count
-            results(head + per_impact * (i - 1) + 1:head + per_impact * i, slot) = &
-               & packed(out(i), stats(i))
-         end do
-         call MPI_Isend(results(:, slot), head + per_impact * count, MPI_DOUBLE_PRECISION, 0, &
-            & tag_result, MPI_COMM_WORLD, sending(slot))
-         slot = modulo(slot, in_flight) + 1
+         end select
       end do
    end subroutine sweep_serve
 
    !> The end of the program: rank 0 tells the other ranks, and every rank finishes MPI.
    subroutine sweep_end()
-      real(wp) :: nothing(1)
-      integer :: rank
       if (.not. started .or. finished) return
-      if (my_rank == 0) then
-         do rank = 1, n_ranks - 1
-            call MPI_Send(nothing, 0, MPI_DOUBLE_PRECISION, rank, tag_stop, MPI_COMM_WORLD)
-         end do
-      end if
+      if (my_rank == 0) call tell_ranks(tag_stop)
       call MPI_Finalize()
       finished = .true.
    end subroutine sweep_end
 
-   !> How the impacts of a sweep are computed, for the plan.
-   function sweep_description() result(text)
+   !> How the items of a sweep are computed, for the plan: impacts, or whole runs of a
+   !> system (`systems`).
+   function sweep_description(systems) result(text)
+      logical, intent(in), optional :: systems
       character(len=:), allocatable :: text
+      logical :: of_systems
+      of_systems = .false.
+      if (present(systems)) of_systems = systems
       if (.not. started) then
          text = "on this process (not started by an MPI launcher: MPI not used)"
       else if (n_ranks == 1) then
          text = "on this process (MPI, 1 rank)"
+      else if (of_systems) then
+         text = "over " // str(n_ranks) // " MPI ranks: chunks of up to " &
+            & // str(systems_chunk) // " runs handed out by rank 0 on request (rank 0" &
+            & // " computes too), the results put back in order"
       else
-         text = "over " // str(n_ranks) // " MPI ranks: chunks of up to " // str(max_chunk) &
+         text = "over " // str(n_ranks) // " MPI ranks: chunks of up to " &
+            & // str(mpi_sweep_max_chunk) &
             & // " speeds handed out by rank 0 on request (rank 0 computes too), the" &
             & // " results put back in order"
       end if
@@ -192,122 +205,118 @@ contains
       !> Why the checkpoint could not be written (the impacts are all computed: the
       !> other ranks must not be left with chunks nobody takes)
       character(len=:), allocatable, intent(out) :: error
-      type(checkpoint_type) :: ck
-      logical, allocatable :: done(:)
-      integer, allocatable :: todo(:)
-      type(MPI_Status) :: status
-      real(wp), allocatable :: results(:)
-      ! the chunks on their way to each rank: their buffers and sends (a chunk can be
-      ! larger than what MPI sends without the receiver's help, and the receiver is
-      ! busy with its previous chunk: rank 0 must not wait for it)
-      real(wp), allocatable, asynchronous :: work(:, :, :)
-      type(MPI_Request), allocatable :: sending(:, :)
-      integer, allocatable :: slot(:)
-      integer :: n, chunk, n_chunks, next, received, finished, rank, k, first, count, i
-      logical :: arrived
+      type(sweep_recorder) :: recorder
+      type(contact_type), allocatable :: contacts(:)
+      logical, allocatable :: held(:)
+      integer :: i, status
 
-      n = size(speeds)
-      allocate(done(n))
-      call checkpoint_start(checkpoint, contact, speeds, out, stats, done, resumed, ck, error)
+      allocate(recorder%known(size(speeds)))
+      call checkpoint_start(checkpoint, contact, speeds, out, stats, recorder%known, resumed, &
+         & recorder%ck, error)
       if (allocated(error)) return
-      allocate(results(result_size), work(work_size, in_flight, n_ranks - 1), &
-         & sending(in_flight, n_ranks - 1), slot(n_ranks - 1))
-      sending = MPI_REQUEST_NULL
-      slot = 1
-      ! eight chunks per rank at least, so that the last ones even out the ranks
-      chunk = max(1, min(max_chunk, n / (8 * n_ranks)))
-      ! the chunks still to compute: all but those the checkpoint holds whole (one it
-      ! holds in part is computed again: the same doubles)
-      todo = [(k, k = 1, (n + chunk - 1) / chunk)]
-      todo = pack(todo, [(.not. all(done((k - 1) * chunk + 1:min(k * chunk, n))), &
-         & k = 1, size(todo))])
-      n_chunks = size(todo)
-      call progress_begin(label, n)
-      next = 1
-      do k = 1, in_flight
-         do rank = 1, n_ranks - 1
-            if (next > n_chunks) exit
-            call send_chunk(rank, todo(next))
-            next = next + 1
-         end do
-      end do
-      received = 0
-      finished = n - sum([(min(chunk, n - (todo(k) - 1) * chunk), k = 1, n_chunks)])
-      do while (received < n_chunks)
-         arrived = .false.
-         if (n_ranks > 1) call MPI_Iprobe(MPI_ANY_SOURCE, tag_result, MPI_COMM_WORLD, &
-            & arrived, status)
-         if (.not. arrived .and. next <= n_chunks) then
-            ! nothing has come back: compute the next chunk here
-            first = (todo(next) - 1) * chunk + 1
-            count = min(chunk, n - first + 1)
-            call impacts_of(contact, speeds(first:first + count - 1), &
-               & out(first:first + count - 1), stats(first:first + count - 1))
-            next = next + 1
-         else
-            call MPI_Recv(results, result_size, MPI_DOUBLE_PRECISION, MPI_ANY_SOURCE, &
-               & tag_result, MPI_COMM_WORLD, status)
-            first = nint(results(1))
-            count = nint(results(2))
-            do i = 1, count
-               call unpack(results(head + per_impact * (i - 1) + 1:head + per_impact * i), &
-                  & out(first + i - 1), stats(first + i - 1))
-            end do
-            if (next <= n_chunks) then
-               call send_chunk(status%MPI_SOURCE, todo(next))
-               next = next + 1
-            end if
-         end if
-         call checkpoint_record(ck, first, out(first:first + count - 1), &
-            & stats(first:first + count - 1), error)
-         received = received + 1
-         finished = finished + count
-         call progress_step(finished)
-      end do
-      call checkpoint_finish(ck, error)
-      ! every chunk's results are back, so every chunk was received: these return at once
-      do rank = 1, n_ranks - 1
-         do k = 1, in_flight
-            call MPI_Wait(sending(k, rank), MPI_STATUS_IGNORE)
-         end do
-      end do
+      contacts = [(contact, i = 1, size(speeds))]
+      contacts%velocity = speeds
+      recorder%finished = resumed
+      call progress_begin(label, size(speeds), resumed)
+      if (started) call tell_ranks(tag_sweep)
+      ! what the checkpoint held, apart from what the recorder marks as the chunks come
+      ! in; the overall status is the first failing impact's (each has its own in stats)
+      held = recorder%known
+      call mpi_impact_sweep(MPI_COMM_WORLD, contacts, out, stats, status, held, recorder)
+      call checkpoint_finish(recorder%ck, recorder%error)
       call progress_end()
-
-   contains
-
-      !> Send chunk k to a rank, from the buffer of its oldest chunk (whose results are
-      !> back, or which was never used), without waiting for the rank to take it.
-      subroutine send_chunk(to, k)
-         integer, intent(in) :: to, k
-         integer :: first, count, s
-         first = (k - 1) * chunk + 1
-         count = min(chunk, n - first + 1)
-         s = slot(to)
-         slot(to) = modulo(s, in_flight) + 1
-         call MPI_Wait(sending(s, to), MPI_STATUS_IGNORE)
-         work(1:head + n_contact, s, to) = [real(first, wp), real(count, wp), contact%mass, &
-            & contact%stiffness, contact%exponent, contact%damping]
-         work(head + n_contact + 1:head + n_contact + count, s, to) = &
-            & speeds(first:first + count - 1)
-         call MPI_Isend(work(:, s, to), head + n_contact + count, MPI_DOUBLE_PRECISION, to, &
-            & tag_work, MPI_COMM_WORLD, sending(s, to))
-      end subroutine send_chunk
-
+      if (allocated(recorder%error)) call move_alloc(recorder%error, error)
    end subroutine sweep_impacts
 
-   !> The impacts of one chunk, one after the other.
-   subroutine impacts_of(contact, speeds, out, stats)
-      type(contact_type), intent(in) :: contact
-      real(wp), intent(in) :: speeds(:)
-      type(outcome_type), intent(out) :: out(:)
-      integer, intent(out) :: stats(:)
-      type(contact_type) :: at_speed
-      integer :: i
-      at_speed = contact
-      do i = 1, size(speeds)
-         at_speed%velocity = speeds(i)
-         call impact(at_speed, out(i), stats(i))
+   !> Rank 0: a chunk is done: its outcomes to the checkpoint (flushed), the progress.
+   subroutine record_chunk(self, first, out, stats)
+      class(sweep_recorder), intent(inout) :: self
+      integer, intent(in) :: first
+      type(outcome_type), intent(in) :: out(:)
+      integer, intent(in) :: stats(:)
+      integer :: last
+      last = first + size(out) - 1
+      call checkpoint_record(self%ck, first, out, stats, self%error)
+      self%finished = self%finished + count(.not. self%known(first:last))
+      self%known(first:last) = .true.
+      call progress_step(self%finished)
+   end subroutine record_chunk
+
+   !> The runs of a sweep of systems (the output system_sweep) on rank 0, handed out to
+   !> every rank a few at a time: `outputs(:, k)` from `inputs(:, k)`
+   !> (hcimpact_scene_system_items), the same doubles as on one process. Each chunk's
+   !> results go to the checkpoint as they come in; those it holds are not handed out.
+   subroutine sweep_systems(inputs, outputs, label, checkpoint, resumed, error)
+      !> The items' columns
+      real(wp), intent(in) :: inputs(:, :)
+      !> Their results' columns
+      real(wp), intent(out) :: outputs(:, :)
+      !> The progress line's label
+      character(len=*), intent(in) :: label
+      !> The checkpoint file, or "" for none
+      character(len=*), intent(in) :: checkpoint
+      !> How many runs came from the checkpoint
+      integer, intent(out) :: resumed
+      !> Why the checkpoint could not be written (the runs are all computed: the other
+      !> ranks must not be left with chunks nobody takes)
+      character(len=:), allocatable, intent(out) :: error
+      type(system_worker) :: worker
+      type(systems_recorder) :: recorder
+      logical, allocatable :: held(:)
+      integer :: status
+      allocate(recorder%known(size(inputs, 2)))
+      outputs = 0.0_wp
+      call checkpoint_start_columns(checkpoint, inputs, outputs, recorder%known, resumed, &
+         & recorder%ck, error)
+      if (allocated(error)) return
+      recorder%finished = resumed
+      call progress_begin(label, size(inputs, 2), resumed)
+      if (started) call tell_ranks(tag_systems)
+      held = recorder%known
+      call mpi_hand_out(MPI_COMM_WORLD, worker, inputs, outputs, status, held, recorder, &
+         & systems_chunk)
+      call checkpoint_finish(recorder%ck, recorder%error)
+      call progress_end()
+      if (allocated(recorder%error)) call move_alloc(recorder%error, error)
+   end subroutine sweep_systems
+
+   !> One run of a system, on any rank.
+   subroutine compute_system(self, input, output)
+      class(system_worker), intent(inout) :: self
+      real(wp), intent(in) :: input(:)
+      real(wp), intent(out) :: output(:)
+      call compute_system_item(input, output)
+   end subroutine compute_system
+
+   !> Every run's status is in its row: the sweep itself succeeds.
+   integer function every_row(self, outputs) result(status)
+      class(system_worker), intent(in) :: self
+      real(wp), intent(in) :: outputs(:, :)
+      status = hcimpact_ok
+   end function every_row
+
+   !> Rank 0: runs are done: their results to the checkpoint, the progress.
+   subroutine record_systems(self, first, outputs)
+      class(systems_recorder), intent(inout) :: self
+      integer, intent(in) :: first
+      real(wp), intent(in) :: outputs(:, :)
+      integer :: last
+      last = first + size(outputs, 2) - 1
+      call checkpoint_record_columns(self%ck, first, outputs, self%error)
+      self%finished = self%finished + count(.not. self%known(first:last))
+      self%known(first:last) = .true.
+      call progress_step(self%finished)
+   end subroutine record_systems
+
+   !> Rank 0 sends every other rank a message with `tag` (a sweep begins, the program
+   !> ends).
+   subroutine tell_ranks(tag)
+      integer, intent(in) :: tag
+      integer :: rank, message(1)
+      message = 0
+      do rank = 1, n_ranks - 1
+         call MPI_Send(message, 1, MPI_INTEGER, rank, tag, MPI_COMM_WORLD)
       end do
-   end subroutine impacts_of
+   end subroutine tell_ranks
 
 end module hcimpact_scene_sweep

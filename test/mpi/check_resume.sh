@@ -8,18 +8,19 @@
 # removes the checkpoint and writes the same files, byte for byte, as a run in one go
 # of the program built without MPI (all but log.txt).
 #
-# Usage: check_resume.sh MPIEXEC N PROGRAM SERIAL_PROGRAM SCENE WORK_DIR
-#        (N = 0: PROGRAM is run alone, without mpirun, and killed itself)
+# Usage: check_resume.sh MPIEXEC N PROGRAM SERIAL_PROGRAM SCENE WORK_DIR [OUTPUT]
+#        (N = 0: PROGRAM is run alone, without mpirun, and killed itself; OUTPUT: the
+#        output whose checkpoint is watched, sweep by default, or system_sweep)
 set -uo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
-mpiexec="$1" ranks="$2" program="$3" serial="$4" scene="$5" work="$6"
+mpiexec="$1" ranks="$2" program="$3" serial="$4" scene="$5" work="$6" output="${7:-sweep}"
 fail() { echo "FAIL: $*" >&2; exit 1; }
 
 rm -rf "$work"
 mkdir -p "$work"
 "$serial" "$scene" -q -o "$work/reference" > /dev/null || fail "the reference run failed"
 
-checkpoint="$work/results/sweep.checkpoint"
+checkpoint="$work/results/$output.checkpoint"
 bash "$here/run_mpi.sh" "$mpiexec" "$ranks" "$program" "$scene" -q -o "$work/results" \
   > "$work/first.stdout" 2> "$work/first.stderr" &
 launcher=$!
@@ -45,7 +46,7 @@ kill -KILL "$victim"
 wait "$launcher" && fail "the killed run succeeded"
 [ -f "$checkpoint" ] || fail "the killed run left no checkpoint"
 kept=$(($(wc -l < "$checkpoint") - 1))
-echo "killed with $kept impacts in the checkpoint"
+echo "killed with $kept items in the checkpoint"
 
 bash "$here/run_mpi.sh" "$mpiexec" "$ranks" "$program" "$scene" -q -o "$work/results" \
   > "$work/second.stdout" 2> "$work/second.stderr" || { cat "$work/second.stderr"; fail "the rerun failed"; }

@@ -1,0 +1,176 @@
+! SPDX-License-Identifier: Apache-2.0
+!> The output `system_sweep` of a system of bodies (doc/scenes.md): one whole run of
+!> the system for every variation `&system_sweep` asks for (the speed of body 1, the
+!> gap and the damping of every pair; their product or the lists side by side), the
+!> runs handed out by hcimpact_scene_sweep (MPI ranks, or OpenMP threads, or one after
+!> the other), one row per variation in system_sweep.csv, in the variations' order,
+!> and a short table on the console. A run that fails has its status in its row (and
+!> the log names the first); the sweep goes on.
+module hcimpact_scene_systems
+   use hcimpact_kinds, only : wp
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_unavailable, status_message
+   use hcimpact_chain_types, only : by_closed_forms, by_integration, method_exact
+   use hcimpact_scene_ode, only : ode_available, ode_missing
+   use hcimpact_scene_model, only : scene_type
+   use hcimpact_scene_output, only : results_type, csv_type, csv_open, csv_row, csv_close, &
+      & checkpoint_path
+   use hcimpact_scene_system_items, only : system_item_count, system_item_inputs, &
+      & item_variation, result_length, result_status, result_time, result_contacts, &
+      & result_closed_forms, result_integrated, result_clusters, result_energy_error, &
+      & result_dissipated, result_method, result_velocities, result_steps
+   use hcimpact_scene_sweep, only : sweep_systems
+   use hcimpact_scene_console, only : say, emit, say_text, files_note, pad
+   use hcimpact_scene_system, only : wall_clock
+   use hcimpact_scene_text, only : str, real_str, duration_str, count_str
+   implicit none
+   private
+
+   public :: system_sweep_method, run_system_sweep
+
+   !> Rows of the console table before "... more in the file"
+   integer, parameter :: table_rows = 20
+
+contains
+
+   !> How the output is computed, for the plan.
+   function system_sweep_method(sc) result(text)
+      type(scene_type), intent(in) :: sc
+      character(len=:), allocatable :: text
+      integer :: items
+      items = system_item_count(sc%system)
+      text = "a whole run of the system for each of " // count_str(items, "variation") &
+         & // " of &system_sweep"
+      if (items == 1) text = "one run of the system (&system_sweep varies nothing)"
+   end function system_sweep_method
+
+   !> Run every variation; the console table and system_sweep.csv.
+   subroutine run_system_sweep(sc, res, error)
+      type(scene_type), intent(in) :: sc
+      type(results_type), intent(inout) :: res
+      character(len=:), allocatable, intent(out) :: error
+      real(wp), allocatable :: inputs(:, :), outputs(:, :)
+      real(wp) :: t0, elapsed
+      character(len=:), allocatable :: note
+      integer :: n, items, failed, first_failed, k, resumed
+
+      n = sc%system%n
+      t0 = wall_clock()
+      inputs = system_item_inputs(sc%system)
+      items = size(inputs, 2)
+      allocate(outputs(result_length(n), items))
+      call sweep_systems(inputs, outputs, "system_sweep", checkpoint_path(res, &
+         & "system_sweep"), resumed, error)
+      if (allocated(error)) return
+      elapsed = wall_clock() - t0
+      call print_table(sc, outputs)
+      call write_rows(sc, outputs, res, error)
+      if (allocated(error)) return
+      failed = 0
+      first_failed = 0
+      do k = 1, items
+         if (nint(outputs(result_status, k)) == hcimpact_ok) cycle
+         failed = failed + 1
+         if (first_failed == 0) first_failed = k
+      end do
+      note = ""
+      if (resumed > 0) note = " (" // str(resumed) // " from the checkpoint of an earlier run)"
+      call say_text(pad("system_sweep", 12), count_str(items, "run") // " of the " &
+         & // str(n) // "-body system" // note // ", " // str(failed) // " failed: " &
+         & // duration_str(elapsed) // files_note(res, "system_sweep.csv"))
+      if (failed > 0) call say_text("  ", "variation " // str(first_failed) // " (the first" &
+         & // " that failed): " // failure_text(sc, nint(outputs(result_status, first_failed))))
+   end subroutine run_system_sweep
+
+   !> Why a run failed, for the log: a cluster is beyond the method 'exact', or beyond
+   !> a build without CVODE.
+   function failure_text(sc, status) result(text)
+      type(scene_type), intent(in) :: sc
+      integer, intent(in) :: status
+      character(len=:), allocatable :: text
+      text = status_message(status)
+      if (status /= hcimpact_err_unavailable) return
+      if (sc%system%method == method_exact) then
+         text = "a cluster formed, which the method 'exact' does not compute (status " &
+            & // str(status) // ")"
+      else if (.not. ode_available) then
+         text = "a cluster formed, which needs the CVODE component (status " // str(status) &
+            & // "): " // ode_missing
+      end if
+   end function failure_text
+
+   !> The method a run used, as a word.
+   pure function method_word(code) result(word)
+      real(wp), intent(in) :: code
+      character(len=:), allocatable :: word
+      select case (nint(code))
+      case (by_closed_forms)
+         word = "closed_forms"
+      case (by_integration)
+         word = "integration"
+      case (by_closed_forms + by_integration)
+         word = "both"
+      case default
+         word = "none"
+      end select
+   end function method_word
+
+   !> system_sweep.csv: one row per variation, in their order.
+   subroutine write_rows(sc, outputs, res, error)
+      type(scene_type), intent(in) :: sc
+      real(wp), intent(in) :: outputs(:, :)
+      type(results_type), intent(inout) :: res
+      character(len=:), allocatable, intent(out) :: error
+      character(len=32), allocatable :: columns(:)
+      type(csv_type) :: csv
+      real(wp) :: speed, gap, damping
+      integer :: n, k, i
+      n = sc%system%n
+      columns = [character(len=32) :: "method", "variation [-]", "striker_speed [m/s]", &
+         & "gap [m]", "b [s/m]", "status [-]", "time [s]", "contacts [-]", &
+         & "closed_form_contacts [-]", "integrated_contacts [-]", "clusters [-]", &
+         & "cvode_steps [-]", "energy_error [-]", "dissipated [J]"]
+      columns = [character(len=32) :: columns, ("velocity_" // str(i) // " [m/s]", i = 1, n)]
+      call csv_open(res, "system_sweep.csv", columns, csv, error)
+      if (allocated(error)) return
+      do k = 1, size(outputs, 2)
+         call item_variation(sc%system, k, speed, gap, damping)
+         call csv_row(csv, [real(k, wp), speed, gap, damping, outputs(result_status, k), &
+            & outputs(result_time, k), outputs(result_contacts:result_clusters, k), &
+            & outputs(result_steps, k), outputs(result_energy_error, k), &
+            & outputs(result_dissipated, k), outputs(result_velocities:, k)], &
+            & label=method_word(outputs(result_method, k)))
+      end do
+      call csv_close(csv, error)
+   end subroutine write_rows
+
+   !> The console: the first rows (variation, its parameters, status, contacts, the
+   !> energy balance, the last body's final velocity).
+   subroutine print_table(sc, outputs)
+      type(scene_type), intent(in) :: sc
+      real(wp), intent(in) :: outputs(:, :)
+      character(len=200) :: line
+      real(wp) :: speed, gap, damping
+      integer :: k, n, shown
+      n = sc%system%n
+      call emit("")
+      call emit(sc%title // ": system_sweep")
+      write(line, '(a9, 3a13, a7, a10, a13, a16, a14)') "variation", "v1 (m/s)", "gap (m)", &
+         & "b (s/m)", "status", "contacts", "energy err", "v" // str(n) // " end (m/s)", "method"
+      call emit(trim(line))
+      shown = min(size(outputs, 2), table_rows)
+      do k = 1, shown
+         call item_variation(sc%system, k, speed, gap, damping)
+         write(line, '(i9, 3a13, i7, a10, a13, a16, a14)') k, real_str(speed, 6), &
+            & real_str(gap, 6), real_str(damping, 6), nint(outputs(result_status, k)), &
+            & real_str(outputs(result_contacts, k), 10), &
+            & real_str(outputs(result_energy_error, k), 3), &
+            & real_str(outputs(result_velocities + n - 1, k), 8), &
+            & method_word(outputs(result_method, k))
+         call emit(trim(line))
+      end do
+      if (size(outputs, 2) > shown) call emit("  ... " // str(size(outputs, 2) - shown) &
+         & // " more in system_sweep.csv")
+      call emit("")
+   end subroutine print_table
+
+end module hcimpact_scene_systems
