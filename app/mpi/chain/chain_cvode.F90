@@ -94,7 +94,8 @@ module hcimpact_mpi_chain_cvode
 
 contains
 
-   !> Integrate the block's state y (3 m values: u, v, e per bead) from 0 to t_end
+   !> Integrate the block's state y (block%n_local values: u, v, e per bead, and the
+   !> right wall's e on the last rank) from 0 to t_end
    !> together with the other ranks. ok false with a message (the same on every rank:
    !> CVODE's failures are collective) if CVODE fails.
    subroutine integrate_chain(run, t_end, max_steps, y, counters, ok, message)
@@ -124,12 +125,12 @@ contains
       mem = c_null_ptr
       y_vec => null()
       lin_sol => null()
-      m = run%block%m
-      n_local = int(3 * m, c_int64_t)
-      n_global = int(3, c_int64_t) * int(run%block%n, c_int64_t)
+      m = run%block%n_local
+      n_local = int(m, c_int64_t)
+      n_global = int(run%block%n_global, c_int64_t)
       run%root_n = sqrt(real(n_global, wp))
-      mu = int(min(upper_band, 3 * m - 1), c_int64_t)
-      ml = int(min(lower_band, 3 * m - 1), c_int64_t)
+      mu = int(min(upper_band, m - 1), c_int64_t)
+      ml = int(min(lower_band, m - 1), c_int64_t)
 
       call halting_suspend(run%halting)
       setup: block
@@ -141,7 +142,7 @@ contains
          y_vec => FN_VNew_Parallel(run%block%comm%MPI_VAL, n_local, n_global, ctx)
          if (.not. associated(y_vec)) exit setup
          yv => FN_VGetArrayPointer(y_vec)
-         yv(1:3 * m) = y(1:3 * m)
+         yv(1:m) = y(1:m)
          where = "CVodeCreate"
          mem = FCVodeCreate(CV_BDF, ctx)
          if (.not. c_associated(mem)) exit setup
@@ -185,7 +186,7 @@ contains
          where = "CVode"
          ierr = FCVode(mem, real(t_end, c_double), y_vec, t_reached, CV_NORMAL)
          if (ierr /= CV_SUCCESS .and. ierr /= CV_TSTOP_RETURN) exit setup
-         y(1:3 * m) = yv(1:3 * m)
+         y(1:m) = yv(1:m)
          ok = .true.
       end block setup
       ! this rank's setup failed: tell the others before they enter CVode
@@ -290,8 +291,8 @@ contains
       call c_f_pointer(user_data, run)
       yv => FN_VGetArrayPointer(y)
       wv => FN_VGetArrayPointer(ewt)
-      call error_weights(yv(1:3 * run%block%m), run%rtol, run%scale, run%root_n, &
-         & wv(1:3 * run%block%m))
+      call error_weights(yv(1:run%block%n_local), run%rtol, run%scale, run%root_n, &
+         & wv(1:run%block%n_local))
       ierr = 0
    end function chain_error_weights
 

@@ -1,31 +1,53 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> The scene of the distributed chain (hcimpact_mpi_chain, doc/mpi.md): a namelist
-!> `&mpi_chain` that describes a uniform chain of beads struck at its first bead, read
-!> from a file, and the `chain_type` and `chain_options` it stands for. Nothing here
-!> knows about MPI: every rank reads the same file and builds the same chain.
+!> `&mpi_chain` that describes a chain of beads on a line, read from a file, and the
+!> `chain_type` and `chain_options` it stands for. Nothing here knows about MPI: every
+!> rank reads the same file and builds the same chain.
+!>
+!> A scene is uniform (one mass, one law and one gap for every bead and pair) unless
+!> it gives patterns: up to `max_pattern` values that repeat along the chain (bead i
+!> takes value mod(i - 1, p) + 1 of a pattern of p values; pair i likewise), so that a
+!> chain of a million beads with two kinds of bead is two numbers long. Walls at
+!> either end and gravity are those of the serial chain (`chain_type`).
 module hcimpact_mpi_chain_scene
    use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_domain, hcimpact_err_size
-   use hcimpact_force_element, only : contact_force_type, contact_force_pair
    use hcimpact_chain_types, only : chain_type, chain_options, contact_law, check_chain, &
       & method_integrated, max_message
    implicit none
    private
 
-   public :: chain_scene, read_chain_scene, scene_system, chain_energy
+   public :: chain_scene, read_chain_scene, scene_system, max_pattern
 
-   !> A uniform chain of beads on a line, at rest and touching or with equal gaps, its
-   !> first bead moving towards the second at `striker_speed`
+   !> Most values of a pattern
+   integer, parameter :: max_pattern = 1000
+
+   !> A value not given (patterns, striker_speed): the namelist leaves it untouched
+   real(wp), parameter :: unset = -huge(1.0_wp)
+
+   !> A chain of beads on a line, with walls at its ends or not, under gravity or not
    type :: chain_scene
       !> Number of beads
       integer :: n_beads = 0
-      !> Mass of a bead (kg), the law of every neighbouring pair: contact constant c
-      !> (N/m^n), exponent n and damping b (s/m), and the gap between neighbours (m)
+      !> The uniform chain: mass of a bead (kg), the law of every neighbouring pair
+      !> (contact constant c in N/m^n, exponent n, damping b in s/m), the gap between
+      !> neighbours (m) and the initial velocity of every bead (m/s)
       real(wp) :: mass = 0.0_wp, stiffness = 0.0_wp, exponent = 1.5_wp, &
-         & damping = 0.0_wp, gap = 0.0_wp
-      !> Initial velocity of bead 1 (m/s), the others at rest
-      real(wp) :: striker_speed = 0.0_wp
+         & damping = 0.0_wp, gap = 0.0_wp, velocity = 0.0_wp
+      !> Patterns that replace the uniform values (module header); p values each
+      real(wp) :: mass_pattern(max_pattern) = unset, velocity_pattern(max_pattern) = unset, &
+         & stiffness_pattern(max_pattern) = unset, exponent_pattern(max_pattern) = unset, &
+         & damping_pattern(max_pattern) = unset, gap_pattern(max_pattern) = unset
+      !> Initial velocity of bead 1 (m/s), when given: replaces the one above
+      real(wp) :: striker_speed = unset
+      !> The walls: present or not, their laws and their gaps to the end beads (m)
+      logical :: left_wall = .false., right_wall = .false.
+      real(wp) :: left_stiffness = 0.0_wp, left_exponent = 1.5_wp, left_damping = 0.0_wp, &
+         & left_gap = 0.0_wp, right_stiffness = 0.0_wp, right_exponent = 1.5_wp, &
+         & right_damping = 0.0_wp, right_gap = 0.0_wp
+      !> Constant acceleration along the line (m/s^2, negative: towards bead 1)
+      real(wp) :: gravity = 0.0_wp
       !> End time (s, > 0) and CVODE's relative tolerance
       real(wp) :: t_end = 0.0_wp, rtol = 1.0e-8_wp
       !> Largest number of CVODE steps
@@ -45,9 +67,18 @@ contains
       character(len=200) :: msg
       integer :: n_beads
       integer(int64) :: max_steps
-      real(wp) :: mass, stiffness, exponent, damping, gap, striker_speed, t_end, rtol
-      namelist /mpi_chain/ n_beads, mass, stiffness, exponent, damping, gap, &
-         & striker_speed, t_end, rtol, max_steps
+      real(wp) :: mass, stiffness, exponent, damping, gap, velocity, striker_speed, &
+         & t_end, rtol, gravity, left_stiffness, left_exponent, left_damping, left_gap, &
+         & right_stiffness, right_exponent, right_damping, right_gap
+      real(wp) :: mass_pattern(max_pattern), velocity_pattern(max_pattern), &
+         & stiffness_pattern(max_pattern), exponent_pattern(max_pattern), &
+         & damping_pattern(max_pattern), gap_pattern(max_pattern)
+      logical :: left_wall, right_wall
+      namelist /mpi_chain/ n_beads, mass, stiffness, exponent, damping, gap, velocity, &
+         & mass_pattern, velocity_pattern, stiffness_pattern, exponent_pattern, &
+         & damping_pattern, gap_pattern, striker_speed, left_wall, left_stiffness, &
+         & left_exponent, left_damping, left_gap, right_wall, right_stiffness, &
+         & right_exponent, right_damping, right_gap, gravity, t_end, rtol, max_steps
 
       ok = .false.
       message = ""
@@ -57,7 +88,25 @@ contains
       exponent = scene%exponent
       damping = scene%damping
       gap = scene%gap
+      velocity = scene%velocity
+      mass_pattern = scene%mass_pattern
+      velocity_pattern = scene%velocity_pattern
+      stiffness_pattern = scene%stiffness_pattern
+      exponent_pattern = scene%exponent_pattern
+      damping_pattern = scene%damping_pattern
+      gap_pattern = scene%gap_pattern
       striker_speed = scene%striker_speed
+      left_wall = scene%left_wall
+      left_stiffness = scene%left_stiffness
+      left_exponent = scene%left_exponent
+      left_damping = scene%left_damping
+      left_gap = scene%left_gap
+      right_wall = scene%right_wall
+      right_stiffness = scene%right_stiffness
+      right_exponent = scene%right_exponent
+      right_damping = scene%right_damping
+      right_gap = scene%right_gap
+      gravity = scene%gravity
       t_end = scene%t_end
       rtol = scene%rtol
       max_steps = scene%max_steps
@@ -74,10 +123,42 @@ contains
          return
       end if
       close(unit)
-      scene = chain_scene(n_beads, mass, stiffness, exponent, damping, gap, &
-         & striker_speed, t_end, rtol, max_steps)
+      scene = chain_scene(n_beads, mass, stiffness, exponent, damping, gap, velocity, &
+         & mass_pattern, velocity_pattern, stiffness_pattern, exponent_pattern, &
+         & damping_pattern, gap_pattern, striker_speed, left_wall, right_wall, &
+         & left_stiffness, left_exponent, left_damping, left_gap, right_stiffness, &
+         & right_exponent, right_damping, right_gap, gravity, t_end, rtol, max_steps)
       ok = .true.
    end subroutine read_chain_scene
+
+   !> Number of values given in a pattern: up to its last value that is not unset
+   !> (an unset value before it stays, and the validator refuses it)
+   pure integer function pattern_length(pattern)
+      real(wp), intent(in) :: pattern(:)
+      integer :: k
+      pattern_length = 0
+      do k = size(pattern), 1, -1
+         if (pattern(k) /= unset) then
+            pattern_length = k
+            return
+         end if
+      end do
+   end function pattern_length
+
+   !> values(i) = pattern(mod(i - 1, p) + 1), or the uniform value without a pattern
+   pure subroutine spread(pattern, uniform, values)
+      real(wp), intent(in) :: pattern(:), uniform
+      real(wp), intent(out) :: values(:)
+      integer :: p, i
+      p = pattern_length(pattern)
+      if (p == 0) then
+         values = uniform
+         return
+      end if
+      do i = 1, size(values)
+         values(i) = pattern(mod(i - 1, p) + 1)
+      end do
+   end subroutine spread
 
    !> The system and options of a scene, checked by the library's one validator
    !> (`check_chain`) and for what this program needs besides: a finite end time > 0
@@ -90,18 +171,34 @@ contains
       type(chain_options), intent(out) :: options
       integer, intent(out) :: stat
       character(len=max_message), intent(out) :: message
-      integer :: n
+      real(wp), allocatable :: stiffness(:), exponent(:), damping(:)
+      integer :: n, i
 
       stat = hcimpact_ok
       message = ""
       n = max(scene%n_beads, 0)
       allocate(chain%mass(n), chain%velocity(n), chain%gap(max(n - 1, 0)), &
-         & chain%law(max(n - 1, 0)))
-      chain%mass = scene%mass
-      chain%velocity = 0.0_wp
-      if (n >= 1) chain%velocity(1) = scene%striker_speed
-      chain%gap = scene%gap
-      chain%law = contact_law(scene%stiffness, scene%exponent, scene%damping)
+         & chain%law(max(n - 1, 0)), stiffness(max(n - 1, 0)), exponent(max(n - 1, 0)), &
+         & damping(max(n - 1, 0)))
+      call spread(scene%mass_pattern, scene%mass, chain%mass)
+      call spread(scene%velocity_pattern, scene%velocity, chain%velocity)
+      if (n >= 1 .and. scene%striker_speed /= unset) chain%velocity(1) = scene%striker_speed
+      call spread(scene%gap_pattern, scene%gap, chain%gap)
+      call spread(scene%stiffness_pattern, scene%stiffness, stiffness)
+      call spread(scene%exponent_pattern, scene%exponent, exponent)
+      call spread(scene%damping_pattern, scene%damping, damping)
+      do i = 1, n - 1
+         chain%law(i) = contact_law(stiffness(i), exponent(i), damping(i))
+      end do
+      chain%left_wall = scene%left_wall
+      chain%right_wall = scene%right_wall
+      chain%left_law = contact_law(scene%left_stiffness, scene%left_exponent, &
+         & scene%left_damping)
+      chain%right_law = contact_law(scene%right_stiffness, scene%right_exponent, &
+         & scene%right_damping)
+      chain%left_gap = scene%left_gap
+      chain%right_gap = scene%right_gap
+      chain%gravity = scene%gravity
       options%t_end = scene%t_end
       options%rtol = scene%rtol
       options%method = method_integrated
@@ -122,21 +219,5 @@ contains
          return
       end if
    end subroutine scene_system
-
-   !> Kinetic plus elastic energy (J) of the chain (no walls, no gravity) with the
-   !> displacements u (m, from the initial positions) and velocities v (m/s)
-   pure function chain_energy(chain, u, v) result(energy)
-      type(chain_type), intent(in) :: chain
-      real(wp), intent(in) :: u(:), v(:)
-      real(wp) :: energy
-      type(contact_force_type) :: element
-      integer :: i
-      energy = 0.5_wp * sum(chain%mass * v**2)
-      do i = 1, size(chain%gap)
-         call contact_force_pair(chain%law(i)%stiffness, chain%law(i)%exponent, &
-            & chain%law(i)%damping, -chain%gap(i), u(i), v(i), u(i + 1), v(i + 1), element)
-         energy = energy + element%potential
-      end do
-   end function chain_energy
 
 end module hcimpact_mpi_chain_scene
