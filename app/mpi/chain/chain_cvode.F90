@@ -45,11 +45,14 @@ module hcimpact_mpi_chain_cvode
    use hcimpact_cvode_solver, only : cvode_flag_name
    use hcimpact_cvode_chain_system, only : upper_band, lower_band, error_weights
    use hcimpact_mpi_chain_block, only : chain_block, exchange_halo, block_rhs
+   use hcimpact_mpi_chain_contacts, only : contact_tracker, tracker_start, tracker_step, &
+      & max_order
    use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSetUserData, &
-      & FCVodeWFtolerances, FCVodeSetMaxNumSteps, FCVodeSetStopTime, FCVode, FCVodeFree, &
+      & FCVodeWFtolerances, FCVodeSetStopTime, FCVode, FCVodeFree, &
       & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumLinIters, &
       & FCVodeGetNumNonlinSolvIters, FCVodeGetNumPrecEvals, FCVBBDPrecInit, &
-      & FCVBBDPrecGetNumGfnEvals, CV_BDF, CV_NORMAL, CV_SUCCESS, CV_TSTOP_RETURN
+      & FCVBBDPrecGetNumGfnEvals, FCVodeGetDky, FCVodeGetLastOrder, CV_BDF, CV_ONE_STEP, &
+      & CV_SUCCESS, CV_TSTOP_RETURN, CV_TOO_MUCH_WORK
    use fnvector_parallel_mod, only : FN_VNew_Parallel
    use mpi_f08, only : MPI_Allreduce, MPI_LOGICAL, MPI_LAND
    use fsunlinsol_spgmr_mod, only : FSUNLinSol_SPGMR
@@ -73,6 +76,8 @@ module hcimpact_mpi_chain_cvode
    !> What the callbacks reach through CVODE's user data
    type :: chain_integration
       type(chain_block) :: block
+      !> The contacts of the rank's pairs (hcimpact_mpi_chain_contacts)
+      type(contact_tracker) :: contacts
       !> Relative tolerance, scales of deformation (m), speed (m/s), energy (J), and
       !> the square root of the global number of values
       real(wp) :: rtol = 1.0e-8_wp, scale(3) = 1.0_wp, root_n = 1.0_wp
@@ -107,11 +112,15 @@ contains
       logical, intent(out) :: ok
       character(len=max_message), intent(out) :: message
       type(c_ptr) :: ctx, mem
-      type(N_Vector), pointer :: y_vec
+      type(N_Vector), pointer :: y_vec, dky_vec
       type(SUNLinearSolver), pointer :: lin_sol
-      real(c_double), pointer :: yv(:)
+      real(c_double), pointer :: yv(:), dkyv(:)
       real(c_double) :: t_reached(1)
-      integer(c_int) :: ierr
+      real(wp) :: t_previous
+      integer(c_int) :: ierr, dky_flag, order(1)
+      ! steps in a row that left the time where it was, and how many are tolerated
+      integer :: stalled, k
+      integer, parameter :: max_stalled = 100
       integer(c_int64_t) :: n_local, n_global, mu, ml
       integer(c_long) :: count(1)
       character(len=40) :: where
@@ -124,6 +133,7 @@ contains
       ctx = c_null_ptr
       mem = c_null_ptr
       y_vec => null()
+      dky_vec => null()
       lin_sol => null()
       m = run%block%n_local
       n_local = int(m, c_int64_t)
@@ -169,10 +179,11 @@ contains
          ierr = FCVBBDPrecInit(mem, n_local, mu, ml, mu, ml, 0.0_c_double, &
             & c_funloc(block_local_rhs), c_funloc(block_communicate))
          if (ierr /= CV_SUCCESS) exit setup
-         where = "CVodeSetMaxNumSteps"
-         ierr = FCVodeSetMaxNumSteps(mem, int(min(max_steps, int(huge(1_c_long), int64)), &
-            & c_long))
-         if (ierr /= CV_SUCCESS) exit setup
+         where = "N_VNew_Parallel"
+         ierr = -1
+         dky_vec => FN_VNew_Parallel(run%block%comm%MPI_VAL, n_local, n_global, ctx)
+         if (.not. associated(dky_vec)) exit setup
+         dkyv => FN_VGetArrayPointer(dky_vec)
          where = "CVodeSetStopTime"
          ierr = FCVodeSetStopTime(mem, real(t_end, c_double))
          if (ierr /= CV_SUCCESS) exit setup
@@ -183,9 +194,46 @@ contains
          call MPI_Allreduce(.true., ready, 1, MPI_LOGICAL, MPI_LAND, run%block%comm)
          if (.not. ready) exit setup
          ready_checked = .true.
+         call tracker_start(run%contacts, run%block, y, run%rtol * run%scale(1))
+         ! step by step (CVODE's one-step mode up to the stop time t_end), the contacts
+         ! followed on each step's interpolant (hcimpact_mpi_chain_contacts); every
+         ! rank takes the same steps, so the loop's decisions are the same on all
          where = "CVode"
-         ierr = FCVode(mem, real(t_end, c_double), y_vec, t_reached, CV_NORMAL)
-         if (ierr /= CV_SUCCESS .and. ierr /= CV_TSTOP_RETURN) exit setup
+         t_previous = 0.0_wp
+         stalled = 0
+         do
+            ierr = FCVodeGetNumSteps(mem, count)
+            if (int(count(1), int64) >= max_steps) then
+               ierr = CV_TOO_MUCH_WORK
+               exit setup
+            end if
+            ierr = FCVode(mem, real(t_end, c_double), y_vec, t_reached, CV_ONE_STEP)
+            if (ierr /= CV_SUCCESS .and. ierr /= CV_TSTOP_RETURN) exit setup
+            ! steps too small to move the time (as in the serial chain)
+            if (t_reached(1) > t_previous) then
+               stalled = 0
+            else
+               stalled = stalled + 1
+               if (stalled > max_stalled) then
+                  where = "CVode (100 steps in a row left the time where it was)"
+                  ierr = CV_TOO_MUCH_WORK
+                  exit setup
+               end if
+            end if
+            ! the Taylor coefficients of the step's polynomial at its end (derivatives
+            ! of orders above the step's are 0)
+            dky_flag = FCVodeGetLastOrder(mem, order)
+            if (dky_flag /= CV_SUCCESS) order(1) = 0
+            do k = 0, max_order
+               run%contacts%taylor(k, :) = 0.0_wp
+               if (k > order(1)) cycle
+               dky_flag = FCVodeGetDky(mem, t_reached(1), int(k, c_int), dky_vec)
+               if (dky_flag == CV_SUCCESS) run%contacts%taylor(k, :) = dkyv(1:m)
+            end do
+            call tracker_step(run%contacts, run%block, t_previous, real(t_reached(1), wp))
+            t_previous = t_reached(1)
+            if (ierr == CV_TSTOP_RETURN .or. t_reached(1) >= t_end) exit
+         end do
          y(1:m) = yv(1:m)
          ok = .true.
       end block setup
@@ -214,6 +262,7 @@ contains
       end if
       if (associated(lin_sol)) ierr = FSUNLinSolFree(lin_sol)
       if (associated(y_vec)) call FN_VDestroy(y_vec)
+      if (associated(dky_vec)) call FN_VDestroy(dky_vec)
       call context_free(ctx)
       call halting_resume(run%halting)
    end subroutine integrate_chain
