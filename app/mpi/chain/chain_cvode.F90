@@ -123,7 +123,7 @@ contains
       integer, parameter :: max_stalled = 100
       integer(c_int64_t) :: n_local, n_global, mu, ml
       integer(c_long) :: count(1)
-      character(len=40) :: where
+      character(len=80) :: where
       logical :: ready, ready_checked
       integer :: m
 

@@ -1,8 +1,9 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> The scene of the distributed chain (hcimpact_mpi_chain, doc/mpi.md): a namelist
-!> `&mpi_chain` that describes a chain of beads on a line, read from a file, and the
-!> `chain_type` and `chain_options` it stands for. Nothing here knows about MPI: every
-!> rank reads the same file and builds the same chain.
+!> `&mpi_chain` that describes a chain of beads on a line, read from a file (or from
+!> the lines of one: the scene runner hcimpact, which runs such a scene serially), and
+!> the `chain_type` and `chain_options` it stands for. Nothing here knows about MPI:
+!> every rank reads the same file and builds the same chain.
 !>
 !> A scene is uniform (one mass, one law and one gap for every bead and pair) unless
 !> it gives patterns: up to `max_pattern` values that repeat along the chain (bead i
@@ -18,7 +19,7 @@ module hcimpact_mpi_chain_scene
    implicit none
    private
 
-   public :: chain_scene, read_chain_scene, scene_system, max_pattern
+   public :: chain_scene, read_chain_scene, read_chain_lines, scene_system, max_pattern
 
    !> Most values of a pattern
    integer, parameter :: max_pattern = 1000
@@ -65,6 +66,40 @@ contains
       character(len=max_message), intent(out) :: message
       integer :: unit, ios
       character(len=200) :: msg
+      ok = .false.
+      message = ""
+      open(newunit=unit, file=path, status="old", action="read", iostat=ios, iomsg=msg)
+      if (ios /= 0) then
+         message = "cannot open the scene " // trim(path) // ": " // trim(msg)
+         return
+      end if
+      call read_namelist(scene, ios, msg, unit=unit)
+      close(unit)
+      if (ios /= 0) then
+         message = "the scene " // trim(path) // " has no valid &mpi_chain namelist: " &
+            & // trim(msg)
+         return
+      end if
+      ok = .true.
+   end subroutine read_chain_scene
+
+   !> Read the namelist &mpi_chain from the lines of a scene (an internal file); ios
+   !> and msg those of the read.
+   subroutine read_chain_lines(lines, scene, ios, msg)
+      character(len=*), intent(in) :: lines(:)
+      type(chain_scene), intent(out) :: scene
+      integer, intent(out) :: ios
+      character(len=*), intent(out) :: msg
+      call read_namelist(scene, ios, msg, lines=lines)
+   end subroutine read_chain_lines
+
+   !> The one namelist &mpi_chain, read from the unit or the lines given
+   subroutine read_namelist(scene, ios, msg, unit, lines)
+      type(chain_scene), intent(out) :: scene
+      integer, intent(out) :: ios
+      character(len=*), intent(out) :: msg
+      integer, intent(in), optional :: unit
+      character(len=*), intent(in), optional :: lines(:)
       integer :: n_beads
       integer(int64) :: max_steps
       real(wp) :: mass, stiffness, exponent, damping, gap, velocity, striker_speed, &
@@ -80,8 +115,7 @@ contains
          & left_exponent, left_damping, left_gap, right_wall, right_stiffness, &
          & right_exponent, right_damping, right_gap, gravity, t_end, rtol, max_steps
 
-      ok = .false.
-      message = ""
+      msg = ""
       n_beads = scene%n_beads
       mass = scene%mass
       stiffness = scene%stiffness
@@ -110,26 +144,18 @@ contains
       t_end = scene%t_end
       rtol = scene%rtol
       max_steps = scene%max_steps
-      open(newunit=unit, file=path, status="old", action="read", iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         message = "cannot open the scene " // trim(path) // ": " // trim(msg)
-         return
+      if (present(unit)) then
+         read(unit, nml=mpi_chain, iostat=ios, iomsg=msg)
+      else
+         read(lines, nml=mpi_chain, iostat=ios, iomsg=msg)
       end if
-      read(unit, nml=mpi_chain, iostat=ios, iomsg=msg)
-      if (ios /= 0) then
-         message = "the scene " // trim(path) // " has no valid &mpi_chain namelist: " &
-            & // trim(msg)
-         close(unit)
-         return
-      end if
-      close(unit)
+      if (ios /= 0) return
       scene = chain_scene(n_beads, mass, stiffness, exponent, damping, gap, velocity, &
          & mass_pattern, velocity_pattern, stiffness_pattern, exponent_pattern, &
          & damping_pattern, gap_pattern, striker_speed, left_wall, right_wall, &
          & left_stiffness, left_exponent, left_damping, left_gap, right_stiffness, &
          & right_exponent, right_damping, right_gap, gravity, t_end, rtol, max_steps)
-      ok = .true.
-   end subroutine read_chain_scene
+   end subroutine read_namelist
 
    !> Number of values given in a pattern: up to its last value that is not unset
    !> (an unset value before it stays, and the validator refuses it)
