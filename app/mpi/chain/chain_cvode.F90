@@ -16,6 +16,12 @@
 !> rtol e_ref, every weight times the square root of the global number of values, so
 !> that CVODE's root mean square is the 2-norm over the whole chain.
 !>
+!> CVODE runs in its one-step mode up to the stop time t_end, with this program's own
+!> bound of steps (max_steps: CV_TOO_MUCH_WORK, as CVODE's would say in its normal
+!> mode) and of steps that leave the time where it is; after each step the step's
+!> interpolating polynomial goes to the contacts (hcimpact_mpi_chain_contacts), which
+!> do not act on the integration.
+!>
 !> Every decision CVODE takes goes through a reduction over all ranks, so the ranks
 !> take the same steps and call the right-hand side together (its halo exchange is
 !> a collective step of the neighbours). The right-hand side therefore never reports
