@@ -3,7 +3,8 @@
 #
 # hcimpact_mpi_chain on a scene it must refuse, or a run that must fail: the exit status
 # EXIT (default 2, a bad scene; 1, a failed run), also through mpirun, the expected
-# message on standard error, no state file (at STATE, default OUTPUT_DIR/state.csv)
+# message on standard error, no state file (at STATE, default OUTPUT_DIR/state.csv, nor
+# STATE.partial)
 # and, with CONTACTS (a contact list asked for), no contact list, no CONTACTS.partial.
 #
 # Usage: check_mpi_chain_bad.sh MPIEXEC N PROGRAM SCENE OUTPUT_DIR MESSAGE [EXIT [STATE
@@ -30,7 +31,7 @@ if ! grep -qF "error: $message" "$out/stderr"; then
   cat "$out/stderr" >&2
   exit 1
 fi
-if [ -e "$state" ]; then
+if [ -e "$state" ] || [ -e "$state.partial" ]; then
   echo "FAIL: a state file was left behind" >&2
   exit 1
 fi
