@@ -199,9 +199,9 @@ contains
       integer, intent(in) :: j
       type(probe), intent(in) :: p0, p1
       if (tracker%contact(j)%open) then
-         eventful = p1%x < -tracker%x_tol .or. new_maximum(p0%x, p0%w, p1%x, p1%w, &
-            & tracker%contact(j)%deformation) .or. new_maximum(p0%f, p0%df, p1%f, p1%df, &
-            & tracker%contact(j)%peak)
+         eventful = p1%x < -tracker%x_tol .or. (pressed(tracker, p0, p1) .and. &
+            & (new_maximum(p0%x, p0%w, p1%x, p1%w, tracker%contact(j)%deformation) .or. &
+            & new_maximum(p0%f, p0%df, p1%f, p1%df, tracker%contact(j)%peak)))
       else
          eventful = p1%x > tracker%x_tol .or. (p0%w > 0.0_wp .and. p1%w <= 0.0_wp)
       end if
@@ -220,6 +220,15 @@ contains
       new_maximum = r0 > 0.0_wp .and. r1 <= 0.0_wp .and. max(q0, q1) > 0.5_wp * so_far
    end function new_maximum
 
+   !> Whether a pair is pressed beyond the resolution of the integration at either end
+   !> of an interval (x > x_tol): only then are its largest deformation and force looked
+   !> for inside it (a pair touching at rest wiggles at the level of rounding)
+   pure logical function pressed(tracker, p0, p1)
+      type(contact_tracker), intent(in) :: tracker
+      type(probe), intent(in) :: p0, p1
+      pressed = max(p0%x, p1%x) > tracker%x_tol
+   end function pressed
+
    !> One interval [p0%t, p1%t] of slot j (module header)
    subroutine follow(tracker, block, j, p0, p1)
       type(contact_tracker), intent(inout) :: tracker
@@ -235,11 +244,13 @@ contains
          return
       end if
       associate (c => tracker%contact(j))
-         if (new_maximum(p0%x, p0%w, p1%x, p1%w, c%deformation)) then
+         if (pressed(tracker, p0, p1) .and. new_maximum(p0%x, p0%w, p1%x, p1%w, &
+            & c%deformation)) then
             call locate(tracker, block, j, of_rate, p0, p1, pc)
             c%deformation = max(c%deformation, pc%x)
          end if
-         if (new_maximum(p0%f, p0%df, p1%f, p1%df, c%peak)) then
+         if (pressed(tracker, p0, p1) .and. new_maximum(p0%f, p0%df, p1%f, p1%df, &
+            & c%peak)) then
             call locate(tracker, block, j, of_force_rate, p0, p1, pc)
             c%peak = max(c%peak, pc%f)
          end if
@@ -368,13 +379,16 @@ contains
    pure subroutine taylor_value(d, dt, value, derivative)
       real(wp), intent(in) :: d(0:max_order), dt
       real(wp), intent(out) :: value, derivative
+      ! 1 / k! for k = 0 .. max_order
+      real(wp), parameter :: inverse_factorial(0:max_order) = [1.0_wp, 1.0_wp, 0.5_wp, &
+         & 1.0_wp / 6.0_wp, 1.0_wp / 24.0_wp, 1.0_wp / 120.0_wp]
       integer :: k
       value = 0.0_wp
       derivative = 0.0_wp
       ! Horner's scheme for sum (d_k / k!) dt^k and its derivative
       do k = max_order, 0, -1
          derivative = derivative * dt + value
-         value = value * dt + d(k) / gamma(real(k + 1, wp))
+         value = value * dt + d(k) * inverse_factorial(k)
       end do
    end subroutine taylor_value
 
