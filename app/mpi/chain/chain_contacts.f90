@@ -20,15 +20,19 @@
 !> the accelerations, the polynomial's derivative) at any time of the step then cost
 !> O(q), whatever the length of the chain.
 !>
-!> Per owned pair and step, the polynomial is sampled at `samples` points; between
-!> two samples (the first is the end of the last step):
-!> - a contact starts where the deformation x rises above 0 and ends where it falls
-!>   below 0 (x = 0 falling also ends it), the time located by the Illinois variant of
-!>   regula falsi on the polynomial (at most `max_iterations` evaluations), the
-!>   approach and separation speeds the rate there;
-!> - the largest deformation and force of an open contact: the value at the root of
-!>   its rate (the deformation rate, the force rate) where that falls from > 0 to
-!>   <= 0, located likewise, and the values at the samples;
+!> Per owned pair and step, one probe at the step's end says whether anything may
+!> have happened (`eventful`); only then is the polynomial sampled at `samples`
+!> points, and between two samples (the first is the end of the last step):
+!> - a contact starts where the deformation x rises above x_tol and ends where it
+!>   falls below -x_tol (x_tol = rtol x_ref, the deformation the integration resolves:
+!>   pairs touching at rest wiggle around 0 at that level), its time where the
+!>   polynomial's x crosses 0, located by the Illinois variant of regula falsi (at
+!>   most `max_iterations` evaluations), the approach and separation speeds the rate
+!>   there;
+!> - the largest deformation and force of an open contact pressed beyond x_tol: the
+!>   value at the root of its rate (the deformation rate, the force rate) where that
+!>   falls from > 0 to <= 0 (`new_maximum`), located likewise, and the values at the
+!>   samples;
 !> - the dissipated energy: the pair's value of the state (integrated with the motion)
 !>   at the end, less that at the start, both from the polynomial.
 !> The location needs no communication beyond that one exchange and does not touch
