@@ -47,6 +47,7 @@ module hcimpact_scene_reader
    use hcimpact_scene_system, only : directory_exists
    use hcimpact_scene_numbers, only : power_product, quotient_of, decimal_exponent
    use hcimpact_restitution_law, only : restitution_inverse
+   use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_lines, scene_system
    implicit none
    private
 
@@ -61,11 +62,11 @@ module hcimpact_scene_reader
 
    integer, parameter :: g_scene = 1, g_body1 = 2, g_body2 = 3, g_wall = 4, g_contact = 5, &
       & g_damping = 6, g_sampling = 7, g_bodies = 8, g_left_wall = 9, g_right_wall = 10, &
-      & g_system_sweep = 11, n_groups = 11
+      & g_system_sweep = 11, g_mpi_chain = 12, n_groups = 12
    !> The groups of a scene file
    character(len=*), parameter :: group_names(n_groups) = [character(len=12) :: "scene", &
       & "body1", "body2", "wall", "contact", "damping", "sampling", "bodies", "left_wall", &
-      & "right_wall", "system_sweep"]
+      & "right_wall", "system_sweep", "mpi_chain"]
    !> The variables each group takes
    character(len=*), parameter :: group_variables(n_groups) = [character(len=160) :: &
       & "title, speeds, outputs", &
@@ -79,7 +80,8 @@ module hcimpact_scene_reader
       & // "restitution, at_speed, gravity, t_end, rtol, method, integrator", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
-      & "striker_speed, gap, b, combine"]
+      & "striker_speed, gap, b, combine", &
+      & "those of hcimpact_mpi_chain (doc/mpi.md)"]
    !> Names that take a list of values
    character(len=*), parameter :: array_variables(3) = [character(len=10) :: "speeds", &
       & "outputs", "tolerances"]
@@ -392,6 +394,10 @@ contains
          end if
       end if
       if (present(add)) sc%wanted = sc%wanted .or. (add .and. (system_outputs .eqv. sc%is_system))
+      if (src%groups(g_mpi_chain)%present) then
+         call load_mpi_chain(src, sc, error)
+         return
+      end if
       if (sc%is_system) then
          call load_system(src, sc, error)
          return
@@ -1148,7 +1154,7 @@ contains
          end if
       end do
       ! each output belongs to one kind of scene: one impact, or a system (&bodies)
-      sc%is_system = src%groups(g_bodies)%present
+      sc%is_system = src%groups(g_bodies)%present .or. src%groups(g_mpi_chain)%present
       do i = 1, n_outputs
          if (.not. named(i) .or. (system_outputs(i) .eqv. sc%is_system)) cycle
          if (sc%is_system) then
@@ -1835,6 +1841,81 @@ contains
       end subroutine per_body
 
    end subroutine load_system
+
+   !> &mpi_chain (doc/mpi.md): the scene of the distributed chain hcimpact_mpi_chain,
+   !> read and checked by the same module (hcimpact_mpi_chain_scene, the library's
+   !> `check_chain`), here a system of bodies that `chain_simulate` computes serially
+   !> with the method 'integrated', as `hcimpact_mpi_chain --serial` does. It goes
+   !> with &scene and &sampling only; its max_steps is that program's (the runner's
+   !> runs keep the library's bound).
+   subroutine load_mpi_chain(src, sc, error)
+      type(scene_source), intent(in) :: src
+      type(scene_type), intent(inout) :: sc
+      character(len=:), allocatable, intent(out) :: error
+      type(chain_scene) :: scene
+      type(system_type) :: sys
+      type(chain_type) :: chain
+      type(chain_options) :: options
+      character(len=max_message) :: message
+      character(len=512) :: msg
+      character(len=*), parameter :: origin = "given in &mpi_chain"
+      logical :: halting(size(ieee_usual))
+      integer :: gid, ios, stat
+
+      do gid = g_body1, g_system_sweep
+         if (gid == g_sampling .or. .not. src%groups(gid)%present) cycle
+         error = at(src, gid, "") // "&" // trim(group_names(gid)) // " cannot go with" &
+            & // " &mpi_chain, which describes the whole chain (doc/mpi.md)"
+         return
+      end do
+      if (size(sc%speeds) > 0) then
+         error = at(src, g_scene, "speeds") // "speeds are the approach speeds of one impact:" &
+            & // " the beads of &mpi_chain have their own velocities"
+         return
+      end if
+      ! (the number reader's overflow exception held off, as in read_records)
+      call ieee_get_halting_mode(ieee_usual, halting)
+      call ieee_set_halting_mode(ieee_usual, .false.)
+      call read_chain_lines(src%lines(src%groups(g_mpi_chain)%first: &
+         & src%groups(g_mpi_chain)%last), scene, ios, msg)
+      call ieee_set_flag(ieee_usual, .false.)
+      call ieee_set_halting_mode(ieee_usual, halting)
+      if (ios /= 0) then
+         error = at(src, g_mpi_chain, "") // "the namelist cannot be read: " // trim(msg)
+         return
+      end if
+      call scene_system(scene, 1, chain, options, stat, message)
+      if (stat /= hcimpact_ok) then
+         error = at(src, g_mpi_chain, "") // trim(message) // " (" // status_message(stat) &
+            & // ")"
+         return
+      end if
+      sys%n = size(chain%mass)
+      sys%mass = chain%mass
+      sys%velocity = chain%velocity
+      sys%gap = chain%gap
+      sys%law = chain%law
+      allocate(sys%radius(sys%n), sys%density(sys%n), sys%young(sys%n), &
+         & sys%poisson(sys%n))
+      sys%radius = nan
+      sys%density = nan
+      sys%young = nan
+      sys%poisson = nan
+      sys%law_origin = origin
+      sys%damping_origin = origin
+      sys%left = wall_type(present=chain%left_wall, law=chain%left_law, &
+         & gap=chain%left_gap, law_origin=origin, damping_origin=origin)
+      sys%right = wall_type(present=chain%right_wall, law=chain%right_law, &
+         & gap=chain%right_gap, law_origin=origin, damping_origin=origin)
+      sys%gravity = chain%gravity
+      sys%t_end = options%t_end
+      sys%rtol = options%rtol
+      sys%method = method_integrated
+      sys%integrator = integrator_bdf
+      call system_sampling(src, sc, error)
+      if (allocated(error)) return
+      sc%system = sys
+   end subroutine load_mpi_chain
 
    !> One value per neighbouring pair (or one for all) of the list `values` of group
    !> gid: `default` for every pair when not given; every value finite and positive

@@ -4,7 +4,7 @@
 # The distributed chain (hcimpact_mpi_chain, doc/mpi.md) on a long chain with 1 and 2
 # ranks of mpirun, side by side with the serial chain integrator (--serial), in
 # interleaved rounds (every variant once per round, in a fresh random order). The
-# chain is example/mpi_chain/chain.nml with N beads (default 20000) and t_end 3e-4 s.
+# chain is example/scenes/mpi_chain.nml with N beads (default 20000) and t_end 3e-4 s.
 # Prints per variant the median of the integration time the program reports
 # ("seconds": CVODE alone, the slowest rank), the median over the rounds of the
 # ratio of the 1-rank time to the variant's, and the work and halo figures of the
@@ -35,7 +35,7 @@ mpiexec="$(command -v mpirun || command -v mpiexec)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 sed -e "s/^  n_beads = .*/  n_beads = $beads/" -e "s/^  t_end = .*/  t_end = 3.0e-4/" \
-  example/mpi_chain/chain.nml > "$work/chain.nml"
+  example/scenes/mpi_chain.nml > "$work/chain.nml"
 
 variants=(serial n1 n2)
 run() {

@@ -5,18 +5,29 @@
 # chain integrator of the CVODE component (the same program with --serial): every
 # bead's final position within POSITION_TOL metres and velocity within VELOCITY_TOL
 # m/s, the same beads in the same order; the summary names N ranks and, with more than
-# one, halo bytes sent.
+# one, halo bytes sent. With TIME_TOL, SPEED_TOL and RELATIVE_TOL, the contact lists
+# too (CONTACTS.csv of both runs, in pair order): the same pairs in the same order,
+# every start and end within TIME_TOL seconds, approach and separation speeds within
+# SPEED_TOL m/s, peak force, largest deformation and dissipated energy within
+# RELATIVE_TOL of the larger of the two; at least one contact.
 #
 # Usage: check_mpi_chain.sh MPIEXEC N PROGRAM SCENE OUTPUT_DIR POSITION_TOL VELOCITY_TOL
+#          [TIME_TOL SPEED_TOL RELATIVE_TOL]
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)"
 mpiexec="$1" ranks="$2" program="$3" scene="$4" out="$5" qtol="$6" vtol="$7"
+ttol="${8:-}" stol="${9:-}" rtol="${10:-}"
 
 rm -rf "$out"
 mkdir -p "$out"
-"$program" --serial "$scene" "$out/serial.csv" > "$out/serial.txt"
+contacts_serial=() contacts_mpi=()
+if [ -n "$ttol" ]; then
+  contacts_serial=("$out/serial_contacts.csv")
+  contacts_mpi=("$out/mpi_contacts.csv")
+fi
+"$program" --serial "$scene" "$out/serial.csv" "${contacts_serial[@]}" > "$out/serial.txt"
 bash "$here/run_mpi.sh" "$mpiexec" "$ranks" "$program" "$scene" "$out/mpi.csv" \
-  > "$out/mpi.txt"
+  "${contacts_mpi[@]}" > "$out/mpi.txt"
 
 if ! grep -Eq "^ranks +$ranks\$" "$out/mpi.txt"; then
   echo "FAIL: the summary does not say $ranks ranks" >&2
@@ -47,3 +58,26 @@ paste -d, "$out/serial.csv" "$out/mpi.csv" | awk -F, -v qtol="$qtol" -v vtol="$v
     if (bad != "") { print "FAIL: " bad > "/dev/stderr"; exit 1 }
     printf "%d beads, %s ranks: largest differences %.3g m, %.3g m/s\n", NR - 1, ranks, mq, mv
   }' ranks="$ranks"
+
+[ -n "$ttol" ] || exit 0
+serial_lines="$(wc -l < "$out/serial_contacts.csv")"
+mpi_lines="$(wc -l < "$out/mpi_contacts.csv")"
+if [ "$serial_lines" -lt 2 ] || [ "$serial_lines" != "$mpi_lines" ]; then
+  echo "FAIL: $((serial_lines - 1)) contacts serial, $((mpi_lines - 1)) with $ranks ranks" >&2
+  exit 1
+fi
+paste -d, "$out/serial_contacts.csv" "$out/mpi_contacts.csv" | awk -F, \
+  -v ttol="$ttol" -v stol="$stol" -v rtol="$rtol" -v ranks="$ranks" '
+  function abs(x) { return x < 0 ? -x : x }
+  function rel(a, b,   m) { m = abs(a) > abs(b) ? abs(a) : abs(b); return m > 0 ? abs(a - b) / m : 0 }
+  NR == 1 { if ($1 != "pair" || $9 != "pair") bad = "headers"; next }
+  {
+    if ($1 != $9) bad = "pair at line " NR " (" $1 " against " $9 ")"
+    for (k = 2; k <= 3; k++) { d = abs($k - $(k + 8)); if (!(d <= ttol)) bad = "time " k " of contact " NR - 1; if (d > mt) mt = d }
+    for (k = 4; k <= 5; k++) { d = abs($k - $(k + 8)); if (!(d <= stol)) bad = "speed " k " of contact " NR - 1; if (d > ms) ms = d }
+    for (k = 6; k <= 8; k++) { d = rel($k, $(k + 8)); if (!(d <= rtol)) bad = "value " k " of contact " NR - 1 " (" $k " against " $(k + 8) ")"; if (d > mr) mr = d }
+  }
+  END {
+    if (bad != "") { print "FAIL: contacts: " bad > "/dev/stderr"; exit 1 }
+    printf "%d contacts, %s ranks: largest differences %.3g s, %.3g m/s, %.3g relative\n", NR - 1, ranks, mt, ms, mr
+  }'

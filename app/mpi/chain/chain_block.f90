@@ -17,18 +17,25 @@
 !> serial chain (`region_rhs`) on a region made of the block and the one or two
 !> neighbouring beads (halo beads): the same contact-force element and the same
 !> arithmetic, whose rows for the halo beads are dropped.
+!>
+!> Walls: the first rank's region has the left wall in its slot 0, the last rank's the
+!> right wall in its last slot (`part_region`). The right wall's dissipated energy is
+!> the one value of the serial region's layout after the beads' (e_(m+1)): the last
+!> rank's block then holds 3 m + 1 values.
 module hcimpact_mpi_chain_block
    use, intrinsic :: iso_fortran_env, only : int64
    use mpi_f08, only : MPI_Comm, MPI_Sendrecv, MPI_DOUBLE_PRECISION, MPI_PROC_NULL, &
       & MPI_STATUS_IGNORE, MPI_Comm_rank, MPI_Comm_size
    use hcimpact_kinds, only : wp
-   use hcimpact_chain_types, only : chain_type
+   use hcimpact_chain_types, only : chain_type, kinetic_energy
+   use hcimpact_force_element, only : contact_force_type
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
-      & slot_none, slot_pair
+      & slot_state, slot_none, slot_pair, slot_left_wall, slot_right_wall
    implicit none
    private
 
    public :: chain_block, block_partition, block_setup, exchange_halo, block_rhs
+   public :: part_region, region_energy
    public :: halo_doubles
 
    !> Doubles sent to each neighbour per exchange: the displacement and velocity of one
@@ -43,8 +50,10 @@ module hcimpact_mpi_chain_block
       !> The communicator, this rank and the number of ranks
       type(MPI_Comm) :: comm
       integer :: rank = 0, n_ranks = 1
-      !> The global number of beads, the first bead of the block and its size m
-      integer :: n = 0, first = 1, m = 0
+      !> The global number of beads, the first bead of the block and its size m; the
+      !> number of values of the block's state (3 m, 3 m + 1 with the right wall) and
+      !> of the whole chain's
+      integer :: n = 0, first = 1, m = 0, n_local = 0, n_global = 0
       !> The neighbouring ranks (MPI_PROC_NULL at an end of the chain)
       integer :: left = MPI_PROC_NULL, right = MPI_PROC_NULL
       !> Halo beads in the region: 1 if there is a neighbour on that side, else 0
@@ -75,12 +84,12 @@ contains
    end subroutine block_partition
 
    !> The block of this rank of `comm` for the chain (at least as many beads as
-   !> ranks: hcimpact_mpi_chain_scene checks it; no walls, no gravity)
+   !> ranks: hcimpact_mpi_chain_scene checks it)
    subroutine block_setup(chain, comm, block)
       type(chain_type), intent(in) :: chain
       type(MPI_Comm), intent(in) :: comm
       type(chain_block), intent(out) :: block
-      integer :: mr, j, g
+      integer :: mr
 
       block%comm = comm
       call MPI_Comm_rank(comm, block%rank)
@@ -96,21 +105,17 @@ contains
          block%n_right = 1
       end if
       ! the region: beads first - n_left .. first + m - 1 + n_right, its slots j between
-      ! its beads j and j + 1 are the chain's pairs; the slots at its two ends are none
+      ! its beads j and j + 1 are the chain's pairs; the slots at its two ends are the
+      ! walls on the first and last rank, else none
       mr = block%n_left + block%m + block%n_right
-      block%region%m = mr
-      block%region%gravity = chain%gravity
-      allocate(block%region%mass(mr), block%region%kind(0:mr), block%region%law(0:mr), &
-         & block%region%gap0(0:mr))
-      g = block%first - block%n_left
-      block%region%mass = chain%mass(g:g + mr - 1)
-      block%region%kind = slot_none
-      block%region%gap0 = 0.0_wp
-      do j = 1, mr - 1
-         block%region%kind(j) = slot_pair
-         block%region%law(j) = chain%law(g + j - 1)
-         block%region%gap0(j) = chain%gap(g + j - 1)
-      end do
+      block%region = part_region(chain, block%first - block%n_left, &
+         & block%first + block%m - 1 + block%n_right)
+      block%n_local = 3 * block%m
+      block%n_global = 3 * block%n
+      if (chain%right_wall) then
+         block%n_global = block%n_global + 1
+         if (block%rank == block%n_ranks - 1) block%n_local = block%n_local + 1
+      end if
       allocate(block%y_region(region_size(mr)), block%dy_region(region_size(mr)))
       block%y_region = 0.0_wp
       block%dy_region = 0.0_wp
@@ -144,15 +149,69 @@ contains
       real(wp), intent(in) :: t, y(:)
       real(wp), intent(out) :: dy(:)
       logical, intent(out) :: ok
-      integer :: m, lo, mr
-      m = block%m
+      integer :: nl, lo, mr
+      nl = block%n_local
       mr = block%region%m
       lo = 3 * block%n_left
       if (block%n_left == 1) block%y_region(1:2) = block%halo_left
-      block%y_region(lo + 1:lo + 3 * m) = y(1:3 * m)
+      block%y_region(lo + 1:lo + nl) = y(1:nl)
       if (block%n_right == 1) block%y_region(3 * mr - 2:3 * mr - 1) = block%halo_right
       call region_rhs(block%region, t, block%y_region, block%dy_region, ok)
-      dy(1:3 * m) = block%dy_region(lo + 1:lo + 3 * m)
+      dy(1:nl) = block%dy_region(lo + 1:lo + nl)
    end subroutine block_rhs
+
+   !> The region (hcimpact_cvode_chain_system) of the beads g_first .. g_last of the
+   !> chain: their masses, the pairs between them, and in its end slots the left wall
+   !> when g_first is bead 1, the right wall when g_last is bead n (else nothing).
+   !> part_region(chain, 1, n) is the whole chain, the serial chain's one region.
+   pure function part_region(chain, g_first, g_last) result(region)
+      type(chain_type), intent(in) :: chain
+      integer, intent(in) :: g_first, g_last
+      type(chain_region) :: region
+      integer :: mr, j
+      mr = g_last - g_first + 1
+      region%m = mr
+      region%gravity = chain%gravity
+      allocate(region%mass(mr), region%kind(0:mr), region%law(0:mr), region%gap0(0:mr))
+      region%mass = chain%mass(g_first:g_last)
+      region%kind = slot_none
+      region%gap0 = 0.0_wp
+      do j = 1, mr - 1
+         region%kind(j) = slot_pair
+         region%law(j) = chain%law(g_first + j - 1)
+         region%gap0(j) = chain%gap(g_first + j - 1)
+      end do
+      if (g_first == 1 .and. chain%left_wall) then
+         region%kind(0) = slot_left_wall
+         region%law(0) = chain%left_law
+         region%gap0(0) = chain%left_gap
+      end if
+      if (g_last == size(chain%mass) .and. chain%right_wall) then
+         region%kind(mr) = slot_right_wall
+         region%law(mr) = chain%right_law
+         region%gap0(mr) = chain%right_gap
+      end if
+   end function part_region
+
+   !> Kinetic + elastic + gravitational energy (J) of a region in the state y (region
+   !> layout; the gravitational energy from the initial positions, -m g u)
+   pure function region_energy(region, y) result(energy)
+      type(chain_region), intent(in) :: region
+      real(wp), intent(in) :: y(:)
+      real(wp) :: energy
+      type(contact_force_type) :: element
+      real(wp) :: x, w
+      integer :: k, j
+      energy = 0.0_wp
+      do k = 1, region%m
+         energy = energy + kinetic_energy(region%mass(k), y(3 * k - 1)) &
+            & - region%mass(k) * region%gravity * y(3 * k - 2)
+      end do
+      do j = 0, region%m
+         if (region%kind(j) == slot_none) cycle
+         call slot_state(region, j, 0.0_wp, y, x, w, element)
+         energy = energy + element%potential
+      end do
+   end function region_energy
 
 end module hcimpact_mpi_chain_block

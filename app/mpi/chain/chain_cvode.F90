@@ -16,6 +16,12 @@
 !> rtol e_ref, every weight times the square root of the global number of values, so
 !> that CVODE's root mean square is the 2-norm over the whole chain.
 !>
+!> CVODE runs in its one-step mode up to the stop time t_end, with this program's own
+!> bound of steps (max_steps: CV_TOO_MUCH_WORK, as CVODE's would say in its normal
+!> mode) and of steps that leave the time where it is; after each step the step's
+!> interpolating polynomial goes to the contacts (hcimpact_mpi_chain_contacts), which
+!> do not act on the integration.
+!>
 !> Every decision CVODE takes goes through a reduction over all ranks, so the ranks
 !> take the same steps and call the right-hand side together (its halo exchange is
 !> a collective step of the neighbours). The right-hand side therefore never reports
@@ -45,11 +51,14 @@ module hcimpact_mpi_chain_cvode
    use hcimpact_cvode_solver, only : cvode_flag_name
    use hcimpact_cvode_chain_system, only : upper_band, lower_band, error_weights
    use hcimpact_mpi_chain_block, only : chain_block, exchange_halo, block_rhs
+   use hcimpact_mpi_chain_contacts, only : contact_tracker, tracker_start, tracker_step, &
+      & max_order
    use fcvode_mod, only : FCVodeCreate, FCVodeInit, FCVodeSetUserData, &
-      & FCVodeWFtolerances, FCVodeSetMaxNumSteps, FCVodeSetStopTime, FCVode, FCVodeFree, &
+      & FCVodeWFtolerances, FCVodeSetStopTime, FCVode, FCVodeFree, &
       & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumLinIters, &
       & FCVodeGetNumNonlinSolvIters, FCVodeGetNumPrecEvals, FCVBBDPrecInit, &
-      & FCVBBDPrecGetNumGfnEvals, CV_BDF, CV_NORMAL, CV_SUCCESS, CV_TSTOP_RETURN
+      & FCVBBDPrecGetNumGfnEvals, FCVodeGetDky, FCVodeGetLastOrder, CV_BDF, CV_ONE_STEP, &
+      & CV_SUCCESS, CV_TSTOP_RETURN, CV_TOO_MUCH_WORK
    use fnvector_parallel_mod, only : FN_VNew_Parallel
    use mpi_f08, only : MPI_Allreduce, MPI_LOGICAL, MPI_LAND
    use fsunlinsol_spgmr_mod, only : FSUNLinSol_SPGMR
@@ -73,6 +82,8 @@ module hcimpact_mpi_chain_cvode
    !> What the callbacks reach through CVODE's user data
    type :: chain_integration
       type(chain_block) :: block
+      !> The contacts of the rank's pairs (hcimpact_mpi_chain_contacts)
+      type(contact_tracker) :: contacts
       !> Relative tolerance, scales of deformation (m), speed (m/s), energy (J), and
       !> the square root of the global number of values
       real(wp) :: rtol = 1.0e-8_wp, scale(3) = 1.0_wp, root_n = 1.0_wp
@@ -94,7 +105,8 @@ module hcimpact_mpi_chain_cvode
 
 contains
 
-   !> Integrate the block's state y (3 m values: u, v, e per bead) from 0 to t_end
+   !> Integrate the block's state y (block%n_local values: u, v, e per bead, and the
+   !> right wall's e on the last rank) from 0 to t_end
    !> together with the other ranks. ok false with a message (the same on every rank:
    !> CVODE's failures are collective) if CVODE fails.
    subroutine integrate_chain(run, t_end, max_steps, y, counters, ok, message)
@@ -106,14 +118,18 @@ contains
       logical, intent(out) :: ok
       character(len=max_message), intent(out) :: message
       type(c_ptr) :: ctx, mem
-      type(N_Vector), pointer :: y_vec
+      type(N_Vector), pointer :: y_vec, dky_vec
       type(SUNLinearSolver), pointer :: lin_sol
-      real(c_double), pointer :: yv(:)
+      real(c_double), pointer :: yv(:), dkyv(:)
       real(c_double) :: t_reached(1)
-      integer(c_int) :: ierr
+      real(wp) :: t_previous
+      integer(c_int) :: ierr, dky_flag, order(1)
+      ! steps in a row that left the time where it was, and how many are tolerated
+      integer :: stalled, k
+      integer, parameter :: max_stalled = 100
       integer(c_int64_t) :: n_local, n_global, mu, ml
       integer(c_long) :: count(1)
-      character(len=40) :: where
+      character(len=80) :: where
       logical :: ready, ready_checked
       integer :: m
 
@@ -123,13 +139,14 @@ contains
       ctx = c_null_ptr
       mem = c_null_ptr
       y_vec => null()
+      dky_vec => null()
       lin_sol => null()
-      m = run%block%m
-      n_local = int(3 * m, c_int64_t)
-      n_global = int(3, c_int64_t) * int(run%block%n, c_int64_t)
+      m = run%block%n_local
+      n_local = int(m, c_int64_t)
+      n_global = int(run%block%n_global, c_int64_t)
       run%root_n = sqrt(real(n_global, wp))
-      mu = int(min(upper_band, 3 * m - 1), c_int64_t)
-      ml = int(min(lower_band, 3 * m - 1), c_int64_t)
+      mu = int(min(upper_band, m - 1), c_int64_t)
+      ml = int(min(lower_band, m - 1), c_int64_t)
 
       call halting_suspend(run%halting)
       setup: block
@@ -141,7 +158,7 @@ contains
          y_vec => FN_VNew_Parallel(run%block%comm%MPI_VAL, n_local, n_global, ctx)
          if (.not. associated(y_vec)) exit setup
          yv => FN_VGetArrayPointer(y_vec)
-         yv(1:3 * m) = y(1:3 * m)
+         yv(1:m) = y(1:m)
          where = "CVodeCreate"
          mem = FCVodeCreate(CV_BDF, ctx)
          if (.not. c_associated(mem)) exit setup
@@ -168,10 +185,11 @@ contains
          ierr = FCVBBDPrecInit(mem, n_local, mu, ml, mu, ml, 0.0_c_double, &
             & c_funloc(block_local_rhs), c_funloc(block_communicate))
          if (ierr /= CV_SUCCESS) exit setup
-         where = "CVodeSetMaxNumSteps"
-         ierr = FCVodeSetMaxNumSteps(mem, int(min(max_steps, int(huge(1_c_long), int64)), &
-            & c_long))
-         if (ierr /= CV_SUCCESS) exit setup
+         where = "N_VNew_Parallel"
+         ierr = -1
+         dky_vec => FN_VNew_Parallel(run%block%comm%MPI_VAL, n_local, n_global, ctx)
+         if (.not. associated(dky_vec)) exit setup
+         dkyv => FN_VGetArrayPointer(dky_vec)
          where = "CVodeSetStopTime"
          ierr = FCVodeSetStopTime(mem, real(t_end, c_double))
          if (ierr /= CV_SUCCESS) exit setup
@@ -182,10 +200,47 @@ contains
          call MPI_Allreduce(.true., ready, 1, MPI_LOGICAL, MPI_LAND, run%block%comm)
          if (.not. ready) exit setup
          ready_checked = .true.
+         call tracker_start(run%contacts, run%block, y, run%rtol * run%scale(1))
+         ! step by step (CVODE's one-step mode up to the stop time t_end), the contacts
+         ! followed on each step's interpolant (hcimpact_mpi_chain_contacts); every
+         ! rank takes the same steps, so the loop's decisions are the same on all
          where = "CVode"
-         ierr = FCVode(mem, real(t_end, c_double), y_vec, t_reached, CV_NORMAL)
-         if (ierr /= CV_SUCCESS .and. ierr /= CV_TSTOP_RETURN) exit setup
-         y(1:3 * m) = yv(1:3 * m)
+         t_previous = 0.0_wp
+         stalled = 0
+         do
+            ierr = FCVodeGetNumSteps(mem, count)
+            if (int(count(1), int64) >= max_steps) then
+               ierr = CV_TOO_MUCH_WORK
+               exit setup
+            end if
+            ierr = FCVode(mem, real(t_end, c_double), y_vec, t_reached, CV_ONE_STEP)
+            if (ierr /= CV_SUCCESS .and. ierr /= CV_TSTOP_RETURN) exit setup
+            ! steps too small to move the time (as in the serial chain)
+            if (t_reached(1) > t_previous) then
+               stalled = 0
+            else
+               stalled = stalled + 1
+               if (stalled > max_stalled) then
+                  where = "CVode (100 steps in a row left the time where it was)"
+                  ierr = CV_TOO_MUCH_WORK
+                  exit setup
+               end if
+            end if
+            ! the Taylor coefficients of the step's polynomial at its end (derivatives
+            ! of orders above the step's are 0)
+            dky_flag = FCVodeGetLastOrder(mem, order)
+            if (dky_flag /= CV_SUCCESS) order(1) = 0
+            do k = 0, max_order
+               run%contacts%taylor(k, :) = 0.0_wp
+               if (k > order(1)) cycle
+               dky_flag = FCVodeGetDky(mem, t_reached(1), int(k, c_int), dky_vec)
+               if (dky_flag == CV_SUCCESS) run%contacts%taylor(k, :) = dkyv(1:m)
+            end do
+            call tracker_step(run%contacts, run%block, t_previous, real(t_reached(1), wp))
+            t_previous = t_reached(1)
+            if (ierr == CV_TSTOP_RETURN .or. t_reached(1) >= t_end) exit
+         end do
+         y(1:m) = yv(1:m)
          ok = .true.
       end block setup
       ! this rank's setup failed: tell the others before they enter CVode
@@ -213,6 +268,7 @@ contains
       end if
       if (associated(lin_sol)) ierr = FSUNLinSolFree(lin_sol)
       if (associated(y_vec)) call FN_VDestroy(y_vec)
+      if (associated(dky_vec)) call FN_VDestroy(dky_vec)
       call context_free(ctx)
       call halting_resume(run%halting)
    end subroutine integrate_chain
@@ -290,8 +346,8 @@ contains
       call c_f_pointer(user_data, run)
       yv => FN_VGetArrayPointer(y)
       wv => FN_VGetArrayPointer(ewt)
-      call error_weights(yv(1:3 * run%block%m), run%rtol, run%scale, run%root_n, &
-         & wv(1:3 * run%block%m))
+      call error_weights(yv(1:run%block%n_local), run%rtol, run%scale, run%root_n, &
+         & wv(1:run%block%n_local))
       ierr = 0
    end function chain_error_weights
 

@@ -2,11 +2,13 @@
 !> hcimpact_mpi_chain: a long chain of beads integrated by CVODE over the ranks of MPI
 !> (doc/mpi.md), one contiguous block of beads per rank.
 !>
-!>     mpirun -n N hcimpact_mpi_chain SCENE STATE.csv
-!>     hcimpact_mpi_chain --serial SCENE STATE.csv
+!>     mpirun -n N hcimpact_mpi_chain SCENE STATE.csv [CONTACTS.csv]
+!>     hcimpact_mpi_chain --serial SCENE STATE.csv [CONTACTS.csv]
 !>
 !> SCENE holds the namelist &mpi_chain (hcimpact_mpi_chain_scene); STATE.csv receives
-!> the final position and velocity of every bead in bead order; the summary (work
+!> the final position and velocity of every bead in bead order, CONTACTS.csv (when
+!> named) every contact that ended, in pair order (hcimpact_mpi_chain_contacts); the
+!> summary (work
 !> done, the halo exchanges and their bytes, the energy balance) goes to the standard
 !> output. --serial computes the same chain with the CVODE component's serial
 !> integrator (`chain_simulate`, method_integrated) in one process without MPI: the
@@ -21,21 +23,23 @@ program hcimpact_mpi_chain
       & MPI_DOUBLE_PRECISION, MPI_INTEGER8, MPI_LOGICAL, MPI_SUM, MPI_MAX, MPI_LAND
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok
-   use hcimpact_chain_types, only : chain_type, chain_options, chain_result, max_message
+   use hcimpact_chain_types, only : chain_type, chain_options, chain_result, max_message, &
+      & contact_record
    use hcimpact_cvode, only : chain_simulate
-   use hcimpact_cvode_chain_system, only : chain_region, region_scales, slot_none, slot_pair
-   use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_scene, scene_system, &
-      & chain_energy
-   use hcimpact_mpi_chain_block, only : block_setup, block_partition, halo_doubles
+   use hcimpact_cvode_chain_system, only : chain_region, region_scales, region_size
+   use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_scene, scene_system
+   use hcimpact_mpi_chain_block, only : block_setup, block_partition, halo_doubles, &
+      & part_region, region_energy
    use hcimpact_mpi_chain_cvode, only : chain_integration, integrate_chain, &
       & chain_counters_mpi
-   use hcimpact_mpi_chain_output, only : write_state, summary_line
+   use hcimpact_mpi_chain_contacts, only : sort_by_pair, gather_contacts
+   use hcimpact_mpi_chain_output, only : write_state, write_contacts, remove_file, summary_line
    implicit none
 
    integer, parameter :: exit_ok = 0, exit_failure = 1, exit_usage = 2
-   character(len=4096) :: scene_path, state_path, arg
+   character(len=4096) :: scene_path, state_path, contacts_path, arg
    logical :: serial
-   integer :: n_args
+   integer :: n_args, first_arg
 
    n_args = command_argument_count()
    serial = .false.
@@ -47,13 +51,17 @@ program hcimpact_mpi_chain
       end if
       serial = arg == "--serial"
    end if
-   if (n_args /= merge(3, 2, serial)) then
-      write(error_unit, '(a)') "error: expected a scene and an output file"
+   first_arg = merge(2, 1, serial)
+   if (n_args /= first_arg + 1 .and. n_args /= first_arg + 2) then
+      write(error_unit, '(a)') "error: expected a scene, a state file and optionally " &
+         & // "a contacts file"
       call print_usage(error_unit)
       stop exit_usage, quiet=.true.
    end if
-   call get_command_argument(merge(2, 1, serial), scene_path)
-   call get_command_argument(merge(3, 2, serial), state_path)
+   call get_command_argument(first_arg, scene_path)
+   call get_command_argument(first_arg + 1, state_path)
+   contacts_path = ""
+   if (n_args == first_arg + 2) call get_command_argument(first_arg + 2, contacts_path)
    if (serial) then
       call run_serial()
    else
@@ -64,8 +72,9 @@ contains
 
    subroutine print_usage(unit)
       integer, intent(in) :: unit
-      write(unit, '(a)') "usage: mpirun -n N hcimpact_mpi_chain SCENE STATE.csv", &
-         & "       hcimpact_mpi_chain --serial SCENE STATE.csv", &
+      write(unit, '(a)') "usage: mpirun -n N hcimpact_mpi_chain SCENE STATE.csv " &
+         & // "[CONTACTS.csv]", &
+         & "       hcimpact_mpi_chain --serial SCENE STATE.csv [CONTACTS.csv]", &
          & "SCENE: a file with the namelist &mpi_chain (doc/mpi.md)"
    end subroutine print_usage
 
@@ -75,6 +84,7 @@ contains
       type(chain_type) :: chain
       type(chain_options) :: options
       type(chain_result) :: result
+      type(contact_record), allocatable :: sorted(:)
       character(len=max_message) :: message
       logical :: ok
       integer :: stat
@@ -89,8 +99,18 @@ contains
       call chain_simulate(chain, result, stat, options)
       call system_clock(c1)
       if (stat /= hcimpact_ok) call fail_alone(exit_failure, result%message)
+      if (len_trim(contacts_path) > 0) then
+         ! the order of the distributed program's list: by pair
+         allocate(sorted(size(result%contacts)))
+         call sort_by_pair(result%contacts, 0, size(chain%mass), sorted)
+         call write_contacts(trim(contacts_path), sorted, ok, message)
+         if (.not. ok) call fail_alone(exit_failure, message)
+      end if
       call write_state(state_path, result%positions, result%velocities, ok, message)
-      if (.not. ok) call fail_alone(exit_failure, message)
+      if (.not. ok) then
+         if (len_trim(contacts_path) > 0) call remove_file(trim(contacts_path))
+         call fail_alone(exit_failure, message)
+      end if
       seconds = real(c1 - c0, wp) / real(rate, wp)
       ok = .true.
       call summary_line(output_unit, "mode", "serial (chain_simulate, method_integrated)", ok)
@@ -100,6 +120,7 @@ contains
       call summary_line(output_unit, "rhs_evaluations", str_i(result%counters%rhs_evals), ok)
       call summary_line(output_unit, "jacobian_evaluations", &
          & str_i(result%counters%jacobian_evals), ok)
+      call summary_line(output_unit, "contacts", str_i(result%n_contacts), ok)
       call summary_line(output_unit, "energy_error", str_r(result%energy_error), ok)
       call summary_line(output_unit, "seconds", str_r(seconds), ok)
       if (.not. ok) call fail_alone(exit_failure, "the standard output: writing failed")
@@ -115,11 +136,13 @@ contains
       type(chain_counters_mpi) :: counters
       type(chain_region) :: whole
       character(len=max_message) :: message
-      real(wp), allocatable :: y(:), local(:), u(:), v(:), positions(:), gathered(:)
+      real(wp), allocatable :: y(:), local(:), u(:), v(:), positions(:), gathered(:), &
+         & y_whole(:)
       integer, allocatable :: counts(:), displs(:)
       real(wp) :: dissipated_local, dissipated, energy0, energy_error, t0, t1, seconds, q0, &
          & energy_end
-      integer(int64) :: exchanges, halo_bytes
+      integer(int64) :: exchanges, halo_bytes, unconverged
+      type(contact_record), allocatable :: contacts(:)
       integer :: rank, n_ranks, stat, k, m, n, r, first, size_r, i
       logical :: ok, all_ok
 
@@ -139,20 +162,15 @@ contains
       first = run%block%first
       run%rtol = options%rtol
       ! the scales of the whole chain (those of the serial chain's one region)
-      whole%m = n
-      allocate(whole%mass(n), whole%kind(0:n), whole%law(0:n), whole%gap0(0:n))
-      whole%mass = chain%mass
-      whole%kind = slot_none
-      whole%kind(1:n - 1) = slot_pair
-      whole%law(1:n - 1) = chain%law
-      whole%gap0 = 0.0_wp
-      allocate(y(3 * n + 1))
+      whole = part_region(chain, 1, n)
+      allocate(y(region_size(n)))
       y = 0.0_wp
       y(2:3 * n - 1:3) = chain%velocity
       run%scale = region_scales(whole, y)
+      energy0 = region_energy(whole, y)
       deallocate(y)
 
-      allocate(y(3 * m))
+      allocate(y(run%block%n_local))
       y = 0.0_wp
       do k = 1, m
          y(3 * k - 1) = chain%velocity(first + k - 1)
@@ -172,7 +190,9 @@ contains
       allocate(local(2 * m))
       local(1:m) = y(1:3 * m:3)
       local(m + 1:2 * m) = y(2:3 * m:3)
-      dissipated_local = sum(y(3:3 * m:3))
+      ! (the last rank's block ends with the right wall's dissipated energy)
+      dissipated_local = sum(y(3:run%block%n_local:3))
+      if (run%block%n_local > 3 * m) dissipated_local = dissipated_local + y(3 * m + 1)
       allocate(counts(n_ranks), displs(n_ranks), gathered(2 * n))
       do r = 0, n_ranks - 1
          call block_partition(n, n_ranks, r, i, size_r)
@@ -185,6 +205,10 @@ contains
          & MPI_COMM_WORLD)
       call MPI_Reduce(run%block%exchanges, exchanges, 1, MPI_INTEGER8, MPI_SUM, 0, &
          & MPI_COMM_WORLD)
+      call MPI_Reduce(run%contacts%unconverged, unconverged, 1, MPI_INTEGER8, MPI_SUM, 0, &
+         & MPI_COMM_WORLD)
+      call gather_contacts(run%contacts, run%block, contacts, ok, message)
+      if (.not. ok) call fail_all(rank, exit_failure, message)
 
       ok = .true.
       if (rank == 0) then
@@ -201,13 +225,23 @@ contains
             q0 = q0 + chain%gap(i - 1)
             positions(i) = q0 + u(i)
          end do
-         energy_end = chain_energy(chain, u, v)
-         call write_state(state_path, positions, v, ok, message)
+         allocate(y_whole(region_size(n)))
+         y_whole = 0.0_wp
+         y_whole(1:3 * n - 2:3) = u
+         y_whole(2:3 * n - 1:3) = v
+         energy_end = region_energy(whole, y_whole)
+         if (len_trim(contacts_path) > 0) &
+            & call write_contacts(trim(contacts_path), contacts, ok, message)
          if (ok) then
-            ! the initial state: no displacement
-            u = 0.0_wp
-            energy0 = chain_energy(chain, u, chain%velocity)
-            energy_error = (energy_end + dissipated - energy0) / energy0
+            call write_state(state_path, positions, v, ok, message)
+            if (.not. ok .and. len_trim(contacts_path) > 0) &
+               & call remove_file(trim(contacts_path))
+         end if
+         if (ok) then
+            ! relative to the initial energy, or to the energy scale when that is 0 (beads
+            ! at rest released under gravity)
+            energy_error = (energy_end + dissipated - energy0) &
+               & / merge(abs(energy0), run%scale(3), energy0 /= 0.0_wp)
             ! bytes of the halo exchanges: every rank sends halo_doubles doubles to each
             ! neighbour per exchange (exchanges is their sum over the ranks)
             halo_bytes = (exchanges / n_ranks) * 2_int64 * (n_ranks - 1) * halo_doubles * 8
@@ -229,6 +263,9 @@ contains
             call summary_line(output_unit, "halo_bytes", str_i(halo_bytes), ok)
             call summary_line(output_unit, "halo_bytes_per_step", &
                & str_r(real(halo_bytes, wp) / real(max(counters%steps, 1_int64), wp)), ok)
+            call summary_line(output_unit, "contacts", str_i(size(contacts, kind=int64)), ok)
+            call summary_line(output_unit, "contact_locations_unconverged", &
+               & str_i(unconverged), ok)
             call summary_line(output_unit, "energy_error", str_r(energy_error), ok)
             call summary_line(output_unit, "seconds", str_r(seconds), ok)
             if (.not. ok) message = "the standard output: writing failed"
