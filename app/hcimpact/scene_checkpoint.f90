@@ -53,16 +53,14 @@ module hcimpact_scene_checkpoint
 
 contains
 
-   !> Start the checkpoint `path` of the sweep of `contact` over `speeds` (none if
-   !> `path` is empty): the impacts a checkpoint of the same sweep holds are put into
-   !> `out` and `stats` and marked `done`; `resumed` counts them.
-   subroutine checkpoint_start(path, contact, speeds, out, stats, done, resumed, ck, error)
+   !> Start the checkpoint `path` of the sweep of the impacts `contacts` (none if `path`
+   !> is empty): the impacts a checkpoint of the same sweep holds are put into `out`
+   !> and `stats` and marked `done`; `resumed` counts them.
+   subroutine checkpoint_start(path, contacts, out, stats, done, resumed, ck, error)
       !> The checkpoint file, or "" for none
       character(len=*), intent(in) :: path
-      !> The contact (its velocity is not used)
-      type(contact_type), intent(in) :: contact
-      !> The speeds of the sweep
-      real(wp), intent(in) :: speeds(:)
+      !> The impacts of the sweep (masses, laws, damping, speeds)
+      type(contact_type), intent(in) :: contacts(:)
       !> Outcomes and statuses: those of the checkpoint filled in
       type(outcome_type), intent(inout) :: out(:)
       integer, intent(inout) :: stats(:)
@@ -78,14 +76,14 @@ contains
       done = .false.
       resumed = 0
       if (len(path) == 0) return
-      allocate(inputs(per_contact, size(speeds)), outputs(per_impact, size(speeds)))
-      do i = 1, size(speeds)
-         inputs(:, i) = [contact%mass, contact%stiffness, contact%exponent, &
-            & contact%damping, speeds(i)]
+      allocate(inputs(per_contact, size(contacts)), outputs(per_impact, size(contacts)))
+      do i = 1, size(contacts)
+         inputs(:, i) = [contacts(i)%mass, contacts(i)%stiffness, contacts(i)%exponent, &
+            & contacts(i)%damping, contacts(i)%velocity]
          outputs(:, i) = packed(out(i), stats(i))
       end do
       call checkpoint_start_columns(path, inputs, outputs, done, resumed, ck, error)
-      do i = 1, size(speeds)
+      do i = 1, size(contacts)
          if (done(i)) call unpack(outputs(:, i), out(i), stats(i))
       end do
    end subroutine checkpoint_start

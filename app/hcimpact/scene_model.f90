@@ -20,7 +20,7 @@ module hcimpact_scene_model
    public :: add_outputs, output_choices
    public :: out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
       & out_lambertw, out_legacy, out_cvode, out_contacts, out_final, out_motion, &
-      & out_system_sweep
+      & out_system_sweep, out_impact_sweep
    public :: figure_outputs, system_outputs, default_scene_lines, max_speeds
    public :: scene_line_length, max_scene_lines, max_bodies
    public :: unset_bits, is_unset
@@ -47,9 +47,9 @@ module hcimpact_scene_model
    integer, parameter :: out_summary = 1, out_sweep = 2, out_histories = 3, &
       & out_phase = 4, out_loops = 5, out_restitution = 6, out_lambertw = 7, &
       & out_legacy = 8, out_cvode = 9, out_contacts = 10, out_final = 11, out_motion = 12, &
-      & out_system_sweep = 13
+      & out_system_sweep = 13, out_impact_sweep = 14
    !> Number of outputs
-   integer, parameter :: n_outputs = 13
+   integer, parameter :: n_outputs = 14
 
    !> The built-in default scene, as the text of a scene file: the seed's steel ball
    !> (MODEL.md). example/scenes/steel_ball.nml holds the same text.
@@ -76,12 +76,13 @@ module hcimpact_scene_model
    !> Their names in scene files and on the command line
    character(len=*), parameter :: output_names(n_outputs) = [character(len=12) :: &
       & "summary", "sweep", "histories", "phase", "loops", "restitution", "lambertw", &
-      & "legacy", "cvode", "contacts", "final", "motion", "system_sweep"]
+      & "legacy", "cvode", "contacts", "final", "motion", "system_sweep", "impact_sweep"]
    !> The files each writes in the results directory
    character(len=*), parameter :: output_files(n_outputs) = [character(len=44) :: &
       & "summary.csv", "sweep.csv", "histories.csv", "phase.csv", "loops.csv", &
       & "restitution.csv", "lambertw.csv velocity_z.csv motion_z.csv", "legacy.csv", &
-      & "cvode.csv", "contacts.csv", "final.csv", "motion.csv forces.csv", "system_sweep.csv"]
+      & "cvode.csv", "contacts.csv", "final.csv", "motion.csv forces.csv", "system_sweep.csv", &
+      & "impact_sweep.csv"]
    !> What each is
    character(len=*), parameter :: output_descriptions(n_outputs) = [character(len=100) :: &
       & "per speed: k, energy lost, x_max, peak force and its time, the times", &
@@ -96,14 +97,15 @@ module hcimpact_scene_model
       & "a system: every contact (pair, times, speeds, peak force, how computed)", &
       & "a system: every body's state at the start and at the end", &
       & "a system: positions, velocities and pair forces against time", &
-      & "a system: the whole run for each variation of &system_sweep (final velocities, ...)"]
+      & "a system: the whole run for each variation of &system_sweep (final velocities, ...)", &
+      & "one impact for each parameter set of &impact_sweep (mass, c, n, b, speed): k, x_max, ..."]
    !> The outputs behind the figures (`figures`): the seed's figures 1-8 of one
    !> impact, figures 11-13 of a system of bodies
    logical, parameter :: figure_outputs(n_outputs) = [.true., .true., .true., .true., &
-      & .true., .true., .true., .false., .false., .true., .true., .true., .false.]
+      & .true., .true., .true., .false., .false., .true., .true., .true., .false., .false.]
    !> The outputs of a system of bodies (the others are those of one impact)
    logical, parameter :: system_outputs(n_outputs) = [.false., .false., .false., .false., &
-      & .false., .false., .false., .false., .false., .true., .true., .true., .true.]
+      & .false., .false., .false., .false., .false., .true., .true., .true., .true., .false.]
 
    !> One body. Unset reals are NaN.
    type :: body_type
@@ -208,6 +210,12 @@ module hcimpact_scene_model
       real(wp) :: beta_max = 10.0_wp
       !> Relative tolerances of the CVODE runs
       real(wp), allocatable :: tolerances(:)
+      !> The parameter sets of the output impact_sweep (&impact_sweep): the effective
+      !> masses (kg), stiffnesses (N/m^n), exponents, dampings (s/m) and approach speeds
+      !> (m/s) it varies (empty: the scene's own value), every combination or side by side
+      real(wp), allocatable :: vary_mass(:), vary_stiffness(:), vary_exponent(:), &
+         & vary_damping(:), vary_speed(:)
+      logical :: vary_product = .true.
       !> Whether the scene is a system of bodies (&bodies), and the system
       logical :: is_system = .false.
       type(system_type) :: system

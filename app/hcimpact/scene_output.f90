@@ -34,14 +34,16 @@ module hcimpact_scene_output
    public :: all_result_files, checkpoint_path
 
    !> The checkpoints of sweeps (hcimpact_scene_checkpoint): `<output>.checkpoint`
-   character(len=*), parameter :: checkpoint_files(3) = [character(len=23) :: &
-      & "summary.checkpoint", "sweep.checkpoint", "system_sweep.checkpoint"]
+   character(len=*), parameter :: checkpoint_files(4) = [character(len=23) :: &
+      & "summary.checkpoint", "sweep.checkpoint", "system_sweep.checkpoint", &
+      & "impact_sweep.checkpoint"]
    !> Every file name this program writes into a results directory
-   character(len=*), parameter :: all_result_files(23) = [character(len=23) :: &
+   character(len=*), parameter :: all_result_files(25) = [character(len=23) :: &
       & "summary.csv", "sweep.csv", "histories.csv", "phase.csv", "loops.csv", &
       & "restitution.csv", "lambertw.csv", "velocity_z.csv", "motion_z.csv", &
       & "legacy.csv", "cvode.csv", "contacts.csv", "final.csv", "motion.csv", &
-      & "forces.csv", "pairs.csv", "parameters.csv", "system_sweep.csv", "scene.nml", &
+      & "forces.csv", "pairs.csv", "parameters.csv", "system_sweep.csv", &
+      & "impact_sweep.csv", "scene.nml", &
       & "log.txt", checkpoint_files]
 
    !> Most files of one run

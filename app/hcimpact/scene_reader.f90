@@ -29,7 +29,7 @@ module hcimpact_scene_reader
       & add_outputs, output_choices, out_summary, out_sweep, out_histories, out_phase, &
       & out_loops, out_legacy, out_cvode, max_speeds, default_scene_lines, &
       & scene_line_length, max_scene_lines, unset_bits, is_unset, max_bodies, system_outputs, &
-      & out_contacts, out_final
+      & out_contacts, out_final, out_impact_sweep
    use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
       & body_radius => radius, body_density => density, body_young => young, &
       & body_poisson => poisson, body_velocity => velocity, body_gap => gap, &
@@ -39,7 +39,8 @@ module hcimpact_scene_reader
       & body_method => method, body_integrator => integrator
    use hcimpact_scene_variations, only : read_variations, max_variations, &
       & variations_text_length, vary_speed => striker_speed, vary_gap => gap, &
-      & vary_b => b, vary_combine => combine
+      & vary_b => b, vary_combine => combine, vary_mass => mass, &
+      & vary_stiffness => stiffness, vary_exponent => exponent, vary_impact_speed => speed
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
       & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
       & integrator_adams
@@ -62,11 +63,11 @@ module hcimpact_scene_reader
 
    integer, parameter :: g_scene = 1, g_body1 = 2, g_body2 = 3, g_wall = 4, g_contact = 5, &
       & g_damping = 6, g_sampling = 7, g_bodies = 8, g_left_wall = 9, g_right_wall = 10, &
-      & g_system_sweep = 11, g_mpi_chain = 12, n_groups = 12
+      & g_system_sweep = 11, g_mpi_chain = 12, g_impact_sweep = 13, n_groups = 13
    !> The groups of a scene file
    character(len=*), parameter :: group_names(n_groups) = [character(len=12) :: "scene", &
       & "body1", "body2", "wall", "contact", "damping", "sampling", "bodies", "left_wall", &
-      & "right_wall", "system_sweep", "mpi_chain"]
+      & "right_wall", "system_sweep", "mpi_chain", "impact_sweep"]
    !> The variables each group takes
    character(len=*), parameter :: group_variables(n_groups) = [character(len=160) :: &
       & "title, speeds, outputs", &
@@ -81,7 +82,8 @@ module hcimpact_scene_reader
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "striker_speed, gap, b, combine", &
-      & "those of hcimpact_mpi_chain (doc/mpi.md)"]
+      & "those of hcimpact_mpi_chain (doc/mpi.md)", &
+      & "mass, stiffness, exponent, b, speed, combine"]
    !> Names that take a list of values
    character(len=*), parameter :: array_variables(3) = [character(len=10) :: "speeds", &
       & "outputs", "tolerances"]
@@ -394,6 +396,11 @@ contains
          end if
       end if
       if (present(add)) sc%wanted = sc%wanted .or. (add .and. (system_outputs .eqv. sc%is_system))
+      if (sc%is_system .and. src%groups(g_impact_sweep)%present) then
+         error = at(src, g_impact_sweep, "") // "&impact_sweep is for one impact: a system of" &
+            & // " bodies is varied by &system_sweep (doc/scenes.md)"
+         return
+      end if
       if (src%groups(g_mpi_chain)%present) then
          call load_mpi_chain(src, sc, error)
          return
@@ -419,6 +426,8 @@ contains
       call load_damping(src, sc, error)
       if (allocated(error)) return
       call load_sampling(src, sc, error)
+      if (allocated(error)) return
+      call load_impact_variations(src, sc, error)
    end subroutine read_scene_lines
 
    ! ------------------------------------------------------------------------------
@@ -744,7 +753,9 @@ contains
       case (g_right_wall)
          read(rec, nml=right_wall, iostat=ios, iomsg=msg)
       case (g_system_sweep)
-         call read_variations(rec, ios, msg)
+         call read_variations(rec, .false., ios, msg)
+      case (g_impact_sweep)
+         call read_variations(rec, .true., ios, msg)
       case default
          read(rec, nml=sampling, iostat=ios, iomsg=msg)
       end select
@@ -894,7 +905,8 @@ contains
             & .and. is_number(token)) then
             text = "too many values for " // owner // " (at most " // str(max_bodies) &
                & // " bodies)"
-         else if (len(owner) > 0 .and. gid == g_system_sweep .and. is_number(token)) then
+         else if (len(owner) > 0 .and. (gid == g_system_sweep .or. gid == g_impact_sweep) &
+            & .and. is_number(token)) then
             text = "too many values for " // owner // " (at most " // str(max_variations) &
                & // ")"
          else if (len(owner) > 0 .and. any(lower(owner) == array_variables) &
@@ -2067,8 +2079,7 @@ contains
       type(scene_source), intent(in) :: src
       type(system_type), intent(inout) :: sys
       character(len=:), allocatable, intent(out) :: error
-      integer, parameter :: max_system_items = 100000
-      integer :: n_speed, n_gap, n_b, items
+      integer :: n_speed, n_gap, n_b
       allocate(sys%vary_speed(0), sys%vary_gap(0), sys%vary_damping(0))
       sys%vary_product = .true.
       call read_group(src, g_system_sweep, error)
@@ -2101,37 +2112,151 @@ contains
          error = at(src, g_system_sweep, "b") // "one body has no pair to damp"
       end if
       if (allocated(error)) return
-      select case (lower(trim(vary_combine)))
-      case ("", "product")
-         sys%vary_product = .true.
-         items = max(n_speed, 1) * max(n_gap, 1) * max(n_b, 1)
-      case ("list")
-         sys%vary_product = .false.
-         items = max(n_speed, n_gap, n_b)
-         if (any([n_speed, n_gap, n_b] /= items .and. [n_speed, n_gap, n_b] /= 0)) then
-            error = at(src, g_system_sweep, "combine") // "combine = ""list"" takes the lists" &
-               & // " side by side: give them of one length (striker_speed " // str(n_speed) &
-               & // ", gap " // str(n_gap) // ", b " // str(n_b) // " values)"
-            return
-         end if
-      case default
-         error = at(src, g_system_sweep, "combine") // "combine = '" // trim(vary_combine) &
-            & // "': give ""product"" (every combination) or ""list"" (side by side)"
-         return
-      end select
-      if (len_trim(vary_combine) >= variations_text_length) then
-         error = at(src, g_system_sweep, "combine") // "combine is too long"
-         return
-      end if
-      if (items > max_system_items) then
-         error = at(src, g_system_sweep, "") // str(items) // " variations: at most " &
-            & // str(max_system_items)
-         return
-      end if
+      call combine_lists(src, g_system_sweep, ["striker_speed", "gap          ", &
+         & "b            "], [n_speed, n_gap, n_b], sys%vary_product, error)
+      if (allocated(error)) return
       sys%vary_speed = vary_speed(1:n_speed)
       sys%vary_gap = vary_gap(1:n_gap)
       sys%vary_damping = vary_b(1:n_b)
    end subroutine load_variations
+
+   !> How the lists `names` of the sweep group `gid` (`lengths` values given; 0: not
+   !> varied) combine: `combine` "product" (default: every combination) or "list" (side
+   !> by side, the lists given of one length), at most `max_sweep_items` variations.
+   subroutine combine_lists(src, gid, names, lengths, every_combination, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: names(:)
+      integer, intent(in) :: lengths(:)
+      logical, intent(out) :: every_combination
+      character(len=:), allocatable, intent(out) :: error
+      integer, parameter :: max_sweep_items = 100000
+      character(len=:), allocatable :: given_lengths
+      integer :: k
+      every_combination = .true.
+      if (len_trim(vary_combine) >= variations_text_length) then
+         error = at(src, gid, "combine") // "combine is too long"
+         return
+      end if
+      select case (lower(trim(vary_combine)))
+      case ("", "product")
+         every_combination = .true.
+         ! counted in doubles, exact here: a product of five lists of 1000 passes the
+         ! default integer's range
+         if (product(real(max(lengths, 1), wp)) > max_sweep_items) then
+            error = at(src, gid, "") // real_str(product(real(max(lengths, 1), wp)), 15) &
+               & // " variations: at most " // str(max_sweep_items)
+            return
+         end if
+      case ("list")
+         every_combination = .false.
+         if (any(lengths /= maxval(lengths) .and. lengths /= 0)) then
+            given_lengths = ""
+            do k = 1, size(names)
+               if (k > 1) given_lengths = given_lengths // ", "
+               given_lengths = given_lengths // trim(names(k)) // " " // str(lengths(k))
+            end do
+            error = at(src, gid, "combine") // "combine = ""list"" takes the lists" &
+               & // " side by side: give them of one length (" // given_lengths // " values)"
+            return
+         end if
+      case default
+         error = at(src, gid, "combine") // "combine = '" // trim(vary_combine) &
+            & // "': give ""product"" (every combination) or ""list"" (side by side)"
+         return
+      end select
+   end subroutine combine_lists
+
+   !> &impact_sweep: the parameter sets of the output impact_sweep (one impact each):
+   !> lists of effective masses, stiffnesses, exponents, dampings b and approach speeds,
+   !> each value checked as the scene's own (finite; mass, stiffness, exponent and speed
+   !> positive, b >= 0), at least one list, combined by `combine_lists`. Without the
+   !> group the output takes the scene's own contact at each of its speeds.
+   subroutine load_impact_variations(src, sc, error)
+      type(scene_source), intent(in) :: src
+      type(scene_type), intent(inout) :: sc
+      character(len=:), allocatable, intent(out) :: error
+      character(len=*), parameter :: names(5) = [character(len=9) :: "mass", "stiffness", &
+         & "exponent", "b", "speed"]
+      character(len=*), parameter :: units(5) = [character(len=6) :: "kg", "N/m^n", "", &
+         & "s/m", "m/s"]
+      integer :: n(5), k, i
+      real(wp) :: lowest
+      allocate(sc%vary_mass(0), sc%vary_stiffness(0), sc%vary_exponent(0), &
+         & sc%vary_damping(0), sc%vary_speed(0))
+      sc%vary_product = .true.
+      call read_group(src, g_impact_sweep, error)
+      if (allocated(error)) return
+      if (.not. src%groups(g_impact_sweep)%present) then
+         ! the scene's own contact at each of its speeds (as `all` asks for any scene)
+         sc%vary_speed = sc%speeds
+         if (sc%wanted(out_impact_sweep) .and. size(sc%speeds) == 0) error = at(src, &
+            & g_scene, "speeds") // "the output 'impact_sweep' without &impact_sweep" &
+            & // " needs approach speeds: give speeds = ... (m/s) in &scene"
+         return
+      end if
+      do k = 1, size(names)
+         call count_list(src, g_impact_sweep, trim(names(k)), list_of(k), n(k), error)
+         if (allocated(error)) return
+         do i = 1, n(k)
+            associate (value => list_of(k))
+               if (.not. ieee_is_finite(value(i))) then
+                  error = at(src, g_impact_sweep, trim(names(k))) // trim(names(k)) // " " &
+                     & // str(i) // " is not a finite number" // finite_hint
+                  return
+               end if
+               ! every value positive but b, which may be 0 (no damping: Hertz)
+               lowest = 0.0_wp
+               if (names(k) == "b") lowest = -tiny(1.0_wp)
+               if (.not. value(i) > lowest) then
+                  error = at(src, g_impact_sweep, trim(names(k))) // trim(names(k)) // " " &
+                     & // str(i) // " = " // real_str(value(i), 6) // " " // trim(units(k)) &
+                     & // ": must be positive"
+                  if (names(k) == "b") error = at(src, g_impact_sweep, "b") // "b " &
+                     & // str(i) // " = " // real_str(value(i), 6) // " s/m: b >= 0"
+                  return
+               end if
+            end associate
+         end do
+      end do
+      if (sum(n) == 0) then
+         error = at(src, g_impact_sweep, "") // "&impact_sweep varies nothing: give mass," &
+            & // " stiffness, exponent, b or speed (lists of values)"
+         return
+      end if
+      if (n(5) == 0 .and. size(sc%speeds) == 0) then
+         error = at(src, g_impact_sweep, "") // "&impact_sweep varies no speed and the scene" &
+            & // " has none: give speed = ... (m/s) here or speeds = ... in &scene"
+         return
+      end if
+      call combine_lists(src, g_impact_sweep, names, n, sc%vary_product, error)
+      if (allocated(error)) return
+      sc%vary_mass = vary_mass(1:n(1))
+      sc%vary_stiffness = vary_stiffness(1:n(2))
+      sc%vary_exponent = vary_exponent(1:n(3))
+      sc%vary_damping = vary_b(1:n(4))
+      sc%vary_speed = vary_impact_speed(1:n(5))
+
+   contains
+
+      !> The namelist list of name k
+      function list_of(k) result(values)
+         integer, intent(in) :: k
+         real(wp) :: values(max_variations)
+         select case (k)
+         case (1)
+            values = vary_mass
+         case (2)
+            values = vary_stiffness
+         case (3)
+            values = vary_exponent
+         case (4)
+            values = vary_b
+         case default
+            values = vary_impact_speed
+         end select
+      end function list_of
+   end subroutine load_impact_variations
 
    !> &left_wall or &right_wall: the law with the end body `end_body` (stiffness, or
    !> Hertz's constant of the body's sphere on the flat wall from young and poisson),

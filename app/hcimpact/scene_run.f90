@@ -33,7 +33,7 @@ module hcimpact_scene_run
    use hcimpact_scene_model, only : scene_type, n_outputs, output_names, output_files, &
       & out_summary, out_sweep, out_histories, out_phase, out_loops, out_restitution, &
       & out_lambertw, out_legacy, out_cvode, out_contacts, out_final, out_motion, &
-      & out_system_sweep, system_outputs, nan
+      & out_system_sweep, out_impact_sweep, system_outputs, nan
    use hcimpact_scene_chain, only : system_method, system_needs_ode, describe_system, &
       & write_system_parameters, run_system
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
@@ -45,6 +45,7 @@ module hcimpact_scene_run
    use hcimpact_scene_system, only : wall_clock
    use hcimpact_scene_sweep, only : sweep_impacts, sweep_description
    use hcimpact_scene_systems, only : system_sweep_method, run_system_sweep
+   use hcimpact_scene_impacts, only : impact_sweep_method, run_impact_sweep
    use hcimpact_scene_console, only : console_begin, console_log, console_failed, &
       & console_reason, say, emit, say_wrapped, say_text, shout, files_note, pad, str_int64, &
       & progress_begin, progress_step, progress_clear, progress_end
@@ -94,7 +95,7 @@ contains
       logical :: uses(n_components)
       uses = .false.
       select case (k)
-      case (out_summary, out_sweep)
+      case (out_summary, out_sweep, out_impact_sweep)
          uses(c_impact) = .true.
       case (out_phase)
          uses(c_velocity) = .true.
@@ -152,6 +153,8 @@ contains
          text = system_method(sc, k)
       case (out_system_sweep)
          text = system_sweep_method(sc)
+      case (out_impact_sweep)
+         text = impact_sweep_method(sc)
       case default
          text = ""
       end select
@@ -192,7 +195,8 @@ contains
          call say_text("  " // pad(output_names(k), 12), method(sc, k))
       end do
       if (.not. all(used)) call say_wrapped("  not needed: ", pack(component_names, .not. used))
-      if (sc%wanted(out_summary) .or. sc%wanted(out_sweep)) call say_text("  impacts: ", &
+      if (sc%wanted(out_summary) .or. sc%wanted(out_sweep) .or. sc%wanted(out_impact_sweep)) &
+         & call say_text("  impacts: ", &
          & sweep_description())
       if (sc%wanted(out_system_sweep)) call say_text("  runs: ", sweep_description(.true.))
       if (sc%wanted(out_cvode)) then
@@ -266,6 +270,8 @@ contains
             system_done = .true.
          case (out_system_sweep)
             call run_system_sweep(sc, res, error)
+         case (out_impact_sweep)
+            call run_impact_sweep(sc, res, error)
          end select
          if (allocated(error)) then
             call shout("error: " // trim(output_names(k)) // ": " // error)
@@ -428,8 +434,8 @@ contains
       after = nan
       evaluations = 0
       t0 = wall_clock()
-      call sweep_impacts(contact_at(sc, 0.0_wp), speeds, name, checkpoint_path(res, name), &
-         & out, stats, resumed, error)
+      call sweep_impacts([(contact_at(sc, speeds(i)), i = 1, size(speeds))], name, &
+         & checkpoint_path(res, name), out, stats, resumed, error)
       if (allocated(error)) return
       do i = 1, size(speeds)
          if (stats(i) /= hcimpact_ok) then

@@ -57,13 +57,11 @@ contains
       end if
    end function sweep_description
 
-   !> The impacts of `contact` at each of `speeds` (its velocity replaced), with the
+   !> The impacts `contacts` (each its own mass, law, damping and speed), with the
    !> progress shown under `label`; those the checkpoint holds are taken from it.
-   subroutine sweep_impacts(contact, speeds, label, checkpoint, out, stats, resumed, error)
-      !> The contact (masses, law, damping); its velocity is not used
-      type(contact_type), intent(in) :: contact
-      !> The approach speeds in m/s
-      real(wp), intent(in) :: speeds(:)
+   subroutine sweep_impacts(contacts, label, checkpoint, out, stats, resumed, error)
+      !> The impacts
+      type(contact_type), intent(in) :: contacts(:)
       !> The progress line's label
       character(len=*), intent(in) :: label
       !> The checkpoint file, or "" for none
@@ -77,33 +75,30 @@ contains
       !> Why the checkpoint could not be written (the impacts are all computed)
       character(len=:), allocatable, intent(out) :: error
       type(checkpoint_type) :: ck
-      type(contact_type) :: at_speed
       logical, allocatable :: done(:)
       integer :: i, first, last, finished, mine
 
-      allocate(done(size(speeds)))
-      call checkpoint_start(checkpoint, contact, speeds, out, stats, done, resumed, ck, error)
+      allocate(done(size(contacts)))
+      call checkpoint_start(checkpoint, contacts, out, stats, done, resumed, ck, error)
       if (allocated(error)) return
       ! a block the checkpoint holds whole is skipped, one it holds in part computed
       ! again (the same doubles): the progress starts from the whole ones
       finished = 0
-      do first = 1, size(speeds), block
-         last = min(first + block - 1, size(speeds))
+      do first = 1, size(contacts), block
+         last = min(first + block - 1, size(contacts))
          if (all(done(first:last))) finished = finished + last - first + 1
       end do
-      call progress_begin(label, size(speeds), finished)
-      do first = 1, size(speeds), block
-         last = min(first + block - 1, size(speeds))
+      call progress_begin(label, size(contacts), finished)
+      do first = 1, size(contacts), block
+         last = min(first + block - 1, size(contacts))
          if (all(done(first:last))) cycle
          ! The impacts are independent: in parallel when the program is built with
          ! OpenMP (the library's array threshold and schedule); the progress line is
          ! drawn by the first thread alone.
          !$omp parallel do if (last - first + 1 >= min_parallel_impact) &
-         !$omp & private(mine, at_speed) schedule(dynamic, 4)
+         !$omp & private(mine) schedule(dynamic, 4)
          do i = first, last
-            at_speed = contact
-            at_speed%velocity = speeds(i)
-            call impact(at_speed, out(i), stats(i))
+            call impact(contacts(i), out(i), stats(i))
             !$omp atomic capture
             finished = finished + 1
             mine = finished

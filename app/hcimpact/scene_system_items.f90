@@ -11,6 +11,7 @@ module hcimpact_scene_system_items
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result
    use hcimpact_scene_model, only : system_type, nan
    use hcimpact_scene_ode, only : ode_chain
+   use hcimpact_scene_variations, only : variation_index, variation_count
    implicit none
    private
 
@@ -30,13 +31,8 @@ contains
    !> How many variations the system's sweep has (1: the system alone).
    pure integer function system_item_count(sys) result(items)
       type(system_type), intent(in) :: sys
-      integer :: lengths(3)
-      lengths = [size(sys%vary_speed), size(sys%vary_gap), size(sys%vary_damping)]
-      if (sys%vary_product) then
-         items = product(max(lengths, 1))
-      else
-         items = max(maxval(lengths), 1)
-      end if
+      items = variation_count([size(sys%vary_speed), size(sys%vary_gap), &
+         & size(sys%vary_damping)], sys%vary_product)
    end function system_item_count
 
    !> The speed of body 1, the gap and the damping of variation k (NaN where the sweep
@@ -45,26 +41,15 @@ contains
       type(system_type), intent(in) :: sys
       integer, intent(in) :: k
       real(wp), intent(out) :: speed, gap, damping
-      integer :: i_speed, i_gap, i_b, rest, n_gap, n_b
-      n_gap = max(size(sys%vary_gap), 1)
-      n_b = max(size(sys%vary_damping), 1)
-      if (sys%vary_product) then
-         rest = k - 1
-         i_b = modulo(rest, n_b) + 1
-         rest = rest / n_b
-         i_gap = modulo(rest, n_gap) + 1
-         i_speed = rest / n_gap + 1
-      else
-         i_speed = k
-         i_gap = k
-         i_b = k
-      end if
+      integer :: which(3)
+      which = variation_index([size(sys%vary_speed), size(sys%vary_gap), &
+         & size(sys%vary_damping)], sys%vary_product, k)
       speed = nan
       gap = nan
       damping = nan
-      if (size(sys%vary_speed) > 0) speed = sys%vary_speed(i_speed)
-      if (size(sys%vary_gap) > 0) gap = sys%vary_gap(i_gap)
-      if (size(sys%vary_damping) > 0) damping = sys%vary_damping(i_b)
+      if (size(sys%vary_speed) > 0) speed = sys%vary_speed(which(1))
+      if (size(sys%vary_gap) > 0) gap = sys%vary_gap(which(2))
+      if (size(sys%vary_damping) > 0) damping = sys%vary_damping(which(3))
    end subroutine item_variation
 
    !> The columns of every variation: the system with body 1's speed, every pair's gap

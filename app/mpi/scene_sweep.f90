@@ -179,19 +179,17 @@ contains
       else
          text = "over " // str(n_ranks) // " MPI ranks: chunks of up to " &
             & // str(mpi_sweep_max_chunk) &
-            & // " speeds handed out by rank 0 on request (rank 0 computes too), the" &
+            & // " impacts handed out by rank 0 on request (rank 0 computes too), the" &
             & // " results put back in order"
       end if
    end function sweep_description
 
-   !> The impacts of `contact` at each of `speeds` (its velocity replaced), with the
+   !> The impacts `contacts` (each its own mass, law, damping and speed), with the
    !> progress shown under `label`: on rank 0, handed out to every rank; those the
    !> checkpoint holds are taken from it.
-   subroutine sweep_impacts(contact, speeds, label, checkpoint, out, stats, resumed, error)
-      !> The contact (masses, law, damping); its velocity is not used
-      type(contact_type), intent(in) :: contact
-      !> The approach speeds in m/s
-      real(wp), intent(in) :: speeds(:)
+   subroutine sweep_impacts(contacts, label, checkpoint, out, stats, resumed, error)
+      !> The impacts
+      type(contact_type), intent(in) :: contacts(:)
       !> The progress line's label
       character(len=*), intent(in) :: label
       !> The checkpoint file, or "" for none
@@ -206,18 +204,15 @@ contains
       !> other ranks must not be left with chunks nobody takes)
       character(len=:), allocatable, intent(out) :: error
       type(sweep_recorder) :: recorder
-      type(contact_type), allocatable :: contacts(:)
       logical, allocatable :: held(:)
-      integer :: i, status
+      integer :: status
 
-      allocate(recorder%known(size(speeds)))
-      call checkpoint_start(checkpoint, contact, speeds, out, stats, recorder%known, resumed, &
+      allocate(recorder%known(size(contacts)))
+      call checkpoint_start(checkpoint, contacts, out, stats, recorder%known, resumed, &
          & recorder%ck, error)
       if (allocated(error)) return
-      contacts = [(contact, i = 1, size(speeds))]
-      contacts%velocity = speeds
       recorder%finished = resumed
-      call progress_begin(label, size(speeds), resumed)
+      call progress_begin(label, size(contacts), resumed)
       if (started) call tell_ranks(tag_sweep)
       ! what the checkpoint held, apart from what the recorder marks as the chunks come
       ! in; the overall status is the first failing impact's (each has its own in stats)
