@@ -21,22 +21,18 @@
 !> the file as soon as its chunk is done. Every write is checked.
 module hcimpact_scene_checkpoint
    use, intrinsic :: iso_fortran_env, only : int64
-   use hcimpact_kinds, only : wp, ik
+   use hcimpact_kinds, only : wp
    use hcimpact_impact_model, only : contact_type, outcome_type
+   use hcimpact_impact_values, only : contact_values_size, outcome_values_size, &
+      & contact_values, outcome_values, values_outcome
    use hcimpact_scene_system, only : output_file, create_file, write_file, flush_file, &
       & close_file, rename_path, remove_path, file_exists
    implicit none
    private
 
-   public :: per_impact, packed, unpack
    public :: checkpoint_type, checkpoint_start, checkpoint_record, checkpoint_finish
    public :: checkpoint_start_columns, checkpoint_record_columns
 
-   !> Doubles of one impact's outcome and status (`packed`)
-   integer, parameter :: per_impact = 13
-   !> Doubles of an impact's input column: the contact's mass, stiffness, exponent,
-   !> damping and the speed
-   integer, parameter :: per_contact = 5
    !> The first words of a checkpoint file (its format's version)
    character(len=*), parameter :: signature = "hcimpact-checkpoint 2"
 
@@ -76,15 +72,14 @@ contains
       done = .false.
       resumed = 0
       if (len(path) == 0) return
-      allocate(inputs(per_contact, size(contacts)), outputs(per_impact, size(contacts)))
+      allocate(inputs(contact_values_size, size(contacts)), outputs(outcome_values_size, size(contacts)))
       do i = 1, size(contacts)
-         inputs(:, i) = [contacts(i)%mass, contacts(i)%stiffness, contacts(i)%exponent, &
-            & contacts(i)%damping, contacts(i)%velocity]
-         outputs(:, i) = packed(out(i), stats(i))
+         inputs(:, i) = contact_values(contacts(i))
+         outputs(:, i) = outcome_values(out(i), stats(i))
       end do
       call checkpoint_start_columns(path, inputs, outputs, done, resumed, ck, error)
       do i = 1, size(contacts)
-         if (done(i)) call unpack(outputs(:, i), out(i), stats(i))
+         if (done(i)) call values_outcome(outputs(:, i), out(i), stats(i))
       end do
    end subroutine checkpoint_start
 
@@ -96,11 +91,11 @@ contains
       type(outcome_type), intent(in) :: out(:)
       integer, intent(in) :: stats(:)
       character(len=:), allocatable, intent(inout) :: error
-      real(wp) :: outputs(per_impact, size(out))
+      real(wp) :: outputs(outcome_values_size, size(out))
       integer :: i
       if (.not. ck%active) return
       do i = 1, size(out)
-         outputs(:, i) = packed(out(i), stats(i))
+         outputs(:, i) = outcome_values(out(i), stats(i))
       end do
       call checkpoint_record_columns(ck, first, outputs, error)
    end subroutine checkpoint_record
@@ -267,35 +262,5 @@ contains
       write(buffer, '(3(i0, 1x), z16.16)') size(inputs, 2), size(inputs, 1), width, sum
       key = signature // " " // trim(buffer)
    end function sweep_key
-
-   !> One impact's outcome and status as doubles (the counts are far below 2^53, so
-   !> exact).
-   pure function packed(out, stat) result(values)
-      type(outcome_type), intent(in) :: out
-      integer, intent(in) :: stat
-      real(wp) :: values(per_impact)
-      values = [out%restitution, out%energy_loss_ratio, out%rebound_velocity, &
-         & out%max_compression, out%peak_force, out%compression_at_peak_force, &
-         & out%time_at_peak_force, out%compression_time, out%contact_time, &
-         & real(out%evaluations, wp), real(stat, wp)]
-   end function packed
-
-   !> The inverse of `packed`.
-   pure subroutine unpack(values, out, stat)
-      real(wp), intent(in) :: values(per_impact)
-      type(outcome_type), intent(out) :: out
-      integer, intent(out) :: stat
-      out%restitution = values(1)
-      out%energy_loss_ratio = values(2)
-      out%rebound_velocity = values(3)
-      out%max_compression = values(4)
-      out%peak_force = values(5)
-      out%compression_at_peak_force = values(6)
-      out%time_at_peak_force = values(7)
-      out%compression_time = values(8)
-      out%contact_time = values(9)
-      out%evaluations = int(values(10:12), ik)
-      stat = nint(values(13))
-   end subroutine unpack
 
 end module hcimpact_scene_checkpoint

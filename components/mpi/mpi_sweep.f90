@@ -15,9 +15,11 @@
 !> aborts every rank). No state is kept between calls.
 module hcimpact_mpi_sweep
    use mpi_f08, only : MPI_Comm
-   use hcimpact_kinds, only : wp, ik
+   use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_size
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
+   use hcimpact_impact_values, only : contact_values_size, outcome_values_size, &
+      & contact_values, values_contact, outcome_values, values_outcome
    use hcimpact_mpi_hand_out, only : mpi_hand_out, mpi_sweep_refuse, mpi_sweep_rank, &
       & sweep_worker, items_listener
    implicit none
@@ -52,11 +54,6 @@ module hcimpact_mpi_sweep
          integer, intent(in) :: stats(:)
       end subroutine chunk_done_interface
    end interface
-
-   !> Doubles of a contact (mass, stiffness, exponent, damping, velocity) and of an
-   !> outcome with its status (the nine values, the three evaluation counts and the
-   !> status, integers exact in doubles)
-   integer, parameter :: per_contact = 5, per_outcome = 13
 
    !> The worker: one impact
    type, extends(sweep_worker) :: impact_worker
@@ -104,7 +101,7 @@ contains
       integer :: i, n
 
       if (mpi_sweep_rank(comm) /= 0) then
-         allocate(inputs(per_contact, 0), outputs(per_outcome, 0))
+         allocate(inputs(contact_values_size, 0), outputs(outcome_values_size, 0))
          call mpi_hand_out(comm, worker, inputs, outputs, status)
          return
       end if
@@ -114,10 +111,10 @@ contains
          status = hcimpact_err_size
          return
       end if
-      allocate(inputs(per_contact, n), outputs(per_outcome, n))
+      allocate(inputs(contact_values_size, n), outputs(outcome_values_size, n))
       do i = 1, n
-         inputs(:, i) = packed_contact(contacts(i))
-         outputs(:, i) = packed_outcome(out(i), stats(i))
+         inputs(:, i) = contact_values(contacts(i))
+         outputs(:, i) = outcome_values(out(i), stats(i))
       end do
       if (present(listener)) then
          unpacking%caller => listener
@@ -129,7 +126,7 @@ contains
       end if
       if (status == hcimpact_err_size) return
       do i = 1, n
-         call unpack_outcome(outputs(:, i), out(i), stats(i))
+         call values_outcome(outputs(:, i), out(i), stats(i))
       end do
    end subroutine mpi_impact_sweep
 
@@ -140,8 +137,8 @@ contains
       real(wp), intent(out) :: output(:)
       type(outcome_type) :: out
       integer :: stat
-      call impact(unpacked_contact(input), out, stat)
-      output = packed_outcome(out, stat)
+      call impact(values_contact(input), out, stat)
+      output = outcome_values(out, stat)
    end subroutine compute_impact
 
    !> The status of the first item that failed, or hcimpact_ok.
@@ -151,7 +148,7 @@ contains
       integer :: i
       status = hcimpact_ok
       do i = 1, size(outputs, 2)
-         status = nint(outputs(per_outcome, i))
+         status = nint(outputs(outcome_values_size, i))
          if (status /= hcimpact_ok) return
       end do
    end function first_failure
@@ -164,56 +161,9 @@ contains
       type(outcome_type) :: out(size(outputs, 2))
       integer :: stats(size(outputs, 2)), i
       do i = 1, size(outputs, 2)
-         call unpack_outcome(outputs(:, i), out(i), stats(i))
+         call values_outcome(outputs(:, i), out(i), stats(i))
       end do
       call self%caller%chunk_done(first, out, stats)
    end subroutine tell_caller
-
-   !> A contact as the doubles of a message.
-   pure function packed_contact(contact) result(values)
-      type(contact_type), intent(in) :: contact
-      real(wp) :: values(per_contact)
-      values = [contact%mass, contact%stiffness, contact%exponent, contact%damping, &
-         & contact%velocity]
-   end function packed_contact
-
-   !> The inverse of `packed_contact`.
-   pure function unpacked_contact(values) result(contact)
-      ! assumed shape: a column of the caller's array, never copied
-      real(wp), intent(in) :: values(:)
-      type(contact_type) :: contact
-      contact = contact_type(mass=values(1), stiffness=values(2), exponent=values(3), &
-         & damping=values(4), velocity=values(5))
-   end function unpacked_contact
-
-   !> An outcome and its status as the doubles of a message.
-   pure function packed_outcome(out, stat) result(values)
-      type(outcome_type), intent(in) :: out
-      integer, intent(in) :: stat
-      real(wp) :: values(per_outcome)
-      values = [out%restitution, out%energy_loss_ratio, out%rebound_velocity, &
-         & out%max_compression, out%peak_force, out%compression_at_peak_force, &
-         & out%time_at_peak_force, out%compression_time, out%contact_time, &
-         & real(out%evaluations, wp), real(stat, wp)]
-   end function packed_outcome
-
-   !> The inverse of `packed_outcome`.
-   pure subroutine unpack_outcome(values, out, stat)
-      ! assumed shape: a column of the caller's array, never copied
-      real(wp), intent(in) :: values(:)
-      type(outcome_type), intent(inout) :: out
-      integer, intent(inout) :: stat
-      out%restitution = values(1)
-      out%energy_loss_ratio = values(2)
-      out%rebound_velocity = values(3)
-      out%max_compression = values(4)
-      out%peak_force = values(5)
-      out%compression_at_peak_force = values(6)
-      out%time_at_peak_force = values(7)
-      out%compression_time = values(8)
-      out%contact_time = values(9)
-      out%evaluations = int(values(10:12), ik)
-      stat = nint(values(13))
-   end subroutine unpack_outcome
 
 end module hcimpact_mpi_sweep
