@@ -25,6 +25,14 @@
 !>     order reversed every other round; the integrated answers' errors against the
 !>     exact one, at rtol and (one run each) at every rtol of LIST. With
 !>     --closed-forms-only, methods auto and exact alone (for a profiler).
+!>   bench_chain row OUT.csv --sizes N1,N2,... --rounds R --t-end T --rtol R
+!>       [--integrated-up-to N]
+!>     The dilute row of beads with random speeds (bench_chain_cases) of each size to T:
+!>     method auto (closed forms, a region for each cluster) and, for the sizes up to N
+!>     (default 1000), the whole row integrated by CVODE (BDF), one after the other in
+!>     every round (the order reversed every other round); a CSV row per run with the
+!>     work done, the energy error and, for the integrated run, the largest difference
+!>     of its final velocities from method auto's.
 program bench_chain
    use, intrinsic :: iso_c_binding, only : c_int, c_long
    use, intrinsic :: iso_fortran_env, only : error_unit, output_unit, int64
@@ -34,7 +42,7 @@ program bench_chain
    use hcimpact_cvode, only : chain_simulate
    use bench_cvode_common, only : cpu_seconds, median
    use bench_chain_cases, only : struck_chain, dilute_case, n_dilute, dilute_names, &
-      & dilute_t_end, bead_mass, bead_stiffness, striker_speed
+      & dilute_t_end, bead_mass, bead_stiffness, striker_speed, dilute_row
    implicit none
 
    !> struct rusage of Linux: two struct timeval, then ru_maxrss and 13 more longs
@@ -52,7 +60,7 @@ program bench_chain
 
    character(len=4096) :: mode, arg, out_path, out_path2, states_dir
    character(len=4096) :: list_text
-   integer :: ia, n, rounds, method, integrator
+   integer :: ia, n, rounds, method, integrator, integrated_up_to
    logical :: closed_forms_only
    real(wp) :: t_end, rtol, min_seconds, gap
    real(wp), allocatable :: rtols(:), sizes(:)
@@ -68,6 +76,7 @@ program bench_chain
    min_seconds = 0.05_wp
    gap = 0.0_wp
    closed_forms_only = .false.
+   integrated_up_to = 1000
    states_dir = ""
    out_path = ""
    out_path2 = ""
@@ -90,6 +99,8 @@ program bench_chain
          gap = next_real()
       case ("--closed-forms-only")
          closed_forms_only = .true.
+      case ("--integrated-up-to")
+         integrated_up_to = nint(next_real())
       case ("--rtols")
          rtols = next_list()
       case ("--sizes")
@@ -140,6 +151,9 @@ program bench_chain
    case ("dilute")
       if (len_trim(out_path2) == 0) call usage()
       call run_dilute()
+   case ("row")
+      if (len_trim(out_path) == 0 .or. size(sizes) == 0) call usage()
+      call run_row()
    case default
       call usage()
    end select
@@ -147,7 +161,7 @@ program bench_chain
 contains
 
    subroutine usage()
-      write(error_unit, '(a)') "usage: bench_chain struck|scaling|memory|dilute ... " // &
+      write(error_unit, '(a)') "usage: bench_chain struck|scaling|memory|dilute|row ... " // &
          & "(see the header of bench/chain/bench_chain.f90)"
       error stop 2
    end subroutine usage
@@ -407,6 +421,64 @@ contains
       close(times_unit)
       close(acc_unit)
    end subroutine run_dilute
+
+   subroutine run_row()
+      type(chain_type), allocatable :: rows(:)
+      type(chain_result) :: auto, integrated
+      integer :: unit, ios, r, kk, k, j, stat, calls, methods
+      real(wp) :: seconds, dv
+      open(newunit=unit, file=trim(out_path), status="replace", action="write", iostat=ios)
+      if (ios /= 0) error stop "bench_chain: cannot write the row times"
+      write(unit, '(a)') "n,round,method,seconds,status,contacts,closed_form_contacts," // &
+         & "integrated_contacts,clusters,steps,energy_error,dv_from_auto,t_end,rtol"
+      allocate(rows(size(sizes)))
+      do k = 1, size(sizes)
+         call dilute_row(nint(sizes(k)), 20261126_int64, rows(k))
+      end do
+      do r = 1, rounds
+         do kk = 1, size(sizes)
+            k = kk
+            if (mod(r, 2) == 0) k = size(sizes) + 1 - kk
+            methods = 1
+            if (nint(sizes(k)) <= integrated_up_to) methods = 2
+            do j = 1, methods
+               if (j == 1) then
+                  seconds = time_runs(rows(k), options_for(t_end, rtol, method_auto, &
+                     & integrator_bdf), 0.0_wp, auto, stat, calls)
+                  call write_row(unit, nint(sizes(k)), r, "auto", seconds, stat, auto, -1.0_wp)
+               else
+                  seconds = time_runs(rows(k), options_for(t_end, rtol, method_integrated, &
+                     & integrator_bdf), 0.0_wp, integrated, stat, calls)
+                  dv = -1.0_wp
+                  if (stat == 0 .and. allocated(auto%velocities)) &
+                     & dv = maxval(abs(integrated%velocities - auto%velocities))
+                  call write_row(unit, nint(sizes(k)), r, "integrated", seconds, stat, &
+                     & integrated, dv)
+               end if
+            end do
+            write(error_unit, '(a, i0, a, i0, a, i0)') "row: round ", r, ", n = ", &
+               & nint(sizes(k)), ", methods ", methods
+         end do
+      end do
+      close(unit, iostat=ios)
+      if (ios /= 0) error stop "bench_chain: cannot close the row times"
+   end subroutine run_row
+
+   !> One CSV row of the dilute row's runs (t_end and rtol: the program's)
+   subroutine write_row(unit, size_n, round, name, seconds, stat, result, dv_auto)
+      integer, intent(in) :: unit, size_n, round, stat
+      character(len=*), intent(in) :: name
+      real(wp), intent(in) :: seconds, dv_auto
+      type(chain_result), intent(in) :: result
+      integer :: ios
+      write(unit, '(i0, ",", i0, ",", a, ",", es12.5e2, ",", i0, 5(",", i0), &
+         & 2(",", es13.5e3), 2(",", es10.3e2))', iostat=ios) size_n, round, name, &
+         & seconds, stat, result%n_contacts, result%counters%closed_form_contacts, &
+         & result%counters%integrated_contacts, result%counters%clusters, &
+         & result%counters%steps, result%energy_error, dv_auto, t_end, rtol
+      if (ios /= 0) error stop "bench_chain: cannot write the row times"
+      flush(unit)
+   end subroutine write_row
 
    !> One row of the dilute accuracy table: result against the exact one (method auto;
    !> the closed forms). Errors: largest |v - v_exact| (m/s) and |q - q_exact| (m) at the

@@ -1,16 +1,18 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> The systems of the chain benchmarks (doc/chains-bench.md), in one place: the struck
-!> chain of touching Hertz beads and the dilute systems with gaps between two walls.
+!> chain of touching Hertz beads, the dilute systems with gaps between two walls, and
+!> the dilute row of beads with random speeds.
 !> The SciPy script reads the struck chain's parameters from the state files that
 !> bench_chain writes, so they are defined here only.
 module bench_chain_cases
    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_positive_inf
+   use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact, only : wp, hertz_constant, contact_law, chain_type
    implicit none
    private
 
    public :: bead_mass, bead_stiffness, wall_stiffness, striker_speed
-   public :: struck_chain, dilute_case, n_dilute, dilute_names, dilute_t_end
+   public :: struck_chain, dilute_case, n_dilute, dilute_names, dilute_t_end, dilute_row
 
    !> Steel beads: radius 5 mm, E = 200 GPa, nu = 0.3, density 7800 kg/m^3
    real(wp), parameter :: bead_radius = 5.0e-3_wp, young = 2.0e11_wp, poisson = 0.3_wp, &
@@ -90,5 +92,43 @@ contains
       chain%left_gap = dilute_gap
       chain%right_gap = dilute_gap
    end subroutine dilute_case
+
+   !> The dilute row: n beads, their speeds uniform in [-1, 1] m/s, the gaps between
+   !> them log-uniform in [1, 10] mm, dissipative (dilute_damping), no walls, g = 0;
+   !> drawn by a fixed generator (xorshift64 from `seed`, not 0), the same on every
+   !> machine.
+   subroutine dilute_row(n, seed, chain)
+      integer, intent(in) :: n
+      integer(int64), intent(in) :: seed
+      type(chain_type), intent(out) :: chain
+      integer(int64) :: state
+      integer :: i
+      real(wp) :: dummy
+      allocate(chain%mass(n), chain%velocity(n), chain%gap(n - 1), chain%law(n - 1))
+      state = seed
+      do i = 1, 8
+         ! (nearby seeds give nearby first numbers)
+         dummy = uniform(state)
+      end do
+      chain%mass = bead_mass()
+      do i = 1, n
+         chain%velocity(i) = 2.0_wp * uniform(state) - 1.0_wp
+      end do
+      do i = 1, n - 1
+         chain%gap(i) = 1.0e-3_wp * 10.0_wp**uniform(state)
+      end do
+      chain%law = contact_law(stiffness=bead_stiffness(), exponent=1.5_wp, &
+         & damping=dilute_damping)
+   end subroutine dilute_row
+
+   !> A number uniform in [0, 1) from a xorshift64 generator's state (shifts and
+   !> exclusive ors only: no integer overflow)
+   real(wp) function uniform(state)
+      integer(int64), intent(inout) :: state
+      state = ieor(state, shiftl(state, 13))
+      state = ieor(state, shiftr(state, 7))
+      state = ieor(state, shiftl(state, 17))
+      uniform = real(shiftr(state, 11), wp) * 2.0_wp**(-53)
+   end function uniform
 
 end module bench_chain_cases

@@ -517,6 +517,51 @@ def goals_section(sc, mem, wp, cases, dil_ratios, acc):
     return "\n".join(lines)
 
 
+# ---- the dilute row ----------------------------------------------------------------------
+
+def row_section(rows):
+    """Table of the dilute row: per size, the medians over the rounds of method auto's
+    time and of the whole row integrated (where run), their per-round ratio, and the
+    work of the last round."""
+    sizes = sorted({int(r["n"]) for r in rows})
+    lines = ["| beads | contacts | clusters | closed forms / integrated contacts | CVODE steps "
+             "| auto (s) | per contact (us) | whole row integrated (s) | integrated / auto "
+             "| energy error (auto) | velocity difference (m/s) |",
+             "|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for n in sizes:
+        auto = [r for r in rows if int(r["n"]) == n and r["method"] == "auto"]
+        whole = [r for r in rows if int(r["n"]) == n and r["method"] == "integrated"]
+        if not auto:
+            continue
+        last = auto[-1]
+        if last["status"] != "0":
+            lines.append("| %d | status %s | | | | | | | | | |" % (n, last["status"]))
+            continue
+        t_auto = [f(r, "seconds") for r in auto]
+        per_contact = [1e6 * f(r, "seconds") / max(int(r["contacts"]), 1) for r in auto]
+        cells = ["%d" % n, last["contacts"], last["clusters"],
+                 "%s / %s" % (last["closed_form_contacts"], last["integrated_contacts"]),
+                 last["steps"], fmt_range(t_auto), fmt_range(per_contact)]
+        if whole and all(r["status"] == "0" for r in whole):
+            rounds = {int(r["round"]): f(r, "seconds") for r in auto}
+            ratio = [f(r, "seconds") / rounds[int(r["round"])] for r in whole
+                     if int(r["round"]) in rounds]
+            cells += [fmt_range([f(r, "seconds") for r in whole]), fmt_range(ratio)]
+            dv = "%.1e" % max(f(r, "dv_from_auto") for r in whole)
+        else:
+            cells += ["not run", ""]
+            dv = ""
+        cells += ["%.1e" % f(last, "energy_error"), dv]
+        lines.append("| " + " | ".join(cells) + " |")
+    t_end, rtol = rows[0]["t_end"], rows[0]["rtol"]
+    lines.append("")
+    lines.append("To t = %s s at rtol %s; times are medians (range) over %d rounds, ratios "
+                 "formed within each round. The velocity difference is the largest between "
+                 "the whole row integrated and method auto."
+                 % (float(t_end), float(rtol), len({r["round"] for r in rows})))
+    return "\n".join(lines)
+
+
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--dir", required=True)
@@ -566,6 +611,9 @@ def main():
         cases, dil_ratios = dilute(read(os.path.join(a.dir, "dilute_times.csv")), acc)
         doc = replace_section(doc, "dilute", dilute_section(cases, dil_ratios, acc))
         figure_dilute(cases, dil_ratios, acc, os.path.join(a.figures, "chain_dilute.png"))
+
+    if os.path.exists(os.path.join(a.dir, "row.csv")):
+        doc = replace_section(doc, "row", row_section(read(os.path.join(a.dir, "row.csv"))))
 
     goals = goals_section(sc, mem, wp, cases, dil_ratios, acc)
     doc = replace_section(doc, "goals", goals)

@@ -13,6 +13,8 @@
 #   memory   peak RSS against N = 1e2 ... 1e6 (one process per N)
 #   scipy    work-precision against SciPy's solve_ivp, N = 100 and N = 1000
 #   dilute   closed forms against CVODE on the dilute systems (interleaved rounds)
+#   row      the dilute row of N = 1e3 ... 1e5 beads with random speeds: method auto
+#            (a region per cluster), and the whole row integrated up to N = 1e3
 #
 # Usage (from anywhere): bench/chain/run.sh [options]
 #   --quick          small sizes, one or two rounds: a smoke run (a few minutes). Writes
@@ -39,7 +41,7 @@ root=$(cd "$(dirname "$0")/../.." && pwd)
 cd "$root"
 
 quick=0
-only="scaling,memory,scipy,dilute"
+only="scaling,memory,scipy,dilute,row"
 wait_quiet=""
 build="build/bench-chain"
 do_build=1
@@ -116,7 +118,7 @@ has_part() {
 
 # the machine, once per run, and its load before every part
 machine="$out/machine.txt"
-if [ "$only" = "scaling,memory,scipy,dilute" ] || [ ! -f "$machine" ]; then
+if [ "$only" = "scaling,memory,scipy,dilute,row" ] || [ ! -f "$machine" ]; then
     {
         echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
         echo "cpu: $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)," \
@@ -203,6 +205,18 @@ if has_part dilute; then
     fi
     set -x
     "$bench" dilute "$out/dilute_times.csv" "$out/dilute_accuracy.csv" --rtol 1e-10 "$@"
+    { set +x; } 2>/dev/null
+fi
+
+if has_part row; then
+    before_part row
+    if [ "$quick" -eq 1 ]; then
+        set -- --sizes 100,1000 --rounds 1 --t-end 0.02
+    else
+        set -- --sizes 1000,10000,100000 --rounds 3 --t-end 0.02
+    fi
+    set -x
+    "$bench" row "$out/row.csv" --rtol 1e-10 "$@"
     { set +x; } 2>/dev/null
 fi
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg) ($(date -u '+%H:%M UTC'))" >> "$machine"

@@ -85,6 +85,14 @@ module hcimpact_cvode_chain
       type(slot_history), allocatable :: history(:)
       logical :: captured = .false.
       integer(int64) :: rhs_base = 0, jac_base = 0
+      !> CVODE's time (the end of the last step); whether the contacts over that step
+      !> are still to be followed (up to `next`), and what happens at `next` (a gap at
+      !> the boundary that closes there: advance_grow_left or _right)
+      real(wp) :: tn = 0.0_wp
+      logical :: stepped = .false.
+      integer :: due = advance_reached
+      !> Steps in a row that left the time where it was
+      integer :: stalled = 0
    contains
       procedure :: begin => region_begin
       procedure :: advance => region_advance
@@ -122,7 +130,7 @@ contains
    ! The integrator
    ! =================================================================================
 
-   !> Start CVODE on the engine's region at engine%time.
+   !> Start CVODE on the region self%first .. self%last at engine%time.
    subroutine region_begin(self, engine, stat)
       class(cvode_chain_integrator), intent(inout) :: self
       type(chain_engine), intent(inout) :: engine
@@ -133,18 +141,23 @@ contains
       type(contact_force_type) :: e
       character(len=40) :: where
       real(c_double), pointer, contiguous :: y(:), atol(:)
+      logical :: halting(3)
 
       stat = hcimpact_ok
       call release_all(self)
-      m = engine%last - engine%first + 1
+      ! CVODE is not written for trapping floating-point exceptions (module header of
+      ! hcimpact_cvode_halting): halting off while it runs, back on in the callbacks
+      call halting_suspend(halting)
+      m = self%last - self%first + 1
       allocate(self%region)
+      self%region%halting = halting
       self%region%m = m
       self%region%gravity = engine%gravity
       allocate(self%region%mass(m), self%region%kind(0:m), self%region%law(0:m), &
          & self%region%gap0(0:m))
-      self%region%mass = engine%chain%mass(engine%first:engine%last)
+      self%region%mass = engine%chain%mass(self%first:self%last)
       do j = 0, m
-         s = engine%first - 1 + j
+         s = self%first - 1 + j
          self%region%kind(j) = slot_none
          self%region%gap0(j) = 0.0_wp
          if (s < 0 .or. s > engine%n) cycle
@@ -176,7 +189,7 @@ contains
       n_state = region_size(m)
       allocate(self%y(n_state), self%atol(n_state))
       do k = 1, m
-         i = engine%first + k - 1
+         i = self%first + k - 1
          ! the engine's states are at engine%time (t0 = engine%time)
          self%y(3 * k - 2) = engine%body(i)%u0 + (engine%body(i)%v0 + 0.5_wp * &
             & engine%gravity * (engine%time - engine%body(i)%t0)) &
@@ -204,7 +217,7 @@ contains
       ! and every slot's state now, the start of the first step's interpolants
       allocate(self%contact(0:m), self%history(0:m))
       do j = 0, m
-         s = engine%first - 1 + j
+         s = self%first - 1 + j
          if (self%region%kind(j) == slot_none) cycle
          call slot_state(self%region, j, engine%time, self%y, x, w, e)
          self%history(j) = slot_history(engine%time, x, w, e%force, 0.0_wp, 0.0_wp)
@@ -224,10 +237,12 @@ contains
          end if
       end do
       self%captured = .false.
-
-      ! CVODE is not written for trapping floating-point exceptions (module header of
-      ! hcimpact_cvode_solver): halting off while it runs, back on in the callbacks
-      call halting_suspend(self%region%halting)
+      self%time = engine%time
+      self%next = engine%time
+      self%tn = engine%time
+      self%stepped = .false.
+      self%due = advance_reached
+      self%stalled = 0
 
       setup: block
          where = "SUNContext_Create"
@@ -293,128 +308,176 @@ contains
          engine%message = "CVODE setup failed in " // trim(where) // ": " &
             & // cvode_flag_name(ierr) // report_detail(self%region%report)
          call release_all(self)
+         call halting_resume(halting)
          return
       end if
+      if (engine%options%t_end > 0.0_wp) then
+         ! (steps end there: the states at t_end are CVODE's, not an extrapolation)
+         ierr = FCVodeSetStopTime(self%mem, real(engine%options%t_end, c_double))
+      end if
+      call halting_resume(halting)
       smu = 0
       self%rhs_base = 0
       self%jac_base = 0
    end subroutine region_begin
 
-   !> Integrate until t_stop or an event that the engine must handle.
-   subroutine region_advance(self, engine, t_stop, what, stat)
+   !> At engine%time = self%next: follow the contacts over the last step up to next
+   !> and report what happens there (a boundary gap that closes: grow; the region
+   !> apart: dissolved; at rest: captured); else take the next step (never beyond
+   !> t_end) and find where the engine must come back: the end of the step, or the
+   !> first instant in it at which a gap at the boundary closes.
+   subroutine region_advance(self, engine, t_end, what, stat)
       class(cvode_chain_integrator), intent(inout) :: self
       type(chain_engine), intent(inout) :: engine
-      real(wp), intent(in) :: t_stop
+      real(wp), intent(in) :: t_end
       integer, intent(out) :: what, stat
       integer(c_int) :: ierr
       real(c_double) :: tret(1)
       integer :: m
       real(wp), allocatable :: u(:), v(:)
-      logical :: ended
-      ! steps in a row that left the time where it was, and how many are tolerated
-      integer :: stalled
+      logical :: ended, halting(3)
+      ! steps in a row that did not advance the time, and how many are tolerated
       integer, parameter :: max_stalled = 100
 
       stat = hcimpact_ok
       what = advance_reached
-      stalled = 0
+      if (.not. associated(self%region)) return
       m = self%region%m
-      if (t_stop < huge(1.0_wp)) then
-         if (.not. t_stop > engine%time) return
-         ierr = FCVodeSetStopTime(self%mem, real(t_stop, c_double))
-      end if
-      do
+      call halting_suspend(halting)
+      self%region%halting = halting
+      run: block
+         if (self%stepped) then
+            self%stepped = .false.
+            ! (self%y holds the state at the end of the step)
+            if (self%next < self%tn) call move_to(self, self%next)
+            call follow_contacts(self, engine, self%next, ended)
+            if (self%due /= advance_reached) then
+               ! a gap at the boundary closed here: the region grows
+               what = self%due
+               exit run
+            end if
+            ! apart: back to the closed forms; with the integrated method only once
+            ! no contact can ever happen again (the rest is free flight). Checked
+            ! after a contact ended, and while no contact of the region has pressed
+            ! yet (bodies that touch without force and never approach: no contact
+            ! ever ends, and the steps would grow until the time overflowed)
+            if (ended .or. .not. any(self%contact(0:m)%open .and. &
+               & self%contact(0:m)%peak > 0.0_wp)) then
+               if (separated(self)) then
+                  if (engine%options%method /= method_integrated .or. &
+                     & never_again(self, engine)) then
+                     what = advance_dissolved
+                     exit run
+                  end if
+               end if
+            end if
+            ! at rest on a wall under gravity, for good (reported once per region)
+            if (engine%gravity /= 0.0_wp .and. .not. self%captured) then
+               u = self%y(1:3 * m:3)
+               v = self%y(2:3 * m:3)
+               if (capture_margin(engine, self%first, self%last, u, v) < 0.0_wp) then
+                  self%captured = .true.
+                  what = advance_captured
+                  exit run
+               end if
+            end if
+         end if
+         if (.not. t_end > self%time) exit run
          if (engine%counters%steps >= engine%options%max_steps) then
             stat = hcimpact_err_solver
-            write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", engine%time, &
+            write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", self%time, &
                & " s: more than options%max_steps = ", engine%options%max_steps, " steps"
             what = advance_failed
-            return
+            exit run
          end if
          ! CVODE grows h by a factor of 10^4 at most (its first steps), and h is below
          ! the time elapsed: beyond huge * 1e-6 the next step could leave the range
          ! of doubles, where CVODE would go on with an infinite time and NaN states
-         if (engine%time > huge(1.0_wp) * 1.0e-6_wp) then
+         if (self%time > huge(1.0_wp) * 1.0e-6_wp) then
             stat = hcimpact_err_solver
-            write(engine%message, '(a, es10.3, a)') "CVODE at t = ", engine%time, &
+            write(engine%message, '(a, es10.3, a)') "CVODE at t = ", self%time, &
                & " s: the time is about to leave the range of doubles"
             what = advance_failed
-            return
+            exit run
          end if
          ! (one step: tout gives only the direction; a huge one upsets CVODE's first step)
-         ierr = FCVode(self%mem, real(min(t_stop, engine%time + 1.0_wp), c_double), &
+         ierr = FCVode(self%mem, real(min(t_end, self%tn + 1.0_wp), c_double), &
             & self%y_vec, tret, CV_ONE_STEP)
          if (ierr < 0) then
             stat = hcimpact_err_solver
             write(engine%message, '(a, es10.3, a)') "CVODE failed at t = ", tret(1), &
                & " s: " // cvode_flag_name(ierr) // report_detail(self%region%report)
             what = advance_failed
-            return
+            exit run
          end if
          ! steps too small to move the time (t + h = t: forces that change on a scale
          ! below the time's resolution) would go on until max_steps, 1e8 by default
-         if (tret(1) > engine%time) then
-            stalled = 0
+         if (tret(1) > self%tn) then
+            self%stalled = 0
          else
-            stalled = stalled + 1
-            if (stalled > max_stalled) then
+            self%stalled = self%stalled + 1
+            if (self%stalled > max_stalled) then
                stat = hcimpact_err_solver
-               write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", engine%time, &
+               write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", self%tn, &
                   & " s: ", max_stalled, " steps in a row did not advance the time (steps " &
                   & // "below its resolution)"
                what = advance_failed
-               return
+               exit run
             end if
          end if
-         engine%time = tret(1)
+         self%tn = max(tret(1), self%tn)
          engine%counters%steps = engine%counters%steps + 1
-         ! the contacts over the step: extrema, starts, ends, a boundary that closed
-         call follow_contacts(self, engine, what, ended)
-         if (what /= advance_reached) return
-         ! apart: back to the closed forms; with the integrated method only once no
-         ! contact can ever happen again (the rest is free flight). Checked after a
-         ! contact ended, and while no contact of the region has pressed yet (bodies
-         ! that touch without force and never approach: no contact ever ends, and the
-         ! steps would grow until the time overflowed)
-         if (ended .or. .not. any(self%contact(0:m)%open .and. &
-            & self%contact(0:m)%peak > 0.0_wp)) then
-            if (separated(self, engine)) then
-               if (engine%options%method /= method_integrated .or. &
-                  & never_again(self, engine)) then
-                  what = advance_dissolved
-                  return
-               end if
-            end if
-         end if
-         ! at rest on a wall under gravity, for good (reported once per region)
-         if (engine%gravity /= 0.0_wp .and. .not. self%captured) then
-            u = self%y(1:3 * m:3)
-            v = self%y(2:3 * m:3)
-            if (capture_margin(engine, u, v) < 0.0_wp) then
-               self%captured = .true.
-               what = advance_captured
-               return
-            end if
-         end if
-         if (ierr == CV_TSTOP_RETURN .or. tret(1) >= t_stop) return
-      end do
+         self%stepped = .true.
+         call boundary_closing(self)
+      end block run
+      call halting_resume(halting)
    end subroutine region_advance
 
-   !> After a step, slot by slot, from the cubic Hermite interpolant of each slot's
-   !> deformation x (with its rate w = x') between the step's ends:
+   !> After a step: where the engine must come back (self%next, self%due): the first
+   !> instant in the step at which a gap at the region's boundary closes (from the
+   !> cubic Hermite interpolant of its deformation and rate between the step's ends),
+   !> else the end of the step. self%y holds the state at the end of the step.
+   subroutine boundary_closing(self)
+      type(cvode_chain_integrator), intent(inout) :: self
+      real(wp) :: x, w, h, tc, wc, t_close
+      type(contact_force_type) :: e
+      integer :: j
+      self%next = self%tn
+      self%due = advance_reached
+      do j = 0, self%region%m, max(self%region%m, 1)
+         select case (self%region%kind(j))
+         case (slot_boundary_left, slot_boundary_right)
+            call slot_state(self%region, j, self%tn, self%y, x, w, e)
+            if (.not. x > 0.0_wp) cycle
+            h = self%tn - self%history(j)%t
+            call hermite_crossing(self%history(j)%x, self%history(j)%w, x, w, h, tc, wc)
+            t_close = min(self%history(j)%t + tc, self%tn)
+            if (t_close < self%next .or. self%due == advance_reached) then
+               self%next = t_close
+               self%due = advance_grow_left
+               if (self%region%kind(j) == slot_boundary_right) self%due = advance_grow_right
+            end if
+         end select
+      end do
+   end subroutine boundary_closing
+
+   !> The contacts from self%time up to t (within the last step; self%y holds the
+   !> state at t), slot by slot, from the cubic Hermite interpolant of each slot's
+   !> deformation x (with its rate w = x') between the two:
    !> - a contact starts where x rises through 0, ends where it falls through 0 (both
    !>   times from the interpolant), and a contact that started and ended within the
-   !>   step is recorded too;
+   !>   interval is recorded too;
    !> - the largest deformation and force of an open contact (the force's interpolant
-   !>   with dF/dt);
-   !> - a boundary gap that closed: the region goes back to that instant (CVODE's own
-   !>   interpolant of the whole state) and asks to grow (what).
+   !>   with dF/dt).
+   !> A gap at the boundary that closes is found after the step (boundary_closing):
+   !> the engine comes back at that instant. self%time becomes t.
    !> CVODE's root finding is not used: functions that vanish at the start and end of
    !> every contact, thousands of times in a chain, made it stall at noise level.
-   subroutine follow_contacts(self, engine, what, ended)
+   subroutine follow_contacts(self, engine, t, ended)
       type(cvode_chain_integrator), intent(inout) :: self
       type(chain_engine), intent(inout) :: engine
-      integer, intent(out) :: what
+      !> The time of the state in self%y
+      real(wp), intent(in) :: t
       !> A contact ended
       logical, intent(out) :: ended
       real(wp), allocatable :: dy(:)
@@ -424,28 +487,19 @@ contains
       integer :: j, m
       logical :: ok
 
-      what = advance_reached
       ended = .false.
       m = self%region%m
       allocate(dy(size(self%y)))
-      call region_rhs(self%region, engine%time, self%y, dy, ok)
+      call region_rhs(self%region, t, self%y, dy, ok)
       do j = 0, m
          if (self%region%kind(j) == slot_none) cycle
-         call slot_state(self%region, j, engine%time, self%y, x, w, e)
+         call slot_state(self%region, j, t, self%y, x, w, e)
          last = self%history(j)
          t0 = last%t
-         h = engine%time - t0
+         h = t - t0
          select case (self%region%kind(j))
          case (slot_boundary_left, slot_boundary_right)
-            if (x > 0.0_wp) then
-               ! back to where the gap closed, then grow
-               call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
-               call rewind(self, engine, t0 + tc)
-               what = advance_grow_left
-               if (self%region%kind(j) == slot_boundary_right) what = advance_grow_right
-               return
-            end if
-            self%history(j) = slot_history(engine%time, x, w, 0.0_wp, 0.0_wp)
+            self%history(j) = slot_history(t, x, w, 0.0_wp, 0.0_wp)
             cycle
          end select
          df = force_rate(self%region, j, dy, w, e)
@@ -455,7 +509,7 @@ contains
                call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
                call open_at(self, j, t0 + tc, max(wc, 0.0_wp), last%e)
             else if (x > 0.0_wp) then
-               call open_at(self, j, engine%time, max(w, 0.0_wp), self%y(dissipation_index(m, j)))
+               call open_at(self, j, t, max(w, 0.0_wp), self%y(dissipation_index(m, j)))
             else if (h > 0.0_wp .and. last%x <= 0.0_wp .and. &
                & hermite_max(last%x, last%w, x, w, h) > 0.0_wp) then
                ! started and ended within the step
@@ -471,13 +525,13 @@ contains
                ! overshoot: Adams at rtol 1e-12 missed the peak force by 1e-8)
                step_max = hermite_max(last%x, last%w, x, w, h)
                if (last%w > 0.0_wp .and. w <= 0.0_wp .and. last%x > 0.0_wp) then
-                  dense = dense_max(self, j, t0, engine%time, .false.)
+                  dense = dense_max(self, j, t0, t, .false.)
                   if (dense > 0.0_wp) step_max = dense
                end if
                self%contact(j)%deformation = max(self%contact(j)%deformation, step_max)
                step_max = hermite_max(last%f, last%df, e%force, df, h)
                if (last%df > 0.0_wp .and. df <= 0.0_wp .and. last%x > 0.0_wp) then
-                  dense = dense_max(self, j, t0, engine%time, .true.)
+                  dense = dense_max(self, j, t0, t, .true.)
                   if (dense > 0.0_wp) step_max = dense
                end if
                self%contact(j)%peak = max(self%contact(j)%peak, step_max)
@@ -490,13 +544,14 @@ contains
                wc = w
                if (h > 0.0_wp .and. last%x > 0.0_wp) &
                   & call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
-               call close_contact(self, engine, j, engine%first - 1 + j, t0 + tc, wc)
+               call close_contact(self, engine, j, self%first - 1 + j, t0 + tc, wc)
                ended = .true.
             end if
          end if
-         self%history(j) = slot_history(engine%time, x, w, e%force, df, &
+         self%history(j) = slot_history(t, x, w, e%force, df, &
             & self%y(dissipation_index(m, j)))
       end do
+      self%time = t
    end subroutine follow_contacts
 
    !> The largest deformation (force: the largest force) of slot j in the last step
@@ -611,11 +666,11 @@ contains
       if (h > 0.0_wp) wc = (h * w0 + mid * (2.0_wp * b + 3.0_wp * c * mid)) / h
    end subroutine hermite_crossing
 
-   !> Put the region's state back to the time t within the last step (CVODE's
-   !> interpolant) and stop there.
-   subroutine rewind(self, engine, t)
+   !> The region's state at the time t within the last step into self%y (CVODE's
+   !> interpolant; self%y is only CVODE's output, not its history). Kept as it is
+   !> where the interpolant cannot be evaluated.
+   subroutine move_to(self, t)
       type(cvode_chain_integrator), intent(inout) :: self
-      type(chain_engine), intent(inout) :: engine
       real(wp), intent(in) :: t
       real(c_double), pointer, contiguous :: dky(:)
       type(N_Vector), pointer :: dky_vec
@@ -623,13 +678,10 @@ contains
       allocate(dky(size(self%y)))
       dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
       ierr = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec)
-      if (ierr == CV_SUCCESS) then
-         self%y = dky
-         engine%time = t
-      end if
+      if (ierr == CV_SUCCESS) self%y = dky
       call FN_VDestroy(dky_vec)
       deallocate(dky)
-   end subroutine rewind
+   end subroutine move_to
 
    !> Open the record of a contact of slot j that started at t_start with the
    !> approach speed given, the slot's dissipated energy then being e_base.
@@ -699,9 +751,8 @@ contains
    end subroutine close_contact
 
    !> Whether no contact of the region is active or closing (it can be dissolved).
-   function separated(self, engine) result(apart)
+   function separated(self) result(apart)
       type(cvode_chain_integrator), intent(in) :: self
-      type(chain_engine), intent(in) :: engine
       logical :: apart
       integer :: j
       real(wp) :: x, w
@@ -710,7 +761,7 @@ contains
       do j = 0, self%region%m
          select case (self%region%kind(j))
          case (slot_pair, slot_left_wall, slot_right_wall)
-            call slot_state(self%region, j, engine%time, self%y, x, w, e)
+            call slot_state(self%region, j, self%time, self%y, x, w, e)
             ! (a touching pair that has never pressed and does not approach is apart)
             if (self%contact(j)%open .and. (self%contact(j)%peak > 0.0_wp .or. x > 0.0_wp &
                & .or. w > 0.0_wp)) then
@@ -736,7 +787,7 @@ contains
       type(contact_force_type) :: e
       never = .true.
       do j = 0, self%region%m
-         call slot_state(self%region, j, engine%time, self%y, x, w, e)
+         call slot_state(self%region, j, self%time, self%y, x, w, e)
          select case (self%region%kind(j))
          case (slot_pair, slot_boundary_left, slot_boundary_right)
             ! the common acceleration cancels: the rate stays w
@@ -752,7 +803,7 @@ contains
    end function never_again
 
    !> Displacements and velocities of the region's bodies at the time t (within the
-   !> last step).
+   !> last step, in [self%time, self%next]).
    subroutine region_state_at(self, engine, t, u, v)
       class(cvode_chain_integrator), intent(inout) :: self
       type(chain_engine), intent(in) :: engine
@@ -762,12 +813,16 @@ contains
       type(N_Vector), pointer :: dky_vec
       integer(c_int) :: ierr
       integer :: m
+      logical :: halting(3)
       m = self%region%m
-      if (t == engine%time) then
+      ! self%y holds the state at the end of the last step until its contacts are
+      ! followed, then at self%time
+      if ((self%stepped .and. t == self%tn) .or. (.not. self%stepped .and. t == self%time)) then
          u = self%y(1:3 * m:3)
          v = self%y(2:3 * m:3)
          return
       end if
+      call halting_suspend(halting)
       allocate(dky(region_size(m)))
       dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
       ierr = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec)
@@ -780,18 +835,30 @@ contains
       end if
       call FN_VDestroy(dky_vec)
       deallocate(dky)
+      call halting_resume(halting)
    end subroutine region_state_at
 
-   !> Write the region's states at engine%time back into the engine and free CVODE;
-   !> a contact still in progress is left in its slot for the next region.
+   !> Follow the contacts up to engine%time (within [self%time, self%next]), write the
+   !> region's states then back into the engine and free CVODE; a contact still in
+   !> progress is left in its slot for the next region.
    subroutine region_finish(self, engine)
       class(cvode_chain_integrator), intent(inout) :: self
       type(chain_engine), intent(inout) :: engine
       integer :: k, i, j, s, m
+      real(wp) :: t
+      logical :: ended, halting(3)
       if (.not. associated(self%region)) return
       m = self%region%m
+      call halting_suspend(halting)
+      self%region%halting = halting
+      if (self%stepped) then
+         t = min(max(engine%time, self%time), self%next)
+         if (t < self%tn) call move_to(self, t)
+         if (t > self%time) call follow_contacts(self, engine, t, ended)
+         self%stepped = .false.
+      end if
       do k = 1, m
-         i = engine%first + k - 1
+         i = self%first + k - 1
          engine%body(i)%t0 = engine%time
          engine%body(i)%u0 = self%y(3 * k - 2)
          engine%body(i)%v0 = self%y(3 * k - 1)
@@ -799,7 +866,7 @@ contains
       do j = 0, m
          if (.not. allocated(self%contact)) exit
          if (.not. self%contact(j)%open) cycle
-         s = engine%first - 1 + j
+         s = self%first - 1 + j
          engine%exact(s)%handed = .true.
          engine%exact(s)%active = .false.
          engine%exact(s)%t_start = self%contact(j)%t_start
@@ -811,6 +878,7 @@ contains
       end do
       call add_counters(self, engine)
       call release_all(self)
+      call halting_resume(halting)
    end subroutine region_finish
 
    !> CVODE's right-hand side and Jacobian evaluations into the engine's counters.
@@ -827,12 +895,10 @@ contains
          & engine%counters%jacobian_evals + count(1)
    end subroutine add_counters
 
-   !> Free everything of the integrator (idempotent), and give the caller's halting
-   !> modes back.
+   !> Free everything of the integrator (idempotent).
    subroutine release_all(self)
       class(cvode_chain_integrator), intent(inout) :: self
       integer(c_int) :: ierr
-      logical :: halting(3)
       if (c_associated(self%mem)) call FCVodeFree(self%mem)
       self%mem = c_null_ptr
       if (associated(self%lin_sol)) ierr = FSUNLinSolFree(self%lin_sol)
@@ -845,11 +911,7 @@ contains
       if (associated(self%atol)) deallocate(self%atol)
       if (allocated(self%contact)) deallocate(self%contact)
       if (allocated(self%history)) deallocate(self%history)
-      if (associated(self%region)) then
-         halting = self%region%halting
-         deallocate(self%region)
-         call halting_resume(halting)
-      end if
+      if (associated(self%region)) deallocate(self%region)
    end subroutine release_all
 
    ! =================================================================================

@@ -84,6 +84,9 @@ contains
          & new_unittest("tiny-masses", test_tiny_masses), &
          & new_unittest("dilute-stays-exact", test_dilute_exact), &
          & new_unittest("clusters-form-dissolve", test_clusters), &
+         & new_unittest("clusters-apart", test_clusters_apart), &
+         & new_unittest("clusters-merge", test_clusters_merge), &
+         & new_unittest("random-dilute", test_random_dilute), &
          & new_unittest("error-independent-of-size", test_size_independent), &
          & new_unittest("large-chain", test_large_chain) &
          & ]
@@ -1450,6 +1453,146 @@ contains
          & result%contacts%method == by_closed_forms), &
          & "cluster: the contact of pair 3 after the cluster by the closed forms")
    end subroutine test_clusters
+
+   !> Two clusters at once, far apart: a ball strikes two touching balls at each end of
+   !> a row (bodies 1-3 and 6-8), with two balls at rest 5 cm apart between them. Each
+   !> cluster is a region of its own, integrated on its own clock (the second forms
+   !> while the first goes on, and does not reach over the bodies between); the final
+   !> velocities agree with the whole row integrated, and the balance holds.
+   subroutine test_clusters_apart(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result, integrated
+      real(wp), parameter :: rtol = 1.0e-10_wp
+      chain = steel_row(8, 1.0_wp, steel_damping, 0.0_wp)
+      chain%velocity(8) = -0.7_wp
+      chain%gap = [1.0e-4_wp, 0.0_wp, 0.05_wp, 0.05_wp, 0.05_wp, 0.0_wp, 1.3e-4_wp]
+      call run(error, chain, opts(method_auto, rtol), result, "two clusters")
+      if (allocated(error)) return
+      call check(error, size(result%switches) >= 4 .and. result%counters%clusters >= 2, &
+         & "two clusters: two regions expected")
+      if (allocated(error)) return
+      ! the first two switches form the two regions, apart, each within its end
+      call check(error, result%switches(1)%first == 1 .and. result%switches(1)%last == 3 &
+         & .and. result%switches(2)%first == 6 .and. result%switches(2)%last == 8, &
+         & "two clusters: the second region should form beside the first (bodies 1-3, " &
+         & // "then 6-8), not span the row")
+      if (allocated(error)) return
+      call run(error, chain, opts(method_integrated, rtol), integrated, &
+         & "two clusters integrated")
+      if (allocated(error)) return
+      call check(error, all(abs(result%velocities - integrated%velocities) <= &
+         & k_velocity * rtol), "two clusters: auto and integrated disagree")
+      if (allocated(error)) return
+      call check(error, result%n_contacts == integrated%n_contacts, &
+         & "two clusters: auto and integrated count different contacts")
+      if (allocated(error)) return
+      call check(error, result%energy_error <= k_energy * rtol, &
+         & "two clusters: energy balance " // format_real(result%energy_error))
+   end subroutine test_clusters_apart
+
+   !> Two clusters that grow into each other: as in clusters-apart, but with one ball
+   !> between them, 10 um from each: the balls leaving both clusters strike it while
+   !> the clusters are still in contact, each region grows over it and the two become
+   !> one. Against the whole row integrated.
+   subroutine test_clusters_merge(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result, integrated
+      real(wp), parameter :: rtol = 1.0e-10_wp
+      integer :: k
+      logical :: apart, spans
+      chain = steel_row(7, 1.0_wp, steel_damping, 0.0_wp)
+      chain%velocity(7) = -0.8_wp
+      chain%gap = [1.0e-4_wp, 0.0_wp, 1.0e-5_wp, 1.0e-5_wp, 0.0_wp, 1.2e-4_wp]
+      call run(error, chain, opts(method_auto, rtol), result, "merging clusters")
+      if (allocated(error)) return
+      ! two regions apart at first, then one over both (bodies 3 to 5 at least)
+      apart = size(result%switches) >= 2
+      if (apart) apart = result%switches(1)%last < result%switches(2)%first .and. &
+         & result%switches(2)%first > 0
+      spans = .false.
+      do k = 3, size(result%switches)
+         spans = spans .or. (result%switches(k)%first >= 1 .and. &
+            & result%switches(k)%first <= 3 .and. result%switches(k)%last >= 5)
+      end do
+      call check(error, apart .and. spans, "merging clusters: two regions, then one")
+      if (allocated(error)) return
+      call run(error, chain, opts(method_integrated, rtol), integrated, &
+         & "merging clusters integrated")
+      if (allocated(error)) return
+      call check(error, all(abs(result%velocities - integrated%velocities) <= &
+         & k_velocity * rtol), "merging clusters: auto and integrated disagree")
+      if (allocated(error)) return
+      call check(error, result%energy_error <= k_energy * rtol, &
+         & "merging clusters: energy balance " // format_real(result%energy_error))
+   end subroutine test_clusters_merge
+
+   !> 40 random dilute systems (3 to 10 balls, masses over a decade, speeds up to 1 m/s
+   !> either way, gaps of 0.1 to 2 mm, elastic or damped, walls or not) to 5 ms, against
+   !> a reference integrated at rtol 1e-13: method auto (closed forms, and regions
+   !> wherever contacts overlap) at rtol 1e-10 counts the same contacts, keeps the
+   !> energy balance within 5000 rtol, and its velocities are within 1500 rtol of the
+   !> largest speed or at least as accurate as the whole system integrated at the same
+   !> rtol (the errors of a cluster grow through the contacts after it).
+   subroutine test_random_dilute(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: auto, integrated, fine
+      real(wp), parameter :: rtol = 1.0e-10_wp
+      real(wp) :: r(50), vmax, err_auto, err_integrated, worst(3)
+      integer :: trial, n, i, clusters
+      character(len=16) :: name
+      worst = 0.0_wp
+      clusters = 0
+      do trial = 1, 40
+         ! (the generator's first outputs differ little between nearby seeds)
+         call random_fill(r, 5000 + 97 * trial)
+         n = 3 + int(8 * r(50))
+         allocate(chain%mass(n), chain%velocity(n), chain%gap(n - 1), chain%law(n - 1))
+         do i = 1, n
+            chain%mass(i) = steel_mass * 10.0_wp**(r(10 + i) - 0.5_wp)
+            chain%velocity(i) = 2 * r(20 + i) - 1
+         end do
+         do i = 1, n - 1
+            chain%gap(i) = 1.0e-4_wp * 20.0_wp**r(30 + i)
+            chain%law(i) = contact_law(ball_ball(), 1.5_wp, merge(0.0_wp, steel_damping, &
+               & r(41) < 0.3_wp))
+         end do
+         chain%left_wall = r(42) < 0.5_wp
+         chain%right_wall = r(43) < 0.5_wp
+         chain%left_law = contact_law(steel_wall, 1.5_wp, steel_damping)
+         chain%right_law = chain%left_law
+         chain%left_gap = 1.0e-3_wp
+         chain%right_gap = 1.0e-3_wp
+         write(name, '(a, i0)') "dilute ", trial
+         call run(error, chain, opts(method_auto, rtol, 5.0e-3_wp), auto, trim(name))
+         if (allocated(error)) return
+         call run(error, chain, opts(method_integrated, rtol, 5.0e-3_wp), integrated, &
+            & trim(name) // " integrated")
+         if (allocated(error)) return
+         call run(error, chain, opts(method_integrated, 1.0e-13_wp, 5.0e-3_wp), fine, &
+            & trim(name) // " reference")
+         if (allocated(error)) return
+         clusters = clusters + int(auto%counters%clusters)
+         vmax = maxval(abs(chain%velocity))
+         err_auto = maxval(abs(auto%velocities - fine%velocities)) / vmax / rtol
+         err_integrated = maxval(abs(integrated%velocities - fine%velocities)) / vmax / rtol
+         worst = max(worst, [err_auto, err_integrated, auto%energy_error / rtol])
+         call check(error, auto%n_contacts == fine%n_contacts, trim(name) // &
+            & ": auto and the reference count different contacts")
+         if (allocated(error)) return
+         call check(error, err_auto <= max(k_velocity, err_integrated), trim(name) // &
+            & ": velocity error " // format_real(err_auto) // " rtol, integrated " // &
+            & format_real(err_integrated))
+         if (allocated(error)) return
+         deallocate(chain%mass, chain%velocity, chain%gap, chain%law)
+      end do
+      print '(2x, a, i0, a, 3es10.2)', "40 dilute systems, ", clusters, " clusters; " // &
+         & "largest velocity error of auto, of integrated, energy error of auto / rtol:", worst
+      call check(error, worst(3) <= k_energy, "dilute systems: energy balance " // &
+         & format_real(worst(3)) // " rtol")
+   end subroutine test_random_dilute
 
    ! ==================================================================================
    ! Size

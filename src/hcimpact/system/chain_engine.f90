@@ -28,8 +28,12 @@
 !> integrator (`cluster_integrator`, implemented by the CVODE component) integrates
 !> from that instant, with the states of the closed forms as initial values. The region
 !> grows when a body outside touches it, and dissolves, back to the closed forms, when
-!> no contact inside it is active or closing. Without an integrator (the core alone,
-!> or method_exact) a cluster is hcimpact_err_unavailable.
+!> no contact inside it is active or closing. Clusters apart are regions of their own,
+!> each with its own integrator and clock, kept apart by at least one body in free
+!> flight (a region that reaches another merges with it); the engine handles the
+!> events of all of them and of the closed forms in the order of time (see
+!> `cluster_integrator`). Without an integrator (the core alone, or method_exact) a
+!> cluster is hcimpact_err_unavailable.
 !>
 !> Coordinates: every body's displacement u from its initial position (q_i(0) of
 !> hcimpact_chain_types) and its velocity; a gap is its initial value plus a difference
@@ -76,8 +80,8 @@ module hcimpact_chain_engine
       real(wp) :: t0 = 0.0_wp, u0 = 0.0_wp, v0 = 0.0_wp
       !> The slot of the contact the body is in (closed forms), -1 if none
       integer :: busy = -1
-      !> In the integrated region
-      logical :: in_region = .false.
+      !> The integrated region the body is in (its index in engine%regions), 0 if none
+      integer :: region = 0
    end type body_state
 
    !> A contact computed by the closed forms (the slot of its pair)
@@ -94,6 +98,42 @@ module hcimpact_chain_engine
       logical :: handed = .false.
       real(wp) :: so_far_dissipated = 0.0_wp, so_far_peak = 0.0_wp, so_far_deformation = 0.0_wp
    end type exact_contact
+
+   !> An integrator of a region of bodies (the CVODE component implements it); one
+   !> object per region, made from the one given to `run_engine` (`mold`).
+   !>
+   !> The engine calls `begin` when a cluster forms (the region's bodies' states at
+   !> engine%time are in engine%body, u0 and v0 at t0 = engine%time). The region then
+   !> runs on its own clock: `time` is how far its contacts have been followed (and
+   !> recorded), `next` the time at which the engine must call `advance` again (the end
+   !> of its last step, or where a gap at its boundary closes within that step), and
+   !> its state is known on [time, next] from the integrator's interpolant. The engine
+   !> handles every event of the system in the order of time, so that no region has
+   !> followed its contacts beyond the time of an event that could change it: at
+   !> engine%time = next it calls `advance`, which follows the contacts up to `next`
+   !> and reports what happened there (what), or steps on; `state_at` gives the state
+   !> at a time in [time, next]; `finish` follows the contacts up to engine%time (<=
+   !> next), writes the states back into engine%body (t0, u0, v0) and stops. While a
+   !> region exists its bodies' contacts are the integrator's: it records them with
+   !> `engine_record`.
+   type, abstract :: cluster_integrator
+      !> The region's bodies first .. last
+      integer :: first = 0, last = 0
+      !> Contacts followed up to `time`; `advance` is due at `next` (s)
+      real(wp) :: time = 0.0_wp, next = 0.0_wp
+      !> Whether `begin` has been called, and whether the region is at rest for good
+      logical :: begun = .false., rested = .false.
+   contains
+      procedure(integrator_begin), deferred :: begin
+      procedure(integrator_advance), deferred :: advance
+      procedure(integrator_state), deferred :: state_at
+      procedure(integrator_finish), deferred :: finish
+   end type cluster_integrator
+
+   !> An integrated region: its integrator, which knows its bodies and its clock
+   type :: region_entry
+      class(cluster_integrator), allocatable :: integrator
+   end type region_entry
 
    !> The state of a whole computation
    type :: chain_engine
@@ -112,10 +152,10 @@ module hcimpact_chain_engine
       !> Indexed binary heap of the slots by event time
       integer, allocatable :: heap(:), heap_pos(:)
       integer :: heap_size = 0
-      !> The integrated region: its bodies first .. last (0 0: none); whether the
-      !> integrator has begun it, and whether it has come to rest
-      integer :: first = 0, last = 0
-      logical :: region_begun = .false., region_rested = .false.
+      !> The integrated regions (each with an integrator of its own), apart from one
+      !> another by at least one body in free flight
+      type(region_entry), allocatable :: regions(:)
+      integer :: n_regions = 0
       !> Records of the contacts that ended
       type(contact_record), allocatable :: records(:)
       integer :: n_records = 0
@@ -138,39 +178,25 @@ module hcimpact_chain_engine
       character(len=max_message) :: message = "success"
    end type chain_engine
 
-   !> An integrator of a region of bodies (the CVODE component implements it). The
-   !> engine calls `begin` when a cluster forms (the region's bodies' states at
-   !> engine%time are in engine%body, u0 and v0 at t0 = engine%time), then `advance`
-   !> until it returns something else than advance_reached at the stop time, and
-   !> `finish`, which writes the states at engine%time back into engine%body (t0, u0,
-   !> v0). `state_at` gives the region's displacements and velocities at a time of the
-   !> last step. While a region exists its bodies' contacts are the integrator's: it
-   !> records them with `engine_record`.
-   type, abstract :: cluster_integrator
-   contains
-      procedure(integrator_begin), deferred :: begin
-      procedure(integrator_advance), deferred :: advance
-      procedure(integrator_state), deferred :: state_at
-      procedure(integrator_finish), deferred :: finish
-   end type cluster_integrator
-
    abstract interface
-      !> Start integrating the region engine%first .. engine%last at engine%time
+      !> Start integrating the region self%first .. self%last at engine%time
       subroutine integrator_begin(self, engine, stat)
          import :: cluster_integrator, chain_engine
          class(cluster_integrator), intent(inout) :: self
          type(chain_engine), intent(inout) :: engine
          integer, intent(out) :: stat
       end subroutine integrator_begin
-      !> Integrate until t_stop or an event; engine%time is set to where it stopped
-      subroutine integrator_advance(self, engine, t_stop, what, stat)
+      !> At engine%time = self%next: follow the contacts up to it and report what
+      !> happened there (what), else step on (never beyond t_end) and set self%next
+      subroutine integrator_advance(self, engine, t_end, what, stat)
          import :: cluster_integrator, chain_engine, wp
          class(cluster_integrator), intent(inout) :: self
          type(chain_engine), intent(inout) :: engine
-         real(wp), intent(in) :: t_stop
+         real(wp), intent(in) :: t_end
          integer, intent(out) :: what, stat
       end subroutine integrator_advance
-      !> Displacements and velocities of the region's bodies at the time t
+      !> Displacements and velocities of the region's bodies at the time t in
+      !> [self%time, self%next]
       subroutine integrator_state(self, engine, t, u, v)
          import :: cluster_integrator, chain_engine, wp
          class(cluster_integrator), intent(inout) :: self
@@ -178,7 +204,8 @@ module hcimpact_chain_engine
          real(wp), intent(in) :: t
          real(wp), intent(out) :: u(:), v(:)
       end subroutine integrator_state
-      !> Write the region's states at engine%time into engine%body and stop
+      !> Follow the contacts up to engine%time, write the region's states then into
+      !> engine%body and stop
       subroutine integrator_finish(self, engine)
          import :: cluster_integrator, chain_engine
          class(cluster_integrator), intent(inout) :: self
@@ -200,10 +227,11 @@ contains
       type(chain_options), intent(in) :: options
       type(chain_result), intent(out) :: result
       integer, intent(out) :: stat
-      class(cluster_integrator), intent(inout), optional :: integrator
+      !> The integrator of clusters: each region gets an object of its type (mold)
+      class(cluster_integrator), intent(in), optional :: integrator
       type(chain_engine) :: engine
-      real(wp) :: t_stop, t_event, t_end
-      integer :: what, slot
+      real(wp) :: t_event, t_end, t_sample, t_region, t_next
+      integer :: what, slot, k, r
       integer(int64) :: passes, max_passes
       ! clusters dissolved in a row at the same time, and how many are tolerated
       integer :: idle_dissolves
@@ -224,18 +252,22 @@ contains
       if (.not. until_rest) t_end = options%t_end
 
       if (options%method == method_integrated) then
-         call form_region(engine, 1, engine%n, "the integrated method: the whole system")
+         call form_region(engine, 1, engine%n, "the integrated method: the whole system", &
+            & integrator)
       else
          call schedule_all(engine)
       end if
 
-      ! every pass of the loop steps, handles an event or switches a region, each of
-      ! which the options bound; a pass that does none of them is bounded here too
+      ! every pass of the loop steps a region, handles an event, switches a region or
+      ! takes a sample, each of which the options bound; a pass that does none of
+      ! them is bounded here too
       passes = 0_int64
       idle_dissolves = 0
       t_dissolved = -huge(1.0_wp)
       max_passes = 4_int64 * (min(options%max_steps, 2_int64**40) &
          & + min(options%max_events, 2_int64**40)) + 1000_int64
+      if (allocated(options%sample_times)) max_passes = max_passes &
+         & + int(size(options%sample_times), int64)
       main: do
          passes = passes + 1_int64
          if (passes > max_passes) then
@@ -244,18 +276,20 @@ contains
                & max_passes, " passes of the event loop (at t = ", engine%time, " s)"
             exit main
          end if
-         if (engine%first > 0 .and. .not. engine%region_begun) then
-            call integrator%begin(engine, stat)
+         do k = 1, engine%n_regions
+            if (engine%regions(k)%integrator%begun) cycle
+            call engine%regions(k)%integrator%begin(engine, stat)
             if (stat /= hcimpact_ok) exit main
-            engine%region_begun = .true.
-         end if
+            engine%regions(k)%integrator%begun = .true.
+         end do
          ! at rest for good, and nothing else can happen: the region is the whole
          ! system (a body outside it, in free flight under gravity, would fall onto it)
-         if (until_rest .and. engine%region_rested .and. engine%heap_size == 0 .and. &
-            & engine%first == 1 .and. engine%last == engine%n) then
-            call integrator%finish(engine)
-            call settle_at_rest(engine)
-            exit main
+         if (until_rest .and. engine%n_regions == 1 .and. engine%heap_size == 0) then
+            if (whole_at_rest(engine%regions(1)%integrator, engine%n)) then
+               call close_region(engine, 1)
+               call settle_at_rest(engine, 1, engine%n)
+               exit main
+            end if
          end if
          if (engine%events >= options%max_events) then
             stat = hcimpact_err_no_convergence
@@ -264,22 +298,37 @@ contains
                & "that never stops, e.g. bouncing without loss between walls)"
             exit main
          end if
+         ! the next thing to happen: an event of a slot, a sample, the end, or a
+         ! region's (ties: the region first, the lowest index of equal ones)
          t_event = huge(1.0_wp)
          if (engine%heap_size > 0) t_event = engine%event_time(engine%heap(1))
-         t_stop = min(t_event, t_end, next_sample_time(engine))
-         if (engine%first > 0) then
-            call integrator%advance(engine, t_stop, what, stat)
+         t_sample = next_sample_time(engine)
+         r = 0
+         t_region = huge(1.0_wp)
+         do k = 1, engine%n_regions
+            if (engine%regions(k)%integrator%next < t_region) then
+               r = k
+               t_region = engine%regions(k)%integrator%next
+            end if
+         end do
+         t_next = min(t_event, t_sample, t_end, t_region)
+         if (t_next >= huge(1.0_wp)) exit main
+         engine%time = max(engine%time, t_next)
+         if (t_sample <= t_next) then
+            call take_samples(engine)
+            cycle main
+         end if
+         if (t_end <= t_next) exit main
+         if (r > 0 .and. t_region <= t_event) then
+            call engine%regions(r)%integrator%advance(engine, t_end, what, stat)
             if (stat /= hcimpact_ok) exit main
             select case (what)
             case (advance_reached)
                continue
             case (advance_grow_left, advance_grow_right)
-               call integrator%finish(engine)
-               call grow_region(engine, what == advance_grow_left)
-               cycle main
+               call grow_region(engine, r, what == advance_grow_left, integrator)
             case (advance_dissolved)
-               call integrator%finish(engine)
-               call dissolve_region(engine)
+               call dissolve_region(engine, r)
                ! a cluster that forms and dissolves again and again without the time
                ! advancing (seen at extreme scales) is no progress
                if (engine%time > t_dissolved) then
@@ -295,54 +344,53 @@ contains
                   end if
                end if
                t_dissolved = engine%time
-               cycle main
             case (advance_captured)
-               engine%region_rested = .true.
-               ! the system rests when the resting region is all of it (a stack at
-               ! rest while another body is still falling onto it is not)
-               if (.not. engine%rested .and. engine%first == 1 .and. &
-                  & engine%last == engine%n) then
-                  engine%rested = .true.
-                  engine%rest_time = engine%time
-               end if
-               cycle main
+               associate (it => engine%regions(r)%integrator)
+                  it%rested = .true.
+                  ! the system rests when the resting region is all of it (a stack at
+                  ! rest while another body is still falling onto it is not)
+                  if (.not. engine%rested .and. it%first == 1 .and. it%last == engine%n) then
+                     engine%rested = .true.
+                     engine%rest_time = engine%time
+                  end if
+               end associate
             case default
                stat = hcimpact_err_no_convergence
                exit main
             end select
-         else
-            if (t_stop >= huge(1.0_wp)) exit main
-            engine%time = max(engine%time, t_stop)
+            cycle main
          end if
-         call take_samples(engine, integrator)
-         if (engine%time >= t_end) exit main
-         if (engine%heap_size == 0) cycle main
          slot = engine%heap(1)
-         if (engine%event_time(slot) > engine%time) cycle main
          engine%events = engine%events + 1
          call process_event(engine, slot, stat, integrator)
          if (stat /= hcimpact_ok) exit main
       end do main
 
+      ! the regions still open are written back at the final time (or where the run
+      ! failed)
+      do while (engine%n_regions > 0)
+         call close_region(engine, engine%n_regions)
+      end do
       if (stat /= hcimpact_ok) then
-         if (engine%first > 0 .and. engine%region_begun) call integrator%finish(engine)
          call fail(engine, result, stat)
          return
       end if
-      ! the end: a region still open is written back at the final time
-      if (engine%first > 0) then
-         call integrator%finish(engine)
-         call region_release(engine)
-      end if
       if (.not. until_rest) engine%time = max(engine%time, t_end)
       ! samples after the end: nothing more happens (until_rest), or none (t_end)
-      if (until_rest) call take_samples(engine, integrator, all=.true.)
+      if (until_rest) call take_samples(engine, all=.true.)
       call fill_result(engine, result, stat)
       if (stat /= hcimpact_ok) then
          result = chain_result()
          call fail(engine, result, stat)
       end if
    end subroutine run_engine
+
+   !> Whether the region of `it` is at rest for good and is the whole system of n bodies
+   pure logical function whole_at_rest(it, n)
+      class(cluster_integrator), intent(in) :: it
+      integer, intent(in) :: n
+      whole_at_rest = it%rested .and. it%first == 1 .and. it%last == n
+   end function whole_at_rest
 
    !> Initial state: bodies at rest in their initial positions, the slots' events.
    subroutine setup(engine, chain, options)
@@ -553,12 +601,10 @@ contains
          call heap_update(engine, s, t_next)
          return
       end if
-      ! the region's slots and its boundary are watched by the integrator
-      if (engine%first > 0) then
-         if (s >= engine%first - 1 .and. s <= engine%last) then
-            call heap_update(engine, s, t_next)
-            return
-         end if
+      ! the regions' slots and their boundaries are watched by their integrators
+      if (touches_region(engine, s)) then
+         call heap_update(engine, s, t_next)
+         return
       end if
       if (engine%exact(s)%active) then
          engine%event_kind(s) = event_end
@@ -707,7 +753,7 @@ contains
       integer, intent(in) :: s
       integer, intent(out) :: stat
       !> The integrator of clusters (absent: the closed forms alone)
-      class(cluster_integrator), intent(inout), optional :: integrator
+      class(cluster_integrator), intent(in), optional :: integrator
       character(len=max_message) :: why
       integer :: neighbour
       logical :: have_integrator
@@ -728,8 +774,7 @@ contains
                   & "): it needs the CVODE component (method auto or integrated)"
                return
             end if
-            call hand_back(engine, integrator)
-            call form_cluster(engine, s, why, neighbour)
+            call form_cluster(engine, s, why, neighbour, integrator)
          end if
       case (event_cluster)
          write(why, '(a, i0, a)') "the gap of pair ", s, &
@@ -740,27 +785,11 @@ contains
                & "): it needs the CVODE component (method auto or integrated)"
             return
          end if
-         call hand_back(engine, integrator)
-         call form_cluster(engine, s, why, -1)
+         call form_cluster(engine, s, why, -1, integrator)
       case default
          call heap_update(engine, s, huge(1.0_wp))
       end select
    end subroutine process_event
-
-   !> Before a region that is being integrated grows by an event of the engine: the
-   !> integrator writes its bodies' states and its open contacts back (as before a
-   !> growth it found itself). Without this the region's bodies restarted from their
-   !> states when it began, flying freely since (a ball in contact with the floor
-   !> when a contact next to it started went on 0.06 mm into it: 5 % of the energy of
-   !> a stack of three put in at once, and the stack never came to rest).
-   subroutine hand_back(engine, integrator)
-      type(chain_engine), intent(inout) :: engine
-      class(cluster_integrator), intent(inout) :: integrator
-      if (engine%first > 0 .and. engine%region_begun) then
-         call integrator%finish(engine)
-         engine%region_begun = .false.
-      end if
-   end subroutine hand_back
 
    !> A contact of slot s starts now: by the closed forms if it is isolated (why
    !> empty), else why says what prevents it.
@@ -804,7 +833,7 @@ contains
          mass = engine%chain%mass(left) * (engine%chain%mass(right) &
             & / (engine%chain%mass(left) + engine%chain%mass(right)))
       end if
-      ! a neighbour in the region: the contact joins it
+      ! a neighbour in a region: the contact joins it
       do side = -1, 1, 2
          if (s + side >= 0 .and. s + side <= engine%n) then
             if (touches_region(engine, s + side)) then
@@ -843,12 +872,15 @@ contains
       call schedule(engine, s + 1)
    end subroutine start_contact
 
-   !> Whether slot s is the region's or at its boundary
+   !> Whether slot s is inside a region or at its boundary (one of its bodies is
+   !> integrated)
    pure logical function touches_region(engine, s)
       type(chain_engine), intent(in) :: engine
       integer, intent(in) :: s
       touches_region = .false.
-      if (engine%first > 0) touches_region = s >= engine%first - 1 .and. s <= engine%last
+      if (s >= 1) touches_region = engine%body(s)%region > 0
+      if (s + 1 <= engine%n) touches_region = touches_region .or. &
+         & engine%body(s + 1)%region > 0
    end function touches_region
 
    !> Put the bodies of slot s into the exact contact c.
@@ -977,17 +1009,20 @@ contains
    end subroutine engine_record
 
    ! =================================================================================
-   ! The integrated region
+   ! The integrated regions
    ! =================================================================================
 
-   !> A cluster forms at slot s now: a region around it (or the existing one grown).
-   subroutine form_cluster(engine, s, why, neighbour)
+   !> A cluster forms at slot s now: a region around it (with every region it
+   !> reaches).
+   subroutine form_cluster(engine, s, why, neighbour, integrator)
       type(chain_engine), intent(inout) :: engine
       !> The slot whose contact cannot be computed alone
       integer, intent(in) :: s
       character(len=*), intent(in) :: why
       !> A neighbouring slot that may close during it (-1: none)
       integer, intent(in) :: neighbour
+      !> The integrator of clusters (each region gets an object of its type)
+      class(cluster_integrator), intent(in) :: integrator
       integer :: left, right, first, last
       call slot_bodies(engine, s, left, right)
       first = left
@@ -999,42 +1034,79 @@ contains
          if (left > 0) first = min(first, left)
          if (right > 0) last = max(last, right)
       end if
-      if (engine%first > 0) then
-         first = min(first, engine%first)
-         last = max(last, engine%last)
-      end if
-      call form_region(engine, first, last, why)
+      call form_region(engine, first, last, why, integrator)
    end subroutine form_cluster
 
-   !> Make bodies first .. last (widened to whole contacts and busy neighbours) the
-   !> region, at the current time, with their closed-form states.
-   subroutine form_region(engine, first, last, why)
+   !> Make bodies first .. last a region, at the current time, with their closed-form
+   !> states: widened to whole contacts and busy or touching neighbours, and merged
+   !> with every region it overlaps or borders (regions stay apart by at least one
+   !> body in free flight: the body next to a region's end must fly freely, its
+   !> integrator watches that gap). A region merged is written back first.
+   subroutine form_region(engine, first, last, why, integrator)
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: first, last
       character(len=*), intent(in) :: why
-      integer :: a, b, i, s
+      !> The integrator of clusters (the new region gets an object of its type)
+      class(cluster_integrator), intent(in) :: integrator
+      type(region_entry), allocatable :: grown(:)
+      integer :: a, b, i, s, k
       real(wp) :: u, v
+      logical :: merged
 
       a = first
       b = last
-      ! the whole contacts of the bodies at the ends (a body inside has its partner
-      ! inside), and neighbours in a contact of their own or touching (a touching pair
-      ! at rest has a gap of exactly 0, whose closing no sign change can show): each
-      ! step adds a body, so the widening costs what it adds
-      do while (a > 1)
-         if (.not. (engine%body(a)%busy == a - 1 .or. engine%body(a - 1)%busy >= 0 &
-            & .or. closed_gap(engine, a - 1))) exit
-         a = a - 1
+      merged = .false.
+      ! the regions within the range or next to it
+      i = max(a - 1, 1)
+      do while (i <= min(b + 1, engine%n))
+         k = engine%body(i)%region
+         if (k > 0) then
+            a = min(a, engine%regions(k)%integrator%first)
+            b = max(b, engine%regions(k)%integrator%last)
+            call close_region(engine, k)
+            merged = .true.
+         end if
+         i = i + 1
       end do
-      do while (b < engine%n)
-         if (.not. (engine%body(b)%busy == b .or. engine%body(b + 1)%busy >= 0 &
-            & .or. closed_gap(engine, b))) exit
-         b = b + 1
+      ! the whole contacts of the bodies at the ends (a body inside has its partner
+      ! inside), neighbours in a contact of their own or touching (a touching pair at
+      ! rest has a gap of exactly 0, whose closing no sign change can show), and
+      ! regions reached on the way: each step adds a body or a region, so the widening
+      ! costs what it adds
+      do
+         if (a > 1) then
+            k = engine%body(a - 1)%region
+            if (k > 0) then
+               a = min(a, engine%regions(k)%integrator%first)
+               call close_region(engine, k)
+               merged = .true.
+               cycle
+            end if
+            if (engine%body(a)%busy == a - 1 .or. engine%body(a - 1)%busy >= 0 &
+               & .or. closed_gap(engine, a - 1)) then
+               a = a - 1
+               cycle
+            end if
+         end if
+         if (b < engine%n) then
+            k = engine%body(b + 1)%region
+            if (k > 0) then
+               b = max(b, engine%regions(k)%integrator%last)
+               call close_region(engine, k)
+               merged = .true.
+               cycle
+            end if
+            if (engine%body(b)%busy == b .or. engine%body(b + 1)%busy >= 0 &
+               & .or. closed_gap(engine, b)) then
+               b = b + 1
+               cycle
+            end if
+         end if
+         exit
       end do
       ! the closed-form contacts inside become integrated: their states now, and the
       ! part of their record known so far (the integrator finishes it)
       do i = a, b
-         if (engine%body(i)%in_region) cycle
          call body_state_at(engine, i, engine%time, u, v)
          s = engine%body(i)%busy
          engine%body(i) = body_state(t0=engine%time, u0=u, v0=v, busy=s)
@@ -1042,17 +1114,30 @@ contains
       do s = max(a - 1, 0), min(b, engine%n)
          if (engine%exact(s)%active) call hand_over(engine, s)
       end do
+      if (.not. allocated(engine%regions)) allocate(engine%regions(4))
+      if (engine%n_regions == size(engine%regions)) then
+         allocate(grown(2 * size(engine%regions)))
+         do k = 1, engine%n_regions
+            call move_alloc(engine%regions(k)%integrator, grown(k)%integrator)
+         end do
+         call move_alloc(grown, engine%regions)
+      end if
+      engine%n_regions = engine%n_regions + 1
+      k = engine%n_regions
+      allocate(engine%regions(k)%integrator, mold=integrator)
+      ! (a new region has not begun, nor rested: a body falling onto a stack at rest
+      ! joined it, and with the old region's flag the run ended as it landed)
+      engine%regions(k)%integrator%first = a
+      engine%regions(k)%integrator%last = b
+      engine%regions(k)%integrator%time = engine%time
+      engine%regions(k)%integrator%next = engine%time
+      engine%regions(k)%integrator%begun = .false.
+      engine%regions(k)%integrator%rested = .false.
       do i = a, b
          engine%body(i)%busy = -1
-         engine%body(i)%in_region = .true.
+         engine%body(i)%region = k
       end do
-      if (engine%first == 0) engine%counters%clusters = engine%counters%clusters + 1
-      engine%first = a
-      engine%last = b
-      engine%region_begun = .false.
-      ! a new region has not rested yet (a body falling onto a stack at rest joined
-      ! it: with the old region's flag the run ended as it landed)
-      engine%region_rested = .false.
+      if (.not. merged) engine%counters%clusters = engine%counters%clusters + 1
       call log_switch(engine, a, b, why)
       do s = max(a - 2, 0), min(b + 1, engine%n)
          call schedule(engine, s)
@@ -1107,18 +1192,20 @@ contains
       e = max(e, 0.0_wp)
    end function exact_dissipated
 
-   !> Grow the region on one side, where a body outside touched it: by that body and a
+   !> Grow region k on one side, where a body outside touched it: by that body and a
    !> quarter of the region's size more (free bodies integrate at little cost, and a
    !> region that grows by a fraction of itself is begun O(log N) times, not O(N)
-   !> times, as a wave runs along a chain with gaps); the integrator has written the
-   !> region's states back.
-   subroutine grow_region(engine, left_side)
+   !> times, as a wave runs along a chain with gaps); regions reached are merged.
+   subroutine grow_region(engine, k, left_side, integrator)
       type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: k
       logical, intent(in) :: left_side
+      !> The integrator of clusters
+      class(cluster_integrator), intent(in) :: integrator
       character(len=max_message) :: why
       integer :: a, b, more
-      a = engine%first
-      b = engine%last
+      a = engine%regions(k)%integrator%first
+      b = engine%regions(k)%integrator%last
       more = max(1, (b - a + 1) / 4)
       if (left_side) then
          write(why, '(a, i0, a)') "body ", a - 1, " touches the cluster"
@@ -1127,31 +1214,45 @@ contains
          write(why, '(a, i0, a)') "body ", b + 1, " touches the cluster"
          b = min(b + more, engine%n)
       end if
-      call region_release(engine)
-      call form_region(engine, a, b, why)
+      call close_region(engine, k)
+      call form_region(engine, a, b, why, integrator)
    end subroutine grow_region
 
-   !> Mark the region's bodies free (the integrator wrote their states back).
-   subroutine region_release(engine)
+   !> Close region k: its integrator (if begun) follows its contacts up to now and
+   !> writes its bodies' states back, the bodies are free again (a contact in progress
+   !> stays in its slot, handed over), and the last region takes its index.
+   subroutine close_region(engine, k)
       type(chain_engine), intent(inout) :: engine
-      integer :: i
-      do i = engine%first, engine%last
-         engine%body(i)%in_region = .false.
+      integer, intent(in) :: k
+      integer :: i, n
+      if (engine%regions(k)%integrator%begun) call engine%regions(k)%integrator%finish(engine)
+      do i = engine%regions(k)%integrator%first, engine%regions(k)%integrator%last
+         engine%body(i)%region = 0
          engine%body(i)%busy = -1
       end do
-   end subroutine region_release
+      deallocate(engine%regions(k)%integrator)
+      n = engine%n_regions
+      if (k < n) then
+         call move_alloc(engine%regions(n)%integrator, engine%regions(k)%integrator)
+         do i = engine%regions(k)%integrator%first, engine%regions(k)%integrator%last
+            engine%body(i)%region = k
+         end do
+      end if
+      engine%n_regions = n - 1
+   end subroutine close_region
 
-   !> The cluster has separated: its bodies fly freely again.
-   subroutine dissolve_region(engine)
+   !> Region k has separated: its bodies fly freely again.
+   subroutine dissolve_region(engine, k)
       type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: k
+      character(len=max_message) :: why
       integer :: a, b, s
-      a = engine%first
-      b = engine%last
-      call region_release(engine)
-      engine%first = 0
-      engine%last = 0
-      engine%region_rested = .false.
-      call log_switch(engine, 0, 0, "the cluster has separated: closed forms again")
+      a = engine%regions(k)%integrator%first
+      b = engine%regions(k)%integrator%last
+      call close_region(engine, k)
+      write(why, '(a, i0, a, i0, a)') "the cluster of bodies ", a, " to ", b, &
+         & " has separated: closed forms again"
+      call log_switch(engine, 0, 0, why)
       do s = max(a - 2, 0), min(b + 1, engine%n)
          call schedule(engine, s)
       end do
@@ -1186,20 +1287,19 @@ contains
    !> deformations); its least value, at the equilibrium x_j* = (W_j/c_j)^(1/n_j), is
    !> -sum_j B_j with B_j = W_j x_j* n_j/(n_j + 1), and any state with contact j open
    !> has E >= -sum B + B_j. So E + sum B < min B means at rest. Huge when the region
-   !> is not a stack on such a wall. u and v: the region's displacements and
-   !> velocities.
-   function capture_margin(engine, u, v) result(margin)
+   !> is not a stack on such a wall. u and v: the displacements and velocities of the
+   !> region's bodies a .. b.
+   function capture_margin(engine, a, b, u, v) result(margin)
       type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: a, b
       real(wp), intent(in) :: u(:), v(:)
       real(wp) :: margin
       real(wp) :: e, b_sum, b_min, weight, x, xs, bound
-      integer :: a, b, i, k, s
+      integer :: i, k, s
       type(contact_law) :: law
       logical :: from_left
 
       margin = huge(1.0_wp)
-      a = engine%first
-      b = engine%last
       if (a <= 0 .or. engine%gravity == 0.0_wp) return
       from_left = engine%gravity < 0.0_wp
       if (from_left .and. .not. (a == 1 .and. engine%chain%left_wall)) return
@@ -1222,7 +1322,7 @@ contains
             weight = weight + engine%chain%mass(s) * abs(engine%gravity)
          end if
          law = slot_law(engine, s)
-         x = region_deformation(engine, s, u)
+         x = region_deformation(engine, a, s, u)
          e = e + power_law_potential(law%stiffness, law%exponent, max(x, 0.0_wp)) &
             & - weight * x
          xs = (weight / law%stiffness)**(1.0_wp / law%exponent)
@@ -1233,37 +1333,37 @@ contains
       margin = e + b_sum - b_min
    end function capture_margin
 
-   !> Kinetic + elastic + gravitational energy of the region (displacements u and
-   !> velocities v of its bodies; the slots inside it and its walls)
-   function region_energy(engine, u, v) result(e)
+   !> Kinetic + elastic + gravitational energy of the region of bodies a .. b
+   !> (displacements u and velocities v of its bodies; the slots inside it and its
+   !> walls)
+   function region_energy(engine, a, b, u, v) result(e)
       type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: a, b
       real(wp), intent(in) :: u(:), v(:)
       real(wp) :: e
       integer :: i, s
       type(contact_law) :: law
       e = 0.0_wp
-      do i = engine%first, engine%last
-         e = e + kinetic_energy(engine%chain%mass(i), v(i - engine%first + 1)) &
-            & - engine%chain%mass(i) * engine%chain%gravity * u(i - engine%first + 1)
+      do i = a, b
+         e = e + kinetic_energy(engine%chain%mass(i), v(i - a + 1)) &
+            & - engine%chain%mass(i) * engine%chain%gravity * u(i - a + 1)
       end do
-      do s = engine%first - 1, engine%last
+      do s = a - 1, b
          if (s < 0 .or. s > engine%n) cycle
          if (.not. slot_exists(engine, s)) cycle
-         if ((s == engine%first - 1 .and. s > 0) .or. (s == engine%last .and. &
-            & s < engine%n)) cycle
+         if ((s == a - 1 .and. s > 0) .or. (s == b .and. s < engine%n)) cycle
          law = slot_law(engine, s)
          e = e + power_law_potential(law%stiffness, law%exponent, &
-            & region_deformation(engine, s, u))
+            & region_deformation(engine, a, s, u))
       end do
    end function region_energy
 
-   !> The deformation of slot s of the region from its displacements u (first .. last)
-   pure real(wp) function region_deformation(engine, s, u)
+   !> The deformation of slot s of a region from the displacements u of its bodies
+   !> (the first of them is a)
+   pure real(wp) function region_deformation(engine, a, s, u)
       type(chain_engine), intent(in) :: engine
-      integer, intent(in) :: s
+      integer, intent(in) :: a, s
       real(wp), intent(in) :: u(:)
-      integer :: a
-      a = engine%first
       if (s == 0) then
          region_deformation = -(engine%chain%left_gap + u(1 - a + 1))
       else if (s == engine%n) then
@@ -1273,17 +1373,16 @@ contains
       end if
    end function region_deformation
 
-   !> The static equilibrium of the region resting on its wall: displacements u (first
-   !> .. last), velocities 0.
-   subroutine rest_state(engine, u)
+   !> The static equilibrium of the region of bodies a .. b resting on its wall:
+   !> displacements u, velocities 0.
+   subroutine rest_state(engine, a, b, u)
       type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: a, b
       real(wp), intent(out) :: u(:)
-      integer :: a, b, k, s
+      integer :: k, s
       real(wp) :: weight, xs, total
       type(contact_law) :: law
       logical :: from_left
-      a = engine%first
-      b = engine%last
       from_left = engine%gravity < 0.0_wp
       ! the weight beyond each contact: all of the region beyond the wall's, less
       ! one body per contact further out (O(m))
@@ -1315,28 +1414,25 @@ contains
       end do
    end subroutine rest_state
 
-   !> The region has come to rest for good and nothing else can happen: its bodies
-   !> are put at their static equilibrium.
-   subroutine settle_at_rest(engine)
+   !> The region of bodies a .. b (written back, closed) has come to rest for good and
+   !> nothing else can happen: its bodies are put at their static equilibrium.
+   subroutine settle_at_rest(engine, a, b)
       type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: a, b
       real(wp), allocatable :: u(:), u_now(:), v_now(:)
-      integer :: i, a
-      a = engine%first
-      allocate(u(engine%last - a + 1), u_now(engine%last - a + 1), &
-         & v_now(engine%last - a + 1))
-      do i = a, engine%last
+      integer :: i
+      allocate(u(b - a + 1), u_now(b - a + 1), v_now(b - a + 1))
+      do i = a, b
          u_now(i - a + 1) = engine%body(i)%u0
          v_now(i - a + 1) = engine%body(i)%v0
       end do
-      call rest_state(engine, u)
+      call rest_state(engine, a, b, u)
       ! what the region has above its equilibrium will all be dissipated
-      engine%dissipated = engine%dissipated + region_energy(engine, u_now, v_now) &
-         & - region_energy(engine, u, 0.0_wp * v_now)
-      do i = a, engine%last
+      engine%dissipated = engine%dissipated + region_energy(engine, a, b, u_now, v_now) &
+         & - region_energy(engine, a, b, u, 0.0_wp * v_now)
+      do i = a, b
          engine%body(i) = body_state(t0=engine%time, u0=u(i - a + 1), v0=0.0_wp)
       end do
-      engine%first = 0
-      engine%last = 0
       ! at rest: the velocities stay 0 (gravity is held by the contacts)
       engine%gravity = 0.0_wp
    end subroutine settle_at_rest
@@ -1356,13 +1452,12 @@ contains
 
    !> Take every sample due at the current time or before it (all: every sample left,
    !> when nothing can happen after the end).
-   subroutine take_samples(engine, integrator, all)
+   subroutine take_samples(engine, all)
       type(chain_engine), intent(inout) :: engine
-      class(cluster_integrator), intent(inout), optional :: integrator
       logical, intent(in), optional :: all
       real(wp) :: ts, u, v
       real(wp), allocatable :: ur(:), vr(:)
-      integer :: k, i, s
+      integer :: k, i, s, r, a
       type(contact_force_type) :: f
       type(contact_law) :: law
       logical :: every
@@ -1374,19 +1469,22 @@ contains
          ts = engine%options%sample_times(engine%next_sample)
          if (ts > engine%time .and. .not. every) exit
          k = engine%next_sample
-         if (engine%first > 0 .and. present(integrator)) then
-            allocate(ur(engine%last - engine%first + 1), vr(engine%last - engine%first + 1))
-            call integrator%state_at(engine, ts, ur, vr)
-         end if
          do i = 1, engine%n
-            if (engine%body(i)%in_region .and. allocated(ur)) then
-               u = ur(i - engine%first + 1)
-               v = vr(i - engine%first + 1)
-            else
-               call body_state_at(engine, i, ts, u, v)
-            end if
+            if (engine%body(i)%region > 0) cycle
+            call body_state_at(engine, i, ts, u, v)
             engine%sample_u(i, k) = engine%q_initial(i) + u
             engine%sample_v(i, k) = v
+         end do
+         ! the regions' bodies from their integrators (ts is within [time, next] of each)
+         do r = 1, engine%n_regions
+            associate (it => engine%regions(r)%integrator)
+               a = it%first
+               allocate(ur(it%last - a + 1), vr(it%last - a + 1))
+               call it%state_at(engine, ts, ur, vr)
+               engine%sample_u(a:it%last, k) = engine%q_initial(a:it%last) + ur
+               engine%sample_v(a:it%last, k) = vr
+               deallocate(ur, vr)
+            end associate
          end do
          do s = 0, engine%n
             engine%sample_f(s, k) = 0.0_wp
@@ -1407,7 +1505,6 @@ contains
             end if
             engine%sample_f(s, k) = f%force
          end do
-         if (allocated(ur)) deallocate(ur, vr)
          engine%next_sample = engine%next_sample + 1
       end do
    end subroutine take_samples
