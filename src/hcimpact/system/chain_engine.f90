@@ -525,9 +525,20 @@ contains
       real(wp) :: tt(1), xx(1), vv(1), ff(1)
       integer :: stat
       tt(1) = t - engine%exact(s)%t_start
-      if (tt(1) >= engine%exact(s)%outcome%contact_time) then
+      ! (from t_end on, which t_start + the contact time rounds to: t_end - t_start may
+      ! fall an ulp short of the contact time, and the time law there cost as much as
+      ! the rest of a dilute system)
+      if (t >= engine%exact(s)%t_end .or. tt(1) >= engine%exact(s)%outcome%contact_time) then
          x = 0.0_wp
          xd = engine%exact(s)%outcome%rebound_velocity
+         f = 0.0_wp
+         return
+      end if
+      ! at its start (what the time law gives for t <= 0, without its set-up and
+      ! quadratures: the bound of every neighbouring gap starts here)
+      if (.not. tt(1) > 0.0_wp) then
+         x = 0.0_wp
+         xd = engine%exact(s)%contact%velocity
          f = 0.0_wp
          return
       end if
