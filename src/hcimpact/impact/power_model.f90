@@ -335,7 +335,8 @@ contains
          ! l = (u - h(u))/beta = ln(1 + u)/beta, the first form cancelling (trajectory)
          lp = dd_log(u + 1.0_wp) / beta
       else
-         lp = q - beta * q * q * hd
+         ! (beta q q hd, its first product u = beta q already formed)
+         lp = q - u * q * hd
       end if
    end subroutine power_peak
 
