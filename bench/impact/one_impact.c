@@ -12,6 +12,8 @@
  *   --count N      contacts per group (default 65536)
  *   --seed S       random seed (default 20261125)
  *   --group G      only one group: "low" (beta <= 100) or "high" (100 < beta <= 1e8)
+ *   --beta LO HI   one group instead, beta log-uniform in [LO, HI] (to count the work of
+ *                  one regime, e.g. with callgrind)
  *   --lambertw     time hcimpact_lambert_w0 and hcimpact_lambert_wm1 instead, on four
  *                  groups of arguments (W0 on (-1/e, 0) and on [e, 1e300], W-1 on
  *                  (-1/e, 0), both next to the branch point, z + 1/e in [1e-15, 1e-2]):
@@ -212,6 +214,7 @@ int main(int argc, char **argv)
     int rounds = 15;
     size_t count = 65536;
     const char *only = NULL;
+    double beta_range[2] = {0.0, 0.0};
     int lambertw = 0;
     const char *paths[max_libs];
     int nlibs = 0;
@@ -221,7 +224,14 @@ int main(int argc, char **argv)
         else if (!strcmp(argv[i], "--count") && i + 1 < argc) count = (size_t)atol(argv[++i]);
         else if (!strcmp(argv[i], "--seed") && i + 1 < argc) rng_state = (uint64_t)atoll(argv[++i]);
         else if (!strcmp(argv[i], "--group") && i + 1 < argc) only = argv[++i];
-        else if (!strcmp(argv[i], "--lambertw")) lambertw = 1;
+        else if (!strcmp(argv[i], "--beta") && i + 2 < argc) {
+            beta_range[0] = atof(argv[++i]);
+            beta_range[1] = atof(argv[++i]);
+            if (!(beta_range[0] > 0.0 && beta_range[1] >= beta_range[0])) {
+                fprintf(stderr, "bench_one_impact: --beta needs 0 < LO <= HI\n");
+                return 2;
+            }
+        } else if (!strcmp(argv[i], "--lambertw")) lambertw = 1;
         else if (argv[i][0] == '-') {
             fprintf(stderr, "bench_one_impact: unknown option %s\n", argv[i]);
             return 2;
@@ -233,7 +243,7 @@ int main(int argc, char **argv)
     }
     if (nlibs == 0 || rounds < 1 || count < 2) {
         fprintf(stderr, "usage: bench_one_impact [--rounds R] [--count N] [--seed S] "
-                        "[--group low|high] [--lambertw] LIB [LIB ...]\n");
+                        "[--group low|high] [--beta LO HI] [--lambertw] LIB [LIB ...]\n");
         return 2;
     }
     workload work = {.nlibs = nlibs};
@@ -275,7 +285,16 @@ int main(int argc, char **argv)
 
     const char *group_name[2] = {"low", "high"};
     const char *group_text[2] = {"beta <= 100", "100 < beta <= 1e8"};
-    const double beta_lo[2] = {1e-3, 100.0}, beta_hi[2] = {100.0, 1e8};
+    double beta_lo[2] = {1e-3, 100.0}, beta_hi[2] = {100.0, 1e8};
+    char beta_text[64];
+    if (beta_range[0] > 0.0) {
+        /* one group of the given range, in the place of "low" */
+        snprintf(beta_text, sizeof beta_text, "%g <= beta <= %g", beta_range[0], beta_range[1]);
+        group_text[0] = beta_text;
+        beta_lo[0] = beta_range[0];
+        beta_hi[0] = beta_range[1];
+        only = group_name[0];
+    }
     double tmed[max_libs], rmed[max_libs];
     printf("| contacts | library | ns per impact (median of %d rounds) | min | max |"
            " ratio to the first (median, min, max) | failures | outcomes differing |\n",

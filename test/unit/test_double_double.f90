@@ -1,7 +1,8 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> Tests of hcimpact_double_double: dd_exp, dd_log, dd_sqrt and the operators against
 !> the mpmath references of test/reference/double_double.csv, the special values of
-!> exp and log, and the exactness of two_sum and two_prod.
+!> exp and log, and the exactness of two_sum and two_prod; hcimpact_kinds'
+!> exponent_from_bits, which the set-up of an impact reads binary exponents with.
 !>
 !> The error of a result y = y%hi + y%lo against the exact value ref = ref_hi + ref_lo
 !> is (y%hi - ref_hi) + (y%lo - ref_lo) (the first difference is exact when y is close),
@@ -13,12 +14,12 @@
 !> Safe under -ffpe-trap=invalid,zero,overflow: no NaN is compared, no logarithm of
 !> zero is taken, and nothing is formed that could overflow.
 module test_double_double
-   use, intrinsic :: iso_fortran_env, only : real128
+   use, intrinsic :: iso_fortran_env, only : real128, int64
    use, intrinsic :: ieee_arithmetic, only : ieee_value, ieee_positive_inf, ieee_negative_inf, &
       & ieee_is_finite, ieee_is_nan
    use testdrive, only : new_unittest, unittest_type, error_type, test_failed
    use hcimpact_check, only : format_real, read_labelled_table, int_text
-   use hcimpact_kinds, only : wp
+   use hcimpact_kinds, only : wp, exponent_from_bits
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), dd_exp, dd_log, dd_sqrt
    implicit none
@@ -93,7 +94,8 @@ contains
          & new_unittest("log-special", test_log_special), &
          & new_unittest("exp-log-roundtrip", test_roundtrip), &
          & new_unittest("two-sum-exact", test_two_sum), &
-         & new_unittest("two-prod-exact", test_two_prod) &
+         & new_unittest("two-prod-exact", test_two_prod), &
+         & new_unittest("exponent-from-bits", test_exponent_from_bits) &
          & ]
    end subroutine collect_double_double
 
@@ -537,5 +539,42 @@ contains
       p = two_prod(1e300_wp, 1e8_wp)
       call check_exact(error, p, 1e300_wp * 1e8_wp, 0.0_wp, "two_prod(1e300, 1e8)")
    end subroutine test_two_prod
+
+   !> exponent_from_bits(x) is exponent(x) for every kind of double: each binary
+   !> exponent of the normal range (at 1, next to 2 and at the halfway significand, both
+   !> signs), subnormals, zero, the extremes, Inf and NaN
+   subroutine test_exponent_from_bits(error)
+      !> Error handling
+      type(error_type), allocatable, intent(out) :: error
+      real(wp) :: x(14)
+      integer :: e, i, j
+      real(wp) :: significand(3)
+      significand = [1.0_wp, 1.5_wp, 2.0_wp - epsilon(1.0_wp)]
+      do e = minexponent(1.0_wp) - 1, maxexponent(1.0_wp) - 1
+         do j = 1, size(significand)
+            x(1) = scale(significand(j), e)
+            x(2) = -x(1)
+            do i = 1, 2
+               call check_exponent(x(i))
+               if (allocated(error)) return
+            end do
+         end do
+      end do
+      x = [0.0_wp, -0.0_wp, tiny(1.0_wp), tiny(1.0_wp) * (1.0_wp - epsilon(1.0_wp)), &
+         & tiny_sub, -3.0_wp * tiny_sub, 2.0_wp**(-1030), huge(1.0_wp), -huge(1.0_wp), &
+         & 0.5_wp, 1.0_wp, ieee_value(1.0_wp, ieee_positive_inf), &
+         & ieee_value(1.0_wp, ieee_negative_inf), transfer(-2251799813685248_int64, 1.0_wp)]
+      do i = 1, size(x)
+         call check_exponent(x(i))
+         if (allocated(error)) return
+      end do
+   contains
+      subroutine check_exponent(y)
+         real(wp), intent(in) :: y
+         if (exponent_from_bits(y) /= exponent(y)) call test_failed(error, &
+            & "exponent_from_bits(" // format_real(y) // ") = " &
+            & // int_text(exponent_from_bits(y)) // ", exponent = " // int_text(exponent(y)))
+      end subroutine check_exponent
+   end subroutine test_exponent_from_bits
 
 end module test_double_double

@@ -59,7 +59,8 @@ contains
       type(power_model) :: model
       type(dd_real) :: k, t, dur(2), tpeak, q, y, u, lp
       integer(ik) :: ev(3)
-      type(dd_real) :: xp
+      ! the compression at the peak force, and (x_peak/x_max)^(n+1) = 1 - y there
+      type(dd_real) :: xp, share
 
       outcome = outcome_type()
       stat = check_contact(contact)
@@ -96,16 +97,17 @@ contains
       outcome%time_at_peak_force = t%hi
       ! x_peak = x_max (1 - y)^(1/(n+1)); F = c x_peak^n (1 + u), which is
       ! (n+1) m V^2 H (1 - y) (1 + u)/x_peak since c x_peak^(n+1) = c x_max^(n+1) (1 - y)
+      share = 1.0_wp - y
       if (model%ln_x_max_dd) then
-         t = model%ln_x_max + dd_log(1.0_wp - y) * model%inv_np1_dd
+         t = model%ln_x_max + dd_log(share) * model%inv_np1_dd
          xp = dd_exp(t)
       else
          ! n = 1: x_max sqrt(1 - y)
-         xp = model%x_max * dd_sqrt(1.0_wp - y)
+         xp = model%x_max * dd_sqrt(share)
       end if
       outcome%compression_at_peak_force = xp%hi
       if (model%energy_ok) then
-         t = model%energy * (1.0_wp - y) * (u + 1.0_wp) / xp
+         t = model%energy * share * (u + 1.0_wp) / xp
          outcome%peak_force = t%hi
       else
          t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)

@@ -9,7 +9,7 @@
 !> hcimpact_power_impact.
 module hcimpact_power_model
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
-   use hcimpact_kinds, only : wp
+   use hcimpact_kinds, only : wp, exponent_from_bits
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_domain
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
@@ -96,7 +96,8 @@ contains
       ! beta = b V above max_beta: the exponents first, for a product that would overflow
       ! (b V < 2**(e_b + e_V); b = 0 is beta = 0 whatever V), then the product itself
       if (contact%damping > 0.0_wp .and. &
-         & exponent(contact%damping) + exponent(contact%velocity) > exponent(max_beta) + 1) then
+         & exponent_from_bits(contact%damping) + exponent_from_bits(contact%velocity) &
+         & > exponent(max_beta) + 1) then
          stat = hcimpact_err_domain
          return
       end if
@@ -141,10 +142,10 @@ contains
 
       ! x_max^(n+1) = (n+1) m V^2 H / c. The range tests read the binary exponents (a
       ! logarithm each cost more than the product): e ln 2 is ln x to within ln 2.
-      em = exponent(contact%mass)
-      ev = exponent(contact%velocity)
-      ec = exponent(contact%stiffness)
-      eh = exponent(hq%hi)
+      em = exponent_from_bits(contact%mass)
+      ev = exponent_from_bits(contact%velocity)
+      ec = exponent_from_bits(contact%stiffness)
+      eh = exponent_from_bits(hq%hi)
       model%energy_ok = max(abs(em), abs(ev), abs(ec), abs(eh)) < safe_exponent &
          & .and. np1%hi < 2.0_wp**safe_exponent
       if (model%energy_ok) then
@@ -183,7 +184,8 @@ contains
          return
       end if
       ! dt = x_max/((n+1) H V) (x/x_max)^(-n) dl; its unit must be representable too
-      if (.not. abs(model%ln_x_max%hi - (exponent(np1%hi) + eh + ev) * ln2) <= log_limit) then
+      if (.not. abs(model%ln_x_max%hi - (exponent_from_bits(np1%hi) + eh + ev) * ln2) &
+         & <= log_limit) then
          stat = hcimpact_err_domain
          return
       end if
@@ -195,7 +197,7 @@ contains
          model%time_unit = (model%x_max * model%inv_np1_dd &
             & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
       else
-         em = exponent(model%x_max%hi)
+         em = exponent_from_bits(model%x_max%hi)
          model%time_unit = dd_scale((dd_scale(model%x_max, -em) * model%inv_np1_dd &
             & * dd_real(model%inv_hq(1), model%inv_hq(2))) / fraction(contact%velocity), &
             & em - ev)
@@ -333,7 +335,8 @@ contains
          ! l = (u - h(u))/beta = ln(1 + u)/beta, the first form cancelling (trajectory)
          lp = dd_log(u + 1.0_wp) / beta
       else
-         lp = q - beta * q * q * hd
+         ! (beta q q hd, its first product u = beta q already formed)
+         lp = q - u * q * hd
       end if
    end subroutine power_peak
 

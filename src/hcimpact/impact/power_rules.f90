@@ -805,6 +805,11 @@ contains
       c = 1.0_wp / model%np1
       moment_degree = 24
       s = 0.0_wp
+      ! (big_c serves only where s > 0, and is set there; set here too, since GCC's
+      ! inlining cannot see that and warns: -Werror=maybe-uninitialized failed a
+      ! C++ program's -Wall -Werror link of the static library with link-time
+      ! optimisation)
+      big_c = 0.0_wp
       length = model%f%tr%bound(compression_phase)
       ! (0 < t < length also keeps out a phase of length 0: at beta near max_beta,
       ! l_end = ln(1 + beta)/beta is below the precision of 1 - beta H and rounds to 0)

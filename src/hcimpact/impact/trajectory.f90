@@ -345,7 +345,7 @@ contains
       type(dd_real), intent(in) :: beta
       !> Its trajectory
       type(trajectory_type) :: tr
-      type(dd_real) :: hb, u, lm, kb, phi, ea
+      type(dd_real) :: hb, u, lm, kb, phi, ea, bh
       real(wp) :: b, kb0, c, step
       integer :: it
 
@@ -410,14 +410,16 @@ contains
          tr%k = kb / beta
       end if
 
+      ! beta H once, for both ends
+      bh = beta * tr%hq
       if (b > log_form_beta) then
          ! l_e = ln(1 + beta)/beta: 1 - beta H is that difference, which keeps only
          ! about 2**-105 beta/ln(beta) of it (nothing above beta = 4e33)
          tr%l_end(compression_phase) = dd_log(tr%one_plus_beta) / beta
       else
-         tr%l_end(compression_phase) = 1.0_wp - beta * tr%hq
+         tr%l_end(compression_phase) = 1.0_wp - bh
       end if
-      tr%l_end(restitution_phase) = -(tr%k + beta * tr%hq)
+      tr%l_end(restitution_phase) = -(tr%k + bh)
       if (b > 0.0_wp) then
          ea = beta * tr%l_end(restitution_phase)
          tr%ln_a = ea%hi
