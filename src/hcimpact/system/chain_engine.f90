@@ -1070,13 +1070,7 @@ contains
       ! the regions within the range or next to it
       i = max(a - 1, 1)
       do while (i <= min(b + 1, engine%n))
-         k = engine%body(i)%region
-         if (k > 0) then
-            a = min(a, engine%regions(k)%integrator%first)
-            b = max(b, engine%regions(k)%integrator%last)
-            call close_region(engine, k)
-            merged = .true.
-         end if
+         call absorb_region(engine, i, a, b, merged)
          i = i + 1
       end do
       ! the whole contacts of the bodies at the ends (a body inside has its partner
@@ -1086,11 +1080,8 @@ contains
       ! costs what it adds
       do
          if (a > 1) then
-            k = engine%body(a - 1)%region
-            if (k > 0) then
-               a = min(a, engine%regions(k)%integrator%first)
-               call close_region(engine, k)
-               merged = .true.
+            if (engine%body(a - 1)%region > 0) then
+               call absorb_region(engine, a - 1, a, b, merged)
                cycle
             end if
             if (engine%body(a)%busy == a - 1 .or. engine%body(a - 1)%busy >= 0 &
@@ -1100,11 +1091,8 @@ contains
             end if
          end if
          if (b < engine%n) then
-            k = engine%body(b + 1)%region
-            if (k > 0) then
-               b = max(b, engine%regions(k)%integrator%last)
-               call close_region(engine, k)
-               merged = .true.
+            if (engine%body(b + 1)%region > 0) then
+               call absorb_region(engine, b + 1, a, b, merged)
                cycle
             end if
             if (engine%body(b)%busy == b .or. engine%body(b + 1)%busy >= 0 &
@@ -1202,6 +1190,22 @@ contains
          & + power_law_potential(law%stiffness, law%exponent, x))
       e = max(e, 0.0_wp)
    end function exact_dissipated
+
+   !> If body i is in a region: close that region (written back) and widen a .. b over
+   !> it (merged becomes true).
+   subroutine absorb_region(engine, i, a, b, merged)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: i
+      integer, intent(inout) :: a, b
+      logical, intent(inout) :: merged
+      integer :: k
+      k = engine%body(i)%region
+      if (k == 0) return
+      a = min(a, engine%regions(k)%integrator%first)
+      b = max(b, engine%regions(k)%integrator%last)
+      call close_region(engine, k)
+      merged = .true.
+   end subroutine absorb_region
 
    !> Grow region k on one side, where a body outside touched it: by that body and a
    !> quarter of the region's size more (free bodies integrate at little cost, and a
