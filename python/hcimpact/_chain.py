@@ -71,7 +71,8 @@ class ChainResult:
     ``"exact"`` (every contact by the closed forms, also when there was none),
     ``"integrated"`` or ``"both"``. The samples are ``None`` unless sample times were
     given: then ``sample_positions`` and ``sample_velocities`` have the shape
-    (samples, n) and ``sample_forces`` (samples, n + 1), one column per pair.
+    (samples, n) and ``sample_forces`` (samples, n + 1), one column per pair; NaN at a
+    time after ``t_end``.
     """
 
     #: time reached, s: t_end, the time after which no contact can happen, or rest

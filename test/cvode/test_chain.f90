@@ -87,6 +87,10 @@ contains
          & new_unittest("clusters-apart", test_clusters_apart), &
          & new_unittest("clusters-merge", test_clusters_merge), &
          & new_unittest("random-dilute", test_random_dilute), &
+         & new_unittest("regions-samples-ends", test_regions_samples), &
+         & new_unittest("regions-merge-chain", test_regions_merge_chain), &
+         & new_unittest("regions-degenerate", test_regions_degenerate), &
+         & new_unittest("regions-gravity", test_regions_gravity), &
          & new_unittest("error-independent-of-size", test_size_independent), &
          & new_unittest("large-chain", test_large_chain) &
          & ]
@@ -1593,6 +1597,258 @@ contains
       call check(error, worst(3) <= k_energy, "dilute systems: energy balance " // &
          & format_real(worst(3)) // " rtol")
    end subroutine test_random_dilute
+
+   ! ==================================================================================
+   ! Several regions at once, attacked
+   ! ==================================================================================
+
+   !> A row of `units` pieces, 2 cm apart: in each, a ball strikes a touching pair from
+   !> the left (gap g) while another strikes it from the right, the gaps shifted from
+   !> piece to piece so that the clusters live at once on different clocks; ball masses
+   !> and speeds as given (scaled per piece by mass_ratio**k)
+   function struck_pairs(units, mass_ratio) result(chain)
+      integer, intent(in) :: units
+      real(wp), intent(in) :: mass_ratio
+      type(chain_type) :: chain
+      integer :: k, i
+      chain = steel_row(4 * units, 0.0_wp, steel_damping, 0.0_wp)
+      do k = 0, units - 1
+         i = 4 * k
+         chain%mass(i + 1:i + 4) = steel_mass * mass_ratio**k
+         chain%velocity(i + 1) = 1.0_wp
+         chain%velocity(i + 4) = -0.8_wp
+         chain%gap(i + 1) = 1.0e-4_wp * (1 + 0.13_wp * k)
+         chain%gap(i + 2) = 0.0_wp
+         chain%gap(i + 3) = 1.3e-4_wp * (1 - 0.07_wp * k)
+         if (k < units - 1) chain%gap(i + 4) = 0.02_wp
+      end do
+   end function struck_pairs
+
+   !> Method auto at rtol 1e-10 against the whole system integrated at rtol 1e-13 with
+   !> BDF (same options otherwise): the same contacts, velocities within k_velocity rtol of the
+   !> largest speed, positions within k_velocity rtol of the largest speed times the
+   !> time, the samples within the same bounds, the energy balance within k_energy
+   !> rtol; worst(1:3): velocity, position (in those units) and energy error / rtol
+   subroutine against_reference(error, chain, base, what, worst)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type), intent(in) :: chain
+      type(chain_options), intent(in) :: base
+      character(len=*), intent(in) :: what
+      real(wp), intent(inout) :: worst(3)
+      real(wp), parameter :: rtol = 1.0e-10_wp
+      type(chain_options) :: o
+      type(chain_result) :: auto, fine
+      real(wp) :: vmax, xscale, ev, ex
+      integer :: j
+      o = base
+      o%method = method_auto
+      o%rtol = rtol
+      call run(error, chain, o, auto, what)
+      if (allocated(error)) return
+      ! (the reference with BDF: Adams at rtol 1e-13 over all of six struck pairs
+      ! records a touching pair opening by 1e-8 m/s and closing 6 ns later)
+      o%method = method_integrated
+      o%rtol = 1.0e-13_wp
+      o%integrator = integrator_bdf
+      call run(error, chain, o, fine, what // " reference")
+      if (allocated(error)) return
+      vmax = maxval(abs(chain%velocity))
+      xscale = vmax * max(fine%time, 1.0e-6_wp)
+      ev = maxval(abs(auto%velocities - fine%velocities)) / vmax / rtol
+      ex = maxval(abs(auto%positions - fine%positions)) / xscale / rtol
+      if (.not. (all(ieee_is_finite(auto%velocities)) .and. &
+         & all(ieee_is_finite(auto%positions)))) ev = huge(1.0_wp)
+      if (allocated(base%sample_times)) then
+         do j = 1, size(base%sample_times)
+            if (base%t_end > 0.0_wp .and. base%sample_times(j) > base%t_end) then
+               ! (after the end: nothing sampled)
+               call check(error, all(ieee_is_nan(auto%sample_positions(:, j))) .and. &
+                  & all(ieee_is_nan(auto%sample_velocities(:, j))) .and. &
+                  & all(ieee_is_nan(auto%sample_forces(:, j))), what // ": the sample at " &
+                  & // format_real(base%sample_times(j)) // " s, after the end, not NaN")
+               if (allocated(error)) return
+               cycle
+            end if
+            ! (maxval passes over NaN: a sample not taken must fail)
+            if (.not. (all(ieee_is_finite(auto%sample_velocities(:, j))) .and. &
+               & all(ieee_is_finite(auto%sample_positions(:, j))))) ev = huge(1.0_wp)
+            ev = max(ev, maxval(abs(auto%sample_velocities(:, j) - &
+               & fine%sample_velocities(:, j))) / vmax / rtol)
+            ex = max(ex, maxval(abs(auto%sample_positions(:, j) - &
+               & fine%sample_positions(:, j))) / xscale / rtol)
+         end do
+      end if
+      worst = max(worst, [ev, ex, auto%energy_error / rtol])
+      call check(error, auto%n_contacts == fine%n_contacts, what // ": auto counts " // &
+         & int_text(int(auto%n_contacts)) // " contacts, the reference " // &
+         & int_text(int(fine%n_contacts)))
+      if (allocated(error)) return
+      call check(error, auto%time == fine%time, what // ": end times differ")
+      if (allocated(error)) return
+      call check(error, ev <= k_velocity .and. ex <= k_velocity, what // &
+         & ": velocity error " // format_real(ev) // " rtol, position error " // &
+         & format_real(ex) // " rtol (with the samples)")
+      if (allocated(error)) return
+      call check(error, auto%energy_error <= k_energy * rtol .and. &
+         & fine%energy_error <= k_energy * rtol, what // ": energy error " // &
+         & format_real(auto%energy_error) // ", reference " // format_real(fine%energy_error))
+   end subroutine against_reference
+
+   !> Six pieces of struck_pairs (24 balls; the clusters live at once, each a region of
+   !> its own: at least 6 regions), with 97 sample times over the first 0.5 ms and the
+   !> end at 0.2 ms, 0.27 ms (inside the contacts of several regions) and 2 ms, with
+   !> BDF and Adams: against the whole row integrated at rtol 1e-13, samples included.
+   subroutine test_regions_samples(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: ends(3) = [2.0e-4_wp, 2.7e-4_wp, 2.0e-3_wp]
+      type(chain_type) :: chain
+      type(chain_options) :: o
+      type(chain_result) :: result
+      real(wp) :: worst(3)
+      integer :: integrator, k, i
+      character(len=64) :: what
+      worst = 0.0_wp
+      chain = struck_pairs(6, 1.0_wp)
+      do integrator = integrator_bdf, integrator_adams
+         do k = 1, size(ends)
+            o = opts(method_auto, 1.0e-10_wp, ends(k))
+            o%integrator = integrator
+            o%sample_times = [(5.2e-6_wp * i, i = 1, 97)]
+            write(what, '(a, i0, a, es8.1)') "six struck pairs, integrator ", integrator, &
+               & ", to ", ends(k)
+            call against_reference(error, chain, o, trim(what), worst)
+            if (allocated(error)) return
+         end do
+      end do
+      call run(error, chain, opts(method_auto, 1.0e-10_wp, 2.0e-3_wp), result, "six pairs")
+      if (allocated(error)) return
+      print '(2x, a, 3es10.2, a, i0)', "six struck pairs: velocity, position, energy " // &
+         & "error / rtol:", worst, "; regions ", result%counters%clusters
+      call check(error, result%counters%clusters >= 6, "six struck pairs: " // &
+         & int_text(int(result%counters%clusters)) // " regions, 6 expected at least")
+   end subroutine test_regions_samples
+
+   !> Regions that merge: a ball strikes a touching pair at each end of a row of ten,
+   !> with a single ball, a touching pair and a single ball between, 10 um apart
+   !> (1 > [2 3] 4 [5 6] 7 [8 9] < 10): two regions apart (1-3, 8-10), the left one
+   !> grows over 4, 5 and 6 and then into the right one; and a mirror-symmetric row
+   !> (1 > [2 3] < 4 . 5 . 6 > [7 8] < 9) whose two regions live side by side with
+   !> three free balls between, struck at the same instants (equal next times);
+   !> against the reference, and the mirror's velocities antisymmetric.
+   subroutine test_regions_merge_chain(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      real(wp) :: worst(3)
+      integer :: n, k
+      logical :: apart, spans
+      worst = 0.0_wp
+      chain = steel_row(10, 1.0_wp, steel_damping, 0.0_wp)
+      chain%velocity(10) = -0.8_wp
+      chain%gap = [1.0e-4_wp, 0.0_wp, 1.0e-5_wp, 1.0e-5_wp, 0.0_wp, 1.0e-5_wp, 1.0e-5_wp, &
+         & 0.0_wp, 1.2e-4_wp]
+      call against_reference(error, chain, opts(method_auto, 1.0e-10_wp, 3.0e-3_wp), &
+         & "regions merging", worst)
+      if (allocated(error)) return
+      call run(error, chain, opts(method_auto, 1.0e-10_wp, 3.0e-3_wp), result, "merging")
+      if (allocated(error)) return
+      apart = size(result%switches) >= 2
+      if (apart) apart = result%switches(1)%last <= 3 .and. result%switches(2)%first >= 8
+      spans = .false.
+      do k = 3, size(result%switches)
+         spans = spans .or. (result%switches(k)%first >= 1 .and. &
+            & result%switches(k)%first <= 3 .and. result%switches(k)%last >= 8)
+      end do
+      call check(error, apart .and. spans, "regions merging: two regions at the ends, " &
+         & // "then one over both")
+      if (allocated(error)) return
+      ! mirror: 1 > 2 3 < 4 . 5 . 6 > 7 8 < 9, the ball 5 struck from both sides at once
+      chain = steel_row(9, 0.0_wp, steel_damping, 0.0_wp)
+      chain%velocity = [1.0_wp, 0.0_wp, 0.0_wp, -0.8_wp, 0.0_wp, 0.8_wp, 0.0_wp, 0.0_wp, &
+         & -1.0_wp]
+      chain%gap = [1.0e-4_wp, 0.0_wp, 1.3e-4_wp, 1.0e-5_wp, 1.0e-5_wp, 1.3e-4_wp, 0.0_wp, &
+         & 1.0e-4_wp]
+      call against_reference(error, chain, opts(method_auto, 1.0e-10_wp, 3.0e-3_wp), &
+         & "mirror, struck from both sides", worst)
+      if (allocated(error)) return
+      call run(error, chain, opts(method_auto, 1.0e-10_wp, 3.0e-3_wp), result, "mirror")
+      if (allocated(error)) return
+      n = size(chain%mass)
+      call check(error, maxval(abs(result%velocities + result%velocities(n:1:-1))) <= &
+         & k_velocity * 1.0e-10_wp, "mirror: velocities not antisymmetric: " // &
+         & format_real(maxval(abs(result%velocities + result%velocities(n:1:-1)))))
+      print '(2x, a, 3es10.2)', "merging regions: velocity, position, energy error / rtol:", &
+         & worst
+   end subroutine test_regions_merge_chain
+
+   !> Degenerate timing and scale: two identical pieces of struck_pairs 2 cm apart (two
+   !> regions with the same steps, so equal next times), and ten pieces whose masses go
+   !> from 1e-6 to 1e3 kg, a decade per piece; against the reference.
+   subroutine test_regions_degenerate(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      real(wp) :: worst(3)
+      worst = 0.0_wp
+      ! equal clocks: the same piece twice (struck_pairs shifts gaps: undo it)
+      chain = struck_pairs(2, 1.0_wp)
+      chain%gap(5:7) = chain%gap(1:3)
+      call against_reference(error, chain, opts(method_auto, 1.0e-10_wp, 2.0e-3_wp), &
+         & "two identical pieces", worst)
+      if (allocated(error)) return
+      ! masses from 1e-6 to 1e3 kg, a decade per piece
+      chain = struck_pairs(10, 10.0_wp)
+      chain%mass = chain%mass * 1.0e-5_wp
+      call against_reference(error, chain, opts(method_auto, 1.0e-10_wp, 2.0e-3_wp), &
+         & "masses 1e-6 to 1e3 kg", worst)
+      if (allocated(error)) return
+      print '(2x, a, 3es10.2)', "degenerate: velocity, position, energy error / rtol:", worst
+   end subroutine test_regions_degenerate
+
+   !> Gravity and a floor: a stack of two dropped 1 mm (integrated, resting) while 5 cm
+   !> above it a ball strikes a touching pair from 14 mm (a cluster of its own, at the
+   !> stack's first landing): to 50 ms against the reference, and not `rested` then (the
+   !> upper balls are in the air); run on until rest, `rested` only once the whole
+   !> system rests, after the upper balls landed (sqrt(2 h / g) = 101 ms at least).
+   subroutine test_regions_gravity(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      type(chain_options) :: o
+      real(wp) :: worst(3)
+      integer :: integrator
+      character(len=64) :: what
+      worst = 0.0_wp
+      chain = steel_row(5, 0.0_wp, 1.0_wp, 0.0_wp)
+      chain%gap = [0.0_wp, 0.05_wp, 0.0_wp, 0.014_wp]
+      chain%velocity(5) = -1.0_wp
+      chain%left_wall = .true.
+      chain%left_law = contact_law(steel_wall, 1.5_wp, 1.0_wp)
+      chain%left_gap = 1.0e-3_wp
+      chain%gravity = -9.81_wp
+      do integrator = integrator_bdf, integrator_adams
+         write(what, '(a, i0)') "stack and a cluster above, integrator ", integrator
+         o = opts(method_auto, 1.0e-10_wp, 0.05_wp)
+         o%integrator = integrator
+         o%sample_times = [0.0135_wp, 0.0141_wp, 0.0142_wp, 0.0143_wp, 0.02_wp]
+         call against_reference(error, chain, o, trim(what), worst)
+         if (allocated(error)) return
+         call run(error, chain, o, result, trim(what))
+         if (allocated(error)) return
+         call check(error, .not. result%rested, trim(what) // ": rested at 50 ms")
+         if (allocated(error)) return
+         o%t_end = -1.0_wp
+         call run(error, chain, o, result, trim(what) // ", to rest")
+         if (allocated(error)) return
+         call check(error, result%rested .and. result%rest_time > sqrt(2 * 0.05_wp / 9.81_wp) &
+            & .and. result%time == result%rest_time .and. all(result%velocities == 0.0_wp) &
+            & .and. result%energy_error < 1.0e-4_wp, trim(what) // ": rested " // &
+            & merge("yes", "no ", result%rested) // " at " // format_real(result%rest_time) &
+            & // ", energy error " // format_real(result%energy_error))
+         if (allocated(error)) return
+      end do
+      print '(2x, a, 3es10.2)', "stack and cluster: velocity, position, energy error / rtol:", &
+         & worst
+   end subroutine test_regions_gravity
 
    ! ==================================================================================
    ! Size

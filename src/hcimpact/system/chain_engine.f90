@@ -425,6 +425,10 @@ contains
       if (allocated(options%sample_times)) nsamples = size(options%sample_times)
       allocate(engine%sample_u(n, nsamples), engine%sample_v(n, nsamples), &
          & engine%sample_f(0:n, nsamples))
+      ! (a sample time after t_end is never taken: NaN, not what the memory held)
+      engine%sample_u = nan
+      engine%sample_v = nan
+      engine%sample_f = nan
       engine%next_sample = 1
    end subroutine setup
 

@@ -156,7 +156,8 @@ module hcimpact_chain_types
       type(contact_record), allocatable :: contacts(:)
       integer(int64) :: n_contacts = 0
       !> Samples at options%sample_times: positions and velocities (n x samples),
-      !> pair forces (pairs 0 .. n x samples, 0 for a missing wall)
+      !> pair forces (pairs 0 .. n x samples, 0 for a missing wall); NaN at a sample
+      !> time after options%t_end
       real(wp), allocatable :: sample_positions(:, :), sample_velocities(:, :)
       real(wp), allocatable :: sample_forces(:, :)
       !> The initial energy (kinetic + gravitational), and the relative error of
