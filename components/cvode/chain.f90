@@ -45,8 +45,7 @@ module hcimpact_cvode_chain
       & FCVodeWFtolerances, FCVodeSetLinearSolver, FCVodeSetJacFn, &
       & FCVodeSetMaxNumSteps, FCVodeSetMaxHnilWarns, FCVodeSetInitStep, FCVode, &
       & FCVodeFree, FCVodeSetStopTime, FCVodeGetDky, FCVodeGetNumRhsEvals, &
-      & FCVodeGetNumJacEvals, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS, &
-      & CV_TSTOP_RETURN
+      & FCVodeGetNumJacEvals, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS
    use fnvector_serial_mod, only : FN_VMake_Serial
    use fsunmatrix_band_mod, only : FSUNBandMatrix, FSUNBandMatrix_Data, &
       & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
