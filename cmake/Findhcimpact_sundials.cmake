@@ -113,12 +113,13 @@ if(_hcsun_need_modules)
 endif()
 
 # Link order: Fortran wrappers before the C libraries they call.
-# Dense matrices and solvers for one impact, band ones for the systems of bodies.
+# Dense matrices and solvers for one impact, band matrices for the systems of bodies
+# (whose linear solver is the component's own: chain_linear_solver.f90).
 set(_hcsun_names
   sundials_fcvode_mod sundials_fnvecserial_mod sundials_fsunmatrixdense_mod
-  sundials_fsunlinsoldense_mod sundials_fsunmatrixband_mod sundials_fsunlinsolband_mod
+  sundials_fsunlinsoldense_mod sundials_fsunmatrixband_mod
   sundials_cvode sundials_nvecserial sundials_sunmatrixdense sundials_sunlinsoldense
-  sundials_sunmatrixband sundials_sunlinsolband)
+  sundials_sunmatrixband)
 set(_hcsun_optional "")
 if(HCIMPACT_SUNDIALS_VERSION_MAJOR AND NOT HCIMPACT_SUNDIALS_VERSION_MAJOR LESS 7)
   # SUNDIALS 7 moved SUNContext and friends into sundials_core.

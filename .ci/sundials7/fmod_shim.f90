@@ -4,7 +4,7 @@
 !
 ! A stand-in for the Fortran 2003 interface of SUNDIALS 7 (the SWIG-generated
 ! modules fsundials_core_mod, fnvector_serial_mod, fsunmatrix_dense_mod,
-! fsunlinsol_dense_mod, fsunmatrix_band_mod, fsunlinsol_band_mod and fcvode_mod),
+! fsunlinsol_dense_mod, fsunmatrix_band_mod and fcvode_mod),
 ! written by hand for exactly the names that
 ! components/cvode uses. The C library it calls is a real SUNDIALS 7.1 build (CVODES,
 ! whose C functions have the same names and signatures as CVODE's).
@@ -31,7 +31,7 @@
 !> linear solver objects.
 module fsundials_core_mod
    use, intrinsic :: iso_c_binding, only : c_int, c_int64_t, c_double, c_ptr, c_funptr, &
-      & c_loc, c_f_pointer
+      & c_loc, c_f_pointer, c_associated
    implicit none
    private
 
@@ -60,10 +60,21 @@ module fsundials_core_mod
       type(c_ptr), public :: sunctx
    end type SUNLinearSolver
 
+   !> struct _generic_SUNLinearSolver_Ops (SUNDIALS 7.1: the same fields in the same
+   !> order as in 6.4)
+   type, bind(C), public :: SUNLinearSolver_Ops
+      type(c_funptr), public :: gettype, getid, setatimes, setpreconditioner, &
+         & setscalingvectors, setzeroguess, initialize, setup, solve, numiters, &
+         & resnorm, lastflag, space, resid, free
+   end type SUNLinearSolver_Ops
+
+   !> SUNLinearSolver_Type: direct
+   integer(c_int), parameter, public :: SUNLINEARSOLVER_DIRECT = 0_c_int
+
    public :: FSUNContext_Create, FSUNContext_Free, FSUNContext_PushErrHandler, &
       & FSUNContext_ClearErrHandlers
    public :: FN_VDestroy, FN_VGetLocalLength, FN_VGetArrayPointer
-   public :: FSUNMatDestroy, FSUNLinSolFree
+   public :: FSUNMatDestroy, FSUNLinSolFree, FSUNLinSolNewEmpty, FSUNLinSolFreeEmpty
 
    interface
       ! SUNErrCode SUNContext_Create(SUNComm comm, SUNContext* sunctx_out)
@@ -124,6 +135,17 @@ module fsundials_core_mod
          type(c_ptr), value :: s
          integer(c_int) :: code
       end function c_ls_free
+      ! SUNLinearSolver SUNLinSolNewEmpty(SUNContext)
+      function c_ls_new_empty(ctx) result(s) bind(C, name="SUNLinSolNewEmpty")
+         import :: c_ptr
+         type(c_ptr), value :: ctx
+         type(c_ptr) :: s
+      end function c_ls_new_empty
+      ! void SUNLinSolFreeEmpty(SUNLinearSolver)
+      subroutine c_ls_free_empty(s) bind(C, name="SUNLinSolFreeEmpty")
+         import :: c_ptr
+         type(c_ptr), value :: s
+      end subroutine c_ls_free_empty
    end interface
 
 contains
@@ -183,6 +205,20 @@ contains
       integer(c_int) :: code
       code = c_ls_free(c_loc(s))
    end function FSUNLinSolFree
+
+   function FSUNLinSolNewEmpty(sunctx) result(s)
+      type(c_ptr) :: sunctx
+      type(SUNLinearSolver), pointer :: s
+      type(c_ptr) :: p
+      nullify(s)
+      p = c_ls_new_empty(sunctx)
+      if (c_associated(p)) call c_f_pointer(p, s)
+   end function FSUNLinSolNewEmpty
+
+   subroutine FSUNLinSolFreeEmpty(s)
+      type(SUNLinearSolver), target, intent(inout) :: s
+      call c_ls_free_empty(c_loc(s))
+   end subroutine FSUNLinSolFreeEmpty
 
 end module fsundials_core_mod
 
@@ -388,37 +424,6 @@ contains
    end function FSUNBandMatrix_Data
 
 end module fsunmatrix_band_mod
-
-
-!> fsunlinsol_band_mod: the band direct linear solver.
-module fsunlinsol_band_mod
-   use, intrinsic :: iso_c_binding, only : c_ptr, c_loc, c_f_pointer
-   use fsundials_core_mod, only : N_Vector, SUNMatrix, SUNLinearSolver
-   implicit none
-   private
-
-   public :: FSUNLinSol_Band
-
-   interface
-      ! SUNLinearSolver SUNLinSol_Band(N_Vector y, SUNMatrix A, SUNContext)
-      function c_linsol_band(y, a, ctx) result(s) bind(C, name="SUNLinSol_Band")
-         import :: c_ptr
-         type(c_ptr), value :: y, a, ctx
-         type(c_ptr) :: s
-      end function c_linsol_band
-   end interface
-
-contains
-
-   function FSUNLinSol_Band(y, a, sunctx) result(s)
-      type(N_Vector), target, intent(inout) :: y
-      type(SUNMatrix), target, intent(inout) :: a
-      type(c_ptr) :: sunctx
-      type(SUNLinearSolver), pointer :: s
-      call c_f_pointer(c_linsol_band(c_loc(y), c_loc(a), sunctx), s)
-   end function FSUNLinSol_Band
-
-end module fsunlinsol_band_mod
 
 
 !> fcvode_mod: the CVODE integrator (bound to the functions of CVODES, which

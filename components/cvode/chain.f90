@@ -3,11 +3,12 @@
 !>
 !> The event-driven engine of the core (hcimpact_chain_engine) computes every isolated
 !> contact by the closed forms and hands each cluster of overlapping contacts to the
-!> integrator of this module: SUNDIALS CVODE (BDF or Adams) with the band linear solver
-!> on the region's banded Jacobian (hcimpact_cvode_chain_system, from the contact-force
-!> element's derivatives), root finding on every contact's start and end, largest
-!> deformation and force peak, and the dissipated energy of every contact integrated
-!> with the motion. One step costs O(m) for a region of m bodies.
+!> integrator of this module: SUNDIALS CVODE (BDF or Adams) with the region's banded
+!> Jacobian (hcimpact_cvode_chain_system, from the contact-force element's derivatives)
+!> and a linear solver that eliminates the displacements and solves for the velocities
+!> (hcimpact_cvode_chain_linear_solver), root finding on every contact's start and
+!> end, largest deformation and force peak, and the dissipated energy of every contact
+!> integrated with the motion. One step costs O(m) for a region of m bodies.
 !>
 !> Tolerances: CVODE's relative tolerance is options%rtol; the absolute tolerances are
 !> rtol times the natural scales of the region (the smallest maximum compression of
@@ -35,7 +36,7 @@ module hcimpact_cvode_chain
       & advance_failed
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, slot_state, dissipation_index, force_rate, &
-      & error_weights, upper_band, lower_band, slot_none, slot_pair, slot_left_wall, &
+      & slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, slot_left_wall, &
       & slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
@@ -49,7 +50,7 @@ module hcimpact_cvode_chain
    use fnvector_serial_mod, only : FN_VMake_Serial
    use fsunmatrix_band_mod, only : FSUNBandMatrix, FSUNBandMatrix_Data, &
       & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
-   use fsunlinsol_band_mod, only : FSUNLinSol_Band
+   use hcimpact_cvode_chain_linear_solver, only : chain_linear_solver
    implicit none
    private
 
@@ -282,8 +283,8 @@ contains
             & int(min(upper_band, n_state - 1), c_int64_t), &
             & int(min(lower_band, n_state - 1), c_int64_t), self%ctx)
          if (.not. associated(self%jac_mat)) exit setup
-         where = "SUNLinSol_Band"
-         self%lin_sol => FSUNLinSol_Band(self%y_vec, self%jac_mat, self%ctx)
+         where = "the region's linear solver"
+         self%lin_sol => chain_linear_solver(self%region%m, self%ctx)
          if (.not. associated(self%lin_sol)) exit setup
          where = "CVodeSetLinearSolver"
          ierr = FCVodeSetLinearSolver(self%mem, self%lin_sol, self%jac_mat)
@@ -479,7 +480,8 @@ contains
       real(wp), intent(in) :: t
       !> A contact ended
       logical, intent(out) :: ended
-      real(wp), allocatable :: dy(:)
+      real(wp), allocatable :: dy(:), xs(:), ws(:)
+      type(contact_force_type), allocatable :: elements(:)
       real(wp) :: x, w, df, h, t0, tc, wc, step_max, dense
       type(contact_force_type) :: e
       type(slot_history) :: last
@@ -488,11 +490,14 @@ contains
 
       ended = .false.
       m = self%region%m
-      allocate(dy(size(self%y)))
-      call region_rhs(self%region, t, self%y, dy, ok)
+      allocate(dy(size(self%y)), xs(0:m), ws(0:m), elements(0:m))
+      ! every slot's element once, with the accelerations its force rate needs
+      call region_rhs(self%region, t, self%y, dy, ok, xs, ws, elements)
       do j = 0, m
          if (self%region%kind(j) == slot_none) cycle
-         call slot_state(self%region, j, t, self%y, x, w, e)
+         x = xs(j)
+         w = ws(j)
+         e = elements(j)
          last = self%history(j)
          t0 = last%t
          h = t - t0
@@ -556,7 +561,9 @@ contains
    !> The largest deformation (force: the largest force) of slot j in the last step
    !> [ta, tb], where its rate (the force's rate) falls from > 0 to <= 0: the root of
    !> that rate on CVODE's interpolant of the whole state (the Illinois variant of
-   !> regula falsi, at most 40 evaluations, each O(m)), and the value there; 0 where
+   !> regula falsi, at most 40 evaluations, each an O(m) interpolation and the slot's
+   !> and its neighbours' elements, until the root is bracketed to 2^-24 of the
+   !> step), and the largest value met; 0 where
    !> the interpolant cannot be evaluated or the rate does not change sign on it.
    !> The work arrays are local and released on every path (no state kept).
    function dense_max(self, j, ta, tb, of_force) result(best)
@@ -567,13 +574,12 @@ contains
       real(wp) :: best
       real(c_double), pointer, contiguous :: dky(:)
       type(N_Vector), pointer :: dky_vec
-      real(wp), allocatable :: dy(:)
       real(wp) :: a, b, fa, fb, c, fc, value
       integer :: it, side, alloc_stat
       logical :: ok
 
       best = 0.0_wp
-      allocate(dky(size(self%y)), dy(size(self%y)), stat=alloc_stat)
+      allocate(dky(size(self%y)), stat=alloc_stat)
       if (alloc_stat /= 0) then
          if (associated(dky)) deallocate(dky)
          return
@@ -606,7 +612,12 @@ contains
                   if (side == 1) fa = 0.5_wp * fa
                   side = 1
                end if
-               if (fc == 0.0_wp .or. b - a <= 4 * spacing(max(abs(a), abs(b)))) exit
+               ! bracketed to 2^-24 of the step: the value is then that of the
+               ! extremum to far below an ulp (it is flat there, an error of the time
+               ! enters squared); nearer, the rate is rounding noise and the bracket
+               ! shrinks by halves only
+               if (fc == 0.0_wp .or. b - a <= max(4 * spacing(max(abs(a), abs(b))), &
+                  & (tb - ta) * 2.0_wp**(-24))) exit
             end do
          end block search
          call FN_VDestroy(dky_vec)
@@ -625,12 +636,11 @@ contains
          rate = 0.0_wp
          val = 0.0_wp
          if (.not. ok) return
-         call slot_state(self%region, j, t, dky, x, w, e)
          if (of_force) then
-            call region_rhs(self%region, t, dky, dy, ok)
-            rate = force_rate(self%region, j, dy, w, e)
+            call slot_force_rate(self%region, j, t, dky, x, w, e, rate, ok)
             val = e%force
          else
+            call slot_state(self%region, j, t, dky, x, w, e)
             rate = w
             val = x
          end if

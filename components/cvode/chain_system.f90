@@ -33,8 +33,9 @@ module hcimpact_cvode_chain_system
    private
 
    public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
-   public :: error_weights
-   public :: slot_state, dissipation_index, force_rate, upper_band, lower_band
+   public :: error_weights, newton_factor, factor_newton_matrix, solve_newton
+   public :: slot_state, dissipation_index, force_rate, slot_force_rate, upper_band, &
+      & lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
       & slot_boundary_right
 
@@ -66,6 +67,27 @@ module hcimpact_cvode_chain_system
       !> (m/s) and energy (J) (the driver's error weights)
       real(wp) :: rtol = 1.0e-10_wp, scale(3) = 1.0_wp
    end type chain_region
+
+   !> CVODE's Newton matrix M = I - gamma J of a region, factored through its
+   !> structure (module header): in the rows of a displacement, M(u_k, u_k) u_k +
+   !> M(u_k, v_k) v_k alone, so the displacements are eliminated and the velocities
+   !> solve a tridiagonal system T (Thomas' algorithm: T is strictly diagonally
+   !> dominant, as I + gamma (damping) + gamma^2 (stiffness) over the masses with
+   !> non-negative derivatives of clamped forces); the dissipated energies, with rows
+   !> of the identity, are divided by their diagonal. O(m) to factor and to solve,
+   !> where the band LU of the same matrix (3 + 4 diagonals, with room for pivoting)
+   !> costs several times more.
+   type :: newton_factor
+      !> M(u_k, u_k) and M(u_k, v_k), k = 1 .. m
+      real(wp), allocatable :: uu(:), uv(:)
+      !> M(v_k, u_(k+l)), l = -1, 0, 1
+      real(wp), allocatable :: vu(:, :)
+      !> Thomas' factors of T: the multipliers of the rows below the diagonal, the
+      !> pivots and the entries above the diagonal
+      real(wp), allocatable :: lower(:), pivot(:), upper(:)
+      !> The diagonal of the energy rows, in the state's order
+      real(wp), allocatable :: ee(:)
+   end type newton_factor
 
 contains
 
@@ -278,42 +300,110 @@ contains
       scale = [x_ref, v_ref, e_ref]
    end function region_scales
 
-   !> Right-hand side dy/dt at the time t; ok false if a force is not finite.
-   pure subroutine region_rhs(region, t, y, dy, ok)
+   !> Right-hand side dy/dt at the time t; ok false if a force is not finite. With
+   !> the optional arrays (indices 0 .. m), each slot's deformation, rate and element
+   !> as `slot_state` gives them (the driver follows the contacts from these).
+   pure subroutine region_rhs(region, t, y, dy, ok, xs, ws, elements)
       type(chain_region), intent(in) :: region
       real(wp), intent(in) :: t, y(:)
       real(wp), intent(out) :: dy(:)
       logical, intent(out) :: ok
+      real(wp), intent(out), optional :: xs(0:), ws(0:)
+      type(contact_force_type), intent(out), optional :: elements(0:)
       type(contact_force_type) :: e
-      real(wp) :: x, w, a
-      integer :: k, j, m
+      real(wp) :: x, w, f_left
+      integer :: j, m
       logical :: within
 
       m = region%m
       ok = .true.
-      do k = 1, m
-         dy(3 * k - 2) = y(3 * k - 1)
-         dy(3 * k - 1) = region%gravity
-      end do
+      f_left = 0.0_wp
       do j = 0, m
          call slot_state(region, j, t, y, x, w, e)
          ! (ieee_is_finite, not a comparison: a NaN compared traps in the Debug build)
          if (.not. (ieee_is_finite(e%force) .and. ieee_is_finite(e%dissipation))) &
             & ok = .false.
-         ! +F on the right body of the slot, -F on the left one
+         if (present(xs)) xs(j) = x
+         if (present(ws)) ws(j) = w
+         if (present(elements)) elements(j) = e
+         ! body j between the slots j - 1 and j
          if (j >= 1) then
-            call acceleration_of(e%force, region%mass(j), a, within)
-            call add_within(dy(3 * j - 1), -a, within)
+            dy(3 * j - 2) = y(3 * j - 1)
+            call body_acceleration(region, j, f_left, e%force, dy(3 * j - 1), within)
             ok = ok .and. within
          end if
-         if (j < m) then
-            call acceleration_of(e%force, region%mass(j + 1), a, within)
-            call add_within(dy(3 * j + 2), a, within)
-            ok = ok .and. within
-         end if
+         f_left = e%force
          dy(dissipation_index(m, j)) = e%dissipation
       end do
    end subroutine region_rhs
+
+   !> The acceleration of body k (m/s^2) under gravity, the force f_left of the slot on
+   !> its left (+f_left on it) and f_right of the slot on its right (-f_right), in that
+   !> order (one place for region_rhs and slot_force_rate, so that both give the same
+   !> value to the bit); within false where a term leaves the range (acceleration_of).
+   pure subroutine body_acceleration(region, k, f_left, f_right, a, within)
+      type(chain_region), intent(in) :: region
+      integer, intent(in) :: k
+      real(wp), intent(in) :: f_left, f_right
+      real(wp), intent(out) :: a
+      logical, intent(out) :: within
+      real(wp) :: term
+      logical :: inside
+      a = region%gravity
+      call acceleration_of(f_left, region%mass(k), term, within)
+      call add_within(a, term, within)
+      call acceleration_of(f_right, region%mass(k), term, inside)
+      call add_within(a, -term, inside)
+      within = within .and. inside
+   end subroutine body_acceleration
+
+   !> dF/dt of slot j in the state y at the time t, from the accelerations of its two
+   !> bodies alone (the slots j - 1, j and j + 1: O(1), not a whole right-hand side),
+   !> with its deformation x, rate w and element e; ok false where a force is not
+   !> finite. The same value as force_rate on region_rhs's accelerations.
+   pure subroutine slot_force_rate(region, j, t, y, x, w, e, rate, ok)
+      type(chain_region), intent(in) :: region
+      integer, intent(in) :: j
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: x, w, rate
+      type(contact_force_type), intent(out) :: e
+      logical, intent(out) :: ok
+      real(wp) :: xn, wn, a_left, a_right, wdot
+      type(contact_force_type) :: left, right
+      logical :: within, inside
+      call slot_state(region, j, t, y, x, w, e)
+      ok = ieee_is_finite(e%force)
+      a_left = 0.0_wp
+      a_right = 0.0_wp
+      within = .true.
+      inside = .true.
+      select case (region%kind(j))
+      case (slot_pair)
+         call slot_state(region, j - 1, t, y, xn, wn, left)
+         call slot_state(region, j + 1, t, y, xn, wn, right)
+         ok = ok .and. ieee_is_finite(left%force) .and. ieee_is_finite(right%force)
+         if (ok) then
+            call body_acceleration(region, j, left%force, e%force, a_left, within)
+            call body_acceleration(region, j + 1, e%force, right%force, a_right, inside)
+         end if
+         wdot = a_left - a_right
+      case (slot_left_wall)
+         call slot_state(region, 1, t, y, xn, wn, right)
+         ok = ok .and. ieee_is_finite(right%force)
+         if (ok) call body_acceleration(region, 1, e%force, right%force, a_right, inside)
+         wdot = -a_right
+      case (slot_right_wall)
+         call slot_state(region, region%m - 1, t, y, xn, wn, left)
+         ok = ok .and. ieee_is_finite(left%force)
+         if (ok) call body_acceleration(region, region%m, left%force, e%force, a_left, &
+            & within)
+         wdot = a_left
+      case default
+         wdot = 0.0_wp
+      end select
+      ok = ok .and. within .and. inside
+      rate = e%dforce_dx * w + e%dforce_dv * wdot
+   end subroutine slot_force_rate
 
    !> The acceleration f/m of a force f on a mass m > 0, and whether it lies within a
    !> quarter of the largest double, so that the few terms of a body (gravity, the
@@ -419,6 +509,131 @@ contains
       real(wp), intent(in) :: value
       band(smu + row - col + 1, col) = band(smu + row - col + 1, col) + value
    end subroutine band_add
+
+   !> Factor the Newton matrix M of a region of m bodies (band storage as in
+   !> region_jacobian: M(row, col) = band(smu + row - col + 1, col), with the
+   !> Jacobian's bandwidths around the diagonal). info: 0; k > 0 when the k-th pivot
+   !> of T is zero or not finite (CVODE then retries with a smaller step); -1 when M
+   !> has an entry outside the structure of newton_factor (the Jacobian changed
+   !> without this), or the factors cannot be allocated.
+   pure subroutine factor_newton_matrix(m, smu, band, factor, info)
+      integer, intent(in) :: m, smu
+      real(wp), intent(in) :: band(:, :)
+      type(newton_factor), intent(inout) :: factor
+      integer, intent(out) :: info
+      real(wp) :: t_lower, t_diag
+      integer :: k, l, n, row, col, alloc_stat
+
+      info = -1
+      n = region_size(m)
+      if (.not. allocated(factor%uu)) then
+         allocate(factor%uu(m), factor%uv(m), factor%vu(-1:1, m), factor%lower(m), &
+            & factor%pivot(m), factor%upper(m), factor%ee(m + 1), stat=alloc_stat)
+         if (alloc_stat /= 0) return
+      end if
+      if (size(factor%uu) /= m) return
+      do col = 1, n
+         do row = max(1, col - upper_band), min(n, col + lower_band)
+            if (entry_of_structure(m, row, col)) cycle
+            if (band(smu + row - col + 1, col) /= 0.0_wp) return
+         end do
+      end do
+      do k = 1, m
+         factor%uu(k) = entry(3 * k - 2, 3 * k - 2)
+         factor%uv(k) = entry(3 * k - 2, 3 * k - 1)
+         do l = -1, 1
+            factor%vu(l, k) = 0.0_wp
+            if (k + l >= 1 .and. k + l <= m) factor%vu(l, k) = entry(3 * k - 1, 3 * (k + l) - 2)
+         end do
+         factor%ee(k) = entry(3 * k, 3 * k)
+      end do
+      factor%ee(m + 1) = entry(n, n)
+      info = 0
+      ! T(k, k + l) = M(v_k, v_(k+l)) - M(v_k, u_(k+l)) M(u, v)/M(u, u) of body k + l
+      do k = 1, m
+         t_diag = entry(3 * k - 1, 3 * k - 1) - factor%vu(0, k) * (factor%uv(k) / factor%uu(k))
+         factor%upper(k) = 0.0_wp
+         if (k < m) factor%upper(k) = entry(3 * k - 1, 3 * k + 2) &
+            & - factor%vu(1, k) * (factor%uv(k + 1) / factor%uu(k + 1))
+         factor%lower(k) = 0.0_wp
+         if (k > 1) then
+            t_lower = entry(3 * k - 1, 3 * k - 4) &
+               & - factor%vu(-1, k) * (factor%uv(k - 1) / factor%uu(k - 1))
+            factor%lower(k) = t_lower / factor%pivot(k - 1)
+            t_diag = t_diag - factor%lower(k) * factor%upper(k - 1)
+         end if
+         factor%pivot(k) = t_diag
+         if (.not. (abs(t_diag) > 0.0_wp .and. abs(t_diag) <= huge(1.0_wp))) then
+            info = k
+            return
+         end if
+      end do
+   contains
+      pure real(wp) function entry(row, col)
+         integer, intent(in) :: row, col
+         entry = band(smu + row - col + 1, col)
+      end function entry
+   end subroutine factor_newton_matrix
+
+   !> Whether M(row, col) of a region of m bodies may be nonzero: u_k with u_k, v_k;
+   !> v_k with u and v of bodies k - 1 .. k + 1; an energy with itself.
+   pure logical function entry_of_structure(m, row, col) result(inside)
+      integer, intent(in) :: m, row, col
+      integer :: kr, kc, sr, sc
+      ! body and kind (1 u, 2 v, 3 e) of the row and the column; the last value, e of
+      ! slot m, as kind 3 of a body m + 1
+      kr = (row + 2) / 3
+      sr = row - 3 * (kr - 1)
+      kc = (col + 2) / 3
+      sc = col - 3 * (kc - 1)
+      if (row == region_size(m)) then
+         kr = m + 1
+         sr = 3
+      end if
+      if (col == region_size(m)) then
+         kc = m + 1
+         sc = 3
+      end if
+      select case (sr)
+      case (1)
+         inside = kc == kr .and. sc <= 2
+      case (2)
+         inside = abs(kc - kr) <= 1 .and. sc <= 2 .and. kc <= m
+      case default
+         inside = row == col
+      end select
+   end function entry_of_structure
+
+   !> Solve M z = r in place (x holds r on entry, z on return) with the factors of
+   !> factor_newton_matrix for a region of m bodies.
+   pure subroutine solve_newton(m, factor, x)
+      integer, intent(in) :: m
+      type(newton_factor), intent(in) :: factor
+      real(wp), intent(inout) :: x(:)
+      real(wp) :: g
+      integer :: k, l
+      ! the velocities' right-hand side with the displacements eliminated
+      do k = 1, m
+         g = x(3 * k - 1)
+         do l = -1, 1
+            if (k + l >= 1 .and. k + l <= m) g = g - factor%vu(l, k) &
+               & * (x(3 * (k + l) - 2) / factor%uu(k + l))
+         end do
+         if (k > 1) g = g - factor%lower(k) * x(3 * k - 4)
+         x(3 * k - 1) = g
+      end do
+      ! back substitution: the velocities, then each body's displacement and energy
+      do k = m, 1, -1
+         g = x(3 * k - 1)
+         if (k < m) g = g - factor%upper(k) * x(3 * k + 2)
+         x(3 * k - 1) = g / factor%pivot(k)
+      end do
+      do k = 1, m
+         x(3 * k - 2) = (x(3 * k - 2) - factor%uv(k) * x(3 * k - 1)) / factor%uu(k)
+         x(3 * k) = x(3 * k) / factor%ee(k)
+      end do
+      x(3 * m + 1) = x(3 * m + 1) / factor%ee(m + 1)
+   end subroutine solve_newton
 
    !> dF/dt of slot j: F_x w + F_v w', w' from the accelerations dy (region_rhs)
    pure real(wp) function force_rate(region, j, dy, w, element)

@@ -29,6 +29,8 @@ module hcimpact_cvode_sundials
       & c_funloc, c_associated, c_f_pointer
 #if HCIMPACT_SUNDIALS_MAJOR >= 7
    use fsundials_core_mod, only : N_Vector, SUNMatrix, SUNLinearSolver, &
+      & SUNLinearSolver_Ops, FSUNLinSolNewEmpty, FSUNLinSolFreeEmpty, &
+      & SUNLINEARSOLVER_DIRECT, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
       & FSUNContext_Create, FSUNContext_Free, FSUNContext_ClearErrHandlers, &
       & FSUNContext_PushErrHandler, SUN_COMM_NULL
@@ -36,7 +38,9 @@ module hcimpact_cvode_sundials
    use fsundials_context_mod, only : FSUNContext_Create, FSUNContext_Free
    use fsundials_nvector_mod, only : N_Vector, FN_VGetArrayPointer, FN_VDestroy
    use fsundials_matrix_mod, only : SUNMatrix, FSUNMatDestroy
-   use fsundials_linearsolver_mod, only : SUNLinearSolver, FSUNLinSolFree
+   use fsundials_linearsolver_mod, only : SUNLinearSolver, FSUNLinSolFree, &
+      & SUNLinearSolver_Ops, FSUNLinSolNewEmpty, FSUNLinSolFreeEmpty, &
+      & SUNLINEARSOLVER_DIRECT
    use fcvode_mod, only : FCVodeSetErrHandlerFn
 #endif
    use hcimpact_cvode_report, only : solver_report
@@ -45,6 +49,8 @@ module hcimpact_cvode_sundials
 
    public :: N_Vector, SUNMatrix, SUNLinearSolver
    public :: FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree
+   public :: SUNLinearSolver_Ops, FSUNLinSolNewEmpty, FSUNLinSolFreeEmpty, &
+      & SUNLINEARSOLVER_DIRECT
    public :: context_create, context_free, capture_errors, sundials_major
 
    !> The SUNDIALS major version this component was built against

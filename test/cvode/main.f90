@@ -15,6 +15,7 @@ program tester_cvode
    use test_cvode_threads, only : collect_threads
    use test_cvode_chain, only : collect_chain
    use test_cvode_chain_api, only : collect_chain_api
+   use test_cvode_chain_newton, only : collect_chain_newton
    implicit none
    type(testsuite_type), allocatable :: testsuites(:)
 
@@ -25,7 +26,8 @@ program tester_cvode
       new_testsuite("stability", collect_stability), &
       new_testsuite("threads", collect_threads), &
       new_testsuite("chain", collect_chain), &
-      new_testsuite("chain_api", collect_chain_api) &
+      new_testsuite("chain_api", collect_chain_api), &
+      new_testsuite("chain_newton", collect_chain_newton) &
       ]
 
    call run_tester(testsuites)
