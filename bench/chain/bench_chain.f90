@@ -11,11 +11,11 @@
 !>     and with --states the final positions and velocities in DIR/hc_<integrator>_
 !>     <rtol>.csv (with the system's parameters in its header, for the SciPy script).
 !>   bench_chain scaling OUT.csv --sizes N1,N2,... --rounds R --t-end T --rtol R
-!>       [--min-seconds S] [--gap G]
+!>       [--min-seconds S] [--gap G] [--method auto|integrated]
 !>     Per-step cost against N: in every round each size once, in an order reversed
 !>     every other round; a row per round and size (with --gap, the chain has the gap G
-!>     in m between all its beads instead of touching).
-!>   bench_chain memory --n N --t-end T --rtol R
+!>     in m between all its beads instead of touching; method auto by default).
+!>   bench_chain memory --n N --t-end T --rtol R [--method auto|integrated]
 !>     One run; the peak resident set size (getrusage) before the chain is built and
 !>     after the run, in KiB: one CSV row.
 !>   bench_chain dilute TIMES.csv ACCURACY.csv --rounds R [--rtol R] [--rtols LIST]
@@ -322,7 +322,7 @@ contains
             k = kk
             if (mod(r, 2) == 0) k = size(sizes) + 1 - kk
             call struck_chain(nint(sizes(k)), chain, gap)
-            seconds = time_runs(chain, options_for(t_end, rtol, method_auto, integrator), &
+            seconds = time_runs(chain, options_for(t_end, rtol, method, integrator), &
                & min_seconds, result, stat, calls)
             write(unit, '(i0, ",", i0, 2(",", es10.3e2), ",", i0, ",", es12.5e2, 5(",", i0), &
                & ",", es10.3e3, ",", es10.3e2, 3(",", i0))') r, nint(sizes(k)), t_end, rtol, &
@@ -351,7 +351,7 @@ contains
       integer(int64) :: baseline
       baseline = peak_rss_kib()
       call struck_chain(n, chain)
-      call chain_simulate(chain, result, stat, options_for(t_end, rtol, method_auto, &
+      call chain_simulate(chain, result, stat, options_for(t_end, rtol, method, &
          & integrator))
       write(output_unit, '(a)') "n,t_end,rtol,status,baseline_kib,peak_kib,steps"
       write(output_unit, '(i0, 2(",", es10.3e2), 3(",", i0), ",", i0)') n, t_end, rtol, &

@@ -8,9 +8,10 @@
 # of doc/chains-bench.md.
 #
 # Parts (all by default; --only PART,PART,... to run some, the others' CSV files kept):
-#   scaling  per-step cost of the struck chain against N = 1e2 ... 1e5 (interleaved rounds),
-#            touching and with small gaps
-#   memory   peak RSS against N = 1e2 ... 1e6 (one process per N)
+#   scaling  per-step cost of the struck chain against N = 1e2 ... 1e5 (interleaved rounds):
+#            touching and integrated whole, touching with method auto, and with small gaps
+#   memory   peak RSS against N = 1e2 ... 1e6 (one process per N, the whole chain
+#            integrated)
 #   scipy    work-precision against SciPy's solve_ivp, N = 100 and N = 1000
 #   dilute   closed forms against CVODE on the dilute systems (interleaved rounds)
 #   row      the dilute row of N = 1e3 ... 1e5 beads with random speeds: method auto
@@ -158,7 +159,8 @@ if has_part scaling; then
         set -- --sizes 100,1000,10000,100000 --rounds 5 --min-seconds 0.2
     fi
     set -x
-    "$bench" scaling "$out/scaling.csv" --t-end 3e-4 --rtol 1e-8 "$@"
+    "$bench" scaling "$out/scaling.csv" --t-end 3e-4 --rtol 1e-8 --method integrated "$@"
+    "$bench" scaling "$out/scaling_auto.csv" --t-end 1e-3 --rtol 1e-8 "$@"
     "$bench" scaling "$out/scaling_gap.csv" --t-end 1e-3 --rtol 1e-8 --gap 1e-6 "$@"
     { set +x; } 2>/dev/null
 fi
@@ -170,7 +172,8 @@ if has_part memory; then
     echo "n,t_end,rtol,status,baseline_kib,peak_kib,steps" > "$out/memory.csv.tmp"
     for n in $sizes; do
         set -x
-        "$bench" memory --n "$n" --t-end 1e-5 --rtol 1e-8 | tail -n 1 >> "$out/memory.csv.tmp"
+        "$bench" memory --n "$n" --t-end 1e-5 --rtol 1e-8 --method integrated | tail -n 1 \
+            >> "$out/memory.csv.tmp"
         { set +x; } 2>/dev/null
     done
     mv "$out/memory.csv.tmp" "$out/memory.csv"

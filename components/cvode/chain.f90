@@ -93,6 +93,14 @@ module hcimpact_cvode_chain
       integer :: due = advance_reached
       !> Steps in a row that left the time where it was
       integer :: stalled = 0
+      !> Per end (1 left, 2 right): whether the boundary pair touched at the start,
+      !> gap and relative speed exactly 0 (a pair of touching bodies left outside:
+      !> closed_gap of hcimpact_chain_engine). The body outside flies freely and the
+      !> forces on the one inside push it outwards only, so such a gap never opens:
+      !> it closes as soon as the body inside is pushed.
+      logical :: touching(2) = .false.
+      !> The size of the last step (s)
+      real(wp) :: h_last = 0.0_wp
    contains
       procedure :: begin => region_begin
       procedure :: advance => region_advance
@@ -137,9 +145,11 @@ contains
       integer, intent(out) :: stat
       integer :: m, k, i, j, s, n_state, smu
       integer(c_int) :: ierr
-      real(wp) :: x, w, v_ref, x_ref, e_ref
+      real(wp) :: x, w, v_ref, x_ref, e_ref, h0
       type(contact_force_type) :: e
       character(len=40) :: where
+      !> Per slot: a pair touching at rest, opened now
+      logical, allocatable :: resting(:)
       real(c_double), pointer, contiguous :: y(:), atol(:)
       logical :: halting(3)
 
@@ -215,12 +225,17 @@ contains
 
       ! the contacts in progress: handed over by the closed forms or an earlier region;
       ! and every slot's state now, the start of the first step's interpolants
-      allocate(self%contact(0:m), self%history(0:m))
+      allocate(self%contact(0:m), self%history(0:m), resting(0:m))
+      resting = .false.
       do j = 0, m
          s = self%first - 1 + j
          if (self%region%kind(j) == slot_none) cycle
          call slot_state(self%region, j, engine%time, self%y, x, w, e)
          self%history(j) = slot_history(engine%time, x, w, e%force, 0.0_wp, 0.0_wp)
+         if (self%region%kind(j) == slot_boundary_left) self%touching(1) = &
+            & x == 0.0_wp .and. w == 0.0_wp
+         if (self%region%kind(j) == slot_boundary_right) self%touching(2) = &
+            & x == 0.0_wp .and. w == 0.0_wp
          if (self%region%kind(j) == slot_boundary_left .or. self%region%kind(j) == &
             & slot_boundary_right) cycle
          if (engine%exact(s)%handed) then
@@ -234,7 +249,18 @@ contains
             ! in contact, or touching: a touching pair that is pushed is in contact
             ! from now
             call open_at(self, j, engine%time, max(w, 0.0_wp), 0.0_wp)
+            resting(j) = x == 0.0_wp .and. w == 0.0_wp
          end if
+      end do
+      ! pairs touching at rest next to a contact in progress (a region grown over a
+      ! touching chain): pushed through it, they have been in contact since it began
+      do j = 1, m
+         if (resting(j) .and. self%contact(j - 1)%open) self%contact(j)%t_start = &
+            & min(self%contact(j)%t_start, self%contact(j - 1)%t_start)
+      end do
+      do j = m - 1, 0, -1
+         if (resting(j) .and. self%contact(j + 1)%open) self%contact(j)%t_start = &
+            & min(self%contact(j)%t_start, self%contact(j + 1)%t_start)
       end do
       self%captured = .false.
       self%time = engine%time
@@ -293,8 +319,9 @@ contains
          ierr = FCVodeSetJacFn(self%mem, c_funloc(chain_jacobian_callback))
          if (ierr /= CV_SUCCESS) exit setup
          where = "CVodeSetInitStep"
-         ierr = FCVodeSetInitStep(self%mem, real(0.01_wp * sqrt(engine%options%rtol) &
-            & * x_ref / v_ref, c_double))
+         h0 = 0.01_wp * sqrt(engine%options%rtol) * x_ref / v_ref
+         if (self%first_step > 0.0_wp) h0 = self%first_step
+         ierr = FCVodeSetInitStep(self%mem, real(h0, c_double))
          if (ierr /= CV_SUCCESS) exit setup
          where = "CVodeSetMaxNumSteps"
          ierr = FCVodeSetMaxNumSteps(self%mem, int(huge(1_c_int), c_long))
@@ -425,6 +452,7 @@ contains
                exit run
             end if
          end if
+         if (tret(1) > self%tn) self%h_last = tret(1) - self%tn
          self%tn = max(tret(1), self%tn)
          engine%counters%steps = engine%counters%steps + 1
          self%stepped = .true.
@@ -872,6 +900,7 @@ contains
          engine%body(i)%u0 = self%y(3 * k - 2)
          engine%body(i)%v0 = self%y(3 * k - 1)
       end do
+      call hand_touching(self, engine)
       do j = 0, m
          if (.not. allocated(self%contact)) exit
          if (.not. self%contact(j)%open) cycle
@@ -889,6 +918,44 @@ contains
       call release_all(self)
       call halting_resume(halting)
    end subroutine region_finish
+
+   !> The region grows at engine%time over a boundary pair that has touched all along
+   !> (its gap exactly 0): that pair has been in contact since the body inside was
+   !> first pushed, which is the start of the open contact on that body's other side
+   !> (the deformation is positive from then on, below the double range at first:
+   !> the reference integrations and the whole system integrated start it there too).
+   !> Its contact is handed over to the grown region with that start, approach speed
+   !> 0 and nothing recorded yet (without such a contact, it starts now), and the
+   !> grown region may begin with the last step (step_for_growth; 0 otherwise).
+   subroutine hand_touching(self, engine)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      integer :: side, j, inner, s
+      real(wp) :: t_start
+      self%step_for_growth = 0.0_wp
+      if (.not. (allocated(self%contact) .and. associated(self%region))) return
+      do side = 1, 2
+         if (.not. self%touching(side)) cycle
+         if (side == 1 .and. self%due /= advance_grow_left) cycle
+         if (side == 2 .and. self%due /= advance_grow_right) cycle
+         if (.not. engine%time >= self%next) cycle
+         j = merge(0, self%region%m, side == 1)
+         inner = merge(1, self%region%m - 1, side == 1)
+         t_start = engine%time
+         if (inner >= 0 .and. inner <= self%region%m .and. inner /= j) then
+            if (self%contact(inner)%open) t_start = min(t_start, self%contact(inner)%t_start)
+         end if
+         s = self%first - 1 + j
+         engine%exact(s)%handed = .true.
+         engine%exact(s)%active = .false.
+         engine%exact(s)%t_start = t_start
+         engine%exact(s)%contact%velocity = 0.0_wp
+         engine%exact(s)%so_far_peak = 0.0_wp
+         engine%exact(s)%so_far_deformation = 0.0_wp
+         engine%exact(s)%so_far_dissipated = 0.0_wp
+         self%step_for_growth = self%h_last
+      end do
+   end subroutine hand_touching
 
    !> CVODE's right-hand side and Jacobian evaluations into the engine's counters.
    subroutine add_counters(self, engine)

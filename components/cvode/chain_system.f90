@@ -176,6 +176,15 @@ contains
          element = contact_force_type(0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp)
          return
       end if
+      ! Apart by more than the rounding of x (two roundings, each within an ulp of
+      ! twice the largest term): the element's exact deformation is negative too, and
+      ! it would return no contact; most slots of a long region are such, or touching
+      ! with all three terms zero, and skip the element's exact sums and checks.
+      if (x < -4.0_wp * spacing(max(abs(d), abs(ql), abs(qr))) .or. &
+         & (d == 0.0_wp .and. ql == 0.0_wp .and. qr == 0.0_wp)) then
+         element = contact_force_type(0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp, 0.0_wp)
+         return
+      end if
       call contact_force_pair(region%law(j)%stiffness, region%law(j)%exponent, &
          & region%law(j)%damping, d, ql, vl, qr, vr, element)
    end subroutine slot_state

@@ -92,7 +92,8 @@ contains
          & new_unittest("regions-degenerate", test_regions_degenerate), &
          & new_unittest("regions-gravity", test_regions_gravity), &
          & new_unittest("error-independent-of-size", test_size_independent), &
-         & new_unittest("large-chain", test_large_chain) &
+         & new_unittest("large-chain", test_large_chain), &
+         & new_unittest("touching-chain-grows", test_touching_grows) &
          & ]
    end subroutine collect_chain
 
@@ -1874,6 +1875,57 @@ contains
          & large%energy_error <= k_energy * 1.0e-8_wp, "struck chain: the energy error " &
          & // "grows with the length: " // format_real(large%energy_error))
    end subroutine test_size_independent
+
+   !> A struck chain of touching beads with method auto: the region integrated grows
+   !> as the wave sets beads moving (a touching bead at rest joins when the one
+   !> before it pushes into it; closed_gap of the engine), not over the whole chain.
+   !> With 120 and 480 beads to 1 ms (the wave near bead 20): the first 120 beads'
+   !> states, the contacts and the steps are the same to the bit (the beads beyond
+   !> are never integrated), the velocities and positions within k_velocity rtol of
+   !> the whole chain integrated, and every contact (all between beads touching from
+   !> the start) starts at 0, as in the reference integrations: a pair that joins has
+   !> been pushed since the contact next to it began.
+   subroutine test_touching_grows(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: rtol = 1.0e-8_wp, t_end = 1.0e-3_wp
+      type(chain_result) :: short, long, whole
+      real(wp) :: ev, ex
+      integer :: i
+      call run(error, steel_row(120, 1.0_wp, 0.0_wp, 0.0_wp), opts(method_auto, rtol, &
+         & t_end), short, "120 beads, auto")
+      if (allocated(error)) return
+      call run(error, steel_row(480, 1.0_wp, 0.0_wp, 0.0_wp), opts(method_auto, rtol, &
+         & t_end), long, "480 beads, auto")
+      if (allocated(error)) return
+      call run(error, steel_row(120, 1.0_wp, 0.0_wp, 0.0_wp), opts(method_integrated, &
+         & rtol, t_end), whole, "120 beads, integrated")
+      if (allocated(error)) return
+      call check(error, all(short%velocities == long%velocities(1:120)) .and. &
+         & all(short%positions == long%positions(1:120)) .and. &
+         & all(long%velocities(121:) == 0.0_wp) .and. &
+         & short%counters%steps == long%counters%steps .and. &
+         & short%n_contacts == long%n_contacts, &
+         & "120 and 480 beads: not the same integration of the beads the wave reached")
+      if (allocated(error)) return
+      ev = maxval(abs(short%velocities - whole%velocities)) / rtol
+      ex = maxval(abs(short%positions - whole%positions)) / (rtol * maxval(abs(whole%positions)))
+      print '(2x, a, i0, a, 2es10.2, a, i0)', "touching chain: ", short%counters%steps, &
+         & " steps; velocity, position error against the whole integrated / rtol:", ev, ex, &
+         & "; contacts ", short%n_contacts
+      call check(error, ev <= k_velocity .and. ex <= k_velocity, "against the whole " // &
+         & "chain integrated: velocity " // format_real(ev) // ", position " // &
+         & format_real(ex) // " rtol")
+      if (allocated(error)) return
+      call check(error, short%n_contacts >= 15, "the wave's contacts: " // &
+         & int_text(int(short%n_contacts)))
+      if (allocated(error)) return
+      do i = 1, int(short%n_contacts)
+         call check(error, short%contacts(i)%t_start == 0.0_wp, "contact " // &
+            & int_text(i) // " of pair " // int_text(short%contacts(i)%pair) // &
+            & " starts at " // format_real(short%contacts(i)%t_start))
+         if (allocated(error)) return
+      end do
+   end subroutine test_touching_grows
 
    !> 10^5 bodies: a touching chain struck at one end, to 0.2 ms (the wave has crossed
    !> about five beads): it runs (the integrated region grows with the wave, not with

@@ -123,6 +123,14 @@ module hcimpact_chain_engine
       real(wp) :: time = 0.0_wp, next = 0.0_wp
       !> Whether `begin` has been called, and whether the region is at rest for good
       logical :: begun = .false., rested = .false.
+      !> A first step to try (s; 0: the integrator's own choice), and the one its
+      !> `finish` leaves for the region that grows from it (0: none). A region that
+      !> grows over bodies touching it at rest, where no new impact begins, can go on
+      !> with the step it had reached, where a start from scratch climbs back from a
+      !> tiny step and order 1 (on a struck chain of touching beads, which grows as
+      !> its wave sets beads moving, that doubled the steps); after a growth over a
+      !> gap that closed, a new impact begins and the integrator chooses.
+      real(wp) :: first_step = 0.0_wp, step_for_growth = 0.0_wp
    contains
       procedure(integrator_begin), deferred :: begin
       procedure(integrator_advance), deferred :: advance
@@ -1057,20 +1065,24 @@ contains
    !> with every region it overlaps or borders (regions stay apart by at least one
    !> body in free flight: the body next to a region's end must fly freely, its
    !> integrator watches that gap). A region merged is written back first.
-   subroutine form_region(engine, first, last, why, integrator)
+   subroutine form_region(engine, first, last, why, integrator, step_hint)
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: first, last
       character(len=*), intent(in) :: why
       !> The integrator of clusters (the new region gets an object of its type)
       class(cluster_integrator), intent(in) :: integrator
+      !> A first step for its integrator to try (s; grow_region), if any
+      real(wp), intent(in), optional :: step_hint
       type(region_entry), allocatable :: grown(:)
       integer :: a, b, i, s, k
-      real(wp) :: u, v
+      real(wp) :: u, v, hint
       logical :: merged
 
       a = first
       b = last
       merged = .false.
+      hint = 0.0_wp
+      if (present(step_hint)) hint = step_hint
       ! the regions within the range or next to it
       i = max(a - 1, 1)
       do while (i <= min(b + 1, engine%n))
@@ -1136,6 +1148,8 @@ contains
       engine%regions(k)%integrator%next = engine%time
       engine%regions(k)%integrator%begun = .false.
       engine%regions(k)%integrator%rested = .false.
+      ! (regions merged: contacts between them begin, the integrator chooses)
+      engine%regions(k)%integrator%first_step = merge(0.0_wp, hint, merged)
       do i = a, b
          engine%body(i)%busy = -1
          engine%body(i)%region = k
@@ -1147,13 +1161,19 @@ contains
       end do
    end subroutine form_region
 
-   !> Whether the gap of pair s is closed (<= 0) now
+   !> Whether the gap of pair s is closed now: below 0, or exactly 0 and closing. A
+   !> touching pair that is not closing (at rest, or in the same free flight) stays
+   !> outside: the region watches that boundary, and grows where the body inside
+   !> pushes into the one outside (the deformation rises above 0 on its interpolant),
+   !> so a struck chain of touching beads is integrated as far as its wave has set
+   !> beads moving, not along all of its length.
    logical function closed_gap(engine, s)
       type(chain_engine), intent(in) :: engine
       integer, intent(in) :: s
       real(wp) :: gap, rate
       call slot_gap_at(engine, s, engine%time, gap, rate)
-      closed_gap = .not. gap > 0.0_wp
+      closed_gap = .not. gap >= 0.0_wp
+      if (gap == 0.0_wp) closed_gap = .not. rate >= 0.0_wp
    end function closed_gap
 
    !> An exact contact in progress is handed to the integrator: what its record holds
@@ -1223,6 +1243,7 @@ contains
       class(cluster_integrator), intent(in) :: integrator
       character(len=max_message) :: why
       integer :: a, b, more
+      real(wp) :: h
       a = engine%regions(k)%integrator%first
       b = engine%regions(k)%integrator%last
       more = max(1, (b - a + 1) / 4)
@@ -1233,18 +1254,22 @@ contains
          write(why, '(a, i0, a)') "body ", b + 1, " touches the cluster"
          b = min(b + more, engine%n)
       end if
-      call close_region(engine, k)
-      call form_region(engine, a, b, why, integrator)
+      call close_region(engine, k, h)
+      call form_region(engine, a, b, why, integrator, h)
    end subroutine grow_region
 
    !> Close region k: its integrator (if begun) follows its contacts up to now and
    !> writes its bodies' states back, the bodies are free again (a contact in progress
    !> stays in its slot, handed over), and the last region takes its index.
-   subroutine close_region(engine, k)
+   subroutine close_region(engine, k, step_for_growth)
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: k
+      !> The first step its integrator leaves for a region grown from it (s; 0: none)
+      real(wp), intent(out), optional :: step_for_growth
       integer :: i, n
       if (engine%regions(k)%integrator%begun) call engine%regions(k)%integrator%finish(engine)
+      if (present(step_for_growth)) step_for_growth = &
+         & engine%regions(k)%integrator%step_for_growth
       do i = engine%regions(k)%integrator%first, engine%regions(k)%integrator%last
          engine%body(i)%region = 0
          engine%body(i)%busy = -1
