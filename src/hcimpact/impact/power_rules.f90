@@ -249,14 +249,19 @@ contains
       kk = sq * dd_real(model%inv_hq(1), model%inv_hq(2))
       alpha = model%f%alpha_hi
       nu = (1.0_wp - 2.0_wp * alpha) - 2.0_wp * model%f%alpha_lo
-      ! the turning point and the peak in x: x = 1 - 2 d_c/L, L = b1 + b2 - ls%lo, and
-      ! the turning point's d_c is b1 (the nodes place l = b1 - d_c), the peak's b1 - lp
-      num = two_sum(b2, -b1) - ls%lo
-      x0 = num / length
-      xp = (num + 2.0_wp * lp) / length
-      ! (the peak lies between the turning point and the impact: x0 <= xp < 1)
-      if (parts .and. .not. (abs(x0%hi) <= sym_series_max .and. xp%hi < 1.0_wp &
-         & .and. xp%hi >= -sym_series_max)) return
+      x0 = dd(0.0_wp)
+      xp = dd(0.0_wp)
+      if (parts) then
+         ! the turning point and the peak in x: x = 1 - 2 d_c/L, L = b1 + b2 - ls%lo, and
+         ! the turning point's d_c is b1 (the nodes place l = b1 - d_c), the peak's
+         ! b1 - lp
+         num = two_sum(b2, -b1) - ls%lo
+         x0 = num / length
+         xp = (num + 2.0_wp * lp) / length
+         ! (the peak lies between the turning point and the impact: x0 <= xp < 1)
+         if (.not. (abs(x0%hi) <= sym_series_max .and. xp%hi < 1.0_wp &
+            & .and. xp%hi >= -sym_series_max)) return
+      end if
       m0 = sym_m0(model%inv_np1_dd, model%np1_dd)
 
       ! degrees 12, 24, 48 (nested); above whole_16_beta, where 12 is not accepted,
