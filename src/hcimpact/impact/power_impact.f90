@@ -19,7 +19,8 @@ module hcimpact_power_impact
    use hcimpact_power_model, only : power_model, new_power_model, set_end_times, &
       & power_peak, turn_log_share, end_log_share
    use hcimpact_force_element, only : contact_force_type, contact_force
-   use hcimpact_power_rules, only : power_phase_times, power_whole_cc, whole_max_beta
+   use hcimpact_power_rules, only : power_phase_times, power_whole_cc, whole_max_beta, &
+      & contact_max_beta
    implicit none
    private
 
@@ -129,6 +130,7 @@ contains
       integer(ik), intent(out) :: ev(3)
       integer, intent(out) :: stat
       logical :: whole
+      type(dd_real) :: contact
       stat = hcimpact_ok
       ev = 0_ik
       if (model%n > max_quadrature_exponent) then
@@ -137,8 +139,17 @@ contains
       end if
       call power_peak(model, q, y, lp)
       whole = .false.
-      if (model%f%tr%beta%hi <= whole_max_beta) &
-         & call power_whole_cc(model, lp, dur, tpeak, ev(1), whole)
+      if (model%f%tr%beta%hi <= whole_max_beta) then
+         call power_whole_cc(model, lp, .true., dur, tpeak, ev(1), whole)
+      else if (model%f%tr%beta%hi <= contact_max_beta) then
+         ! the contact time over the whole contact, the compression by its own rule
+         call power_whole_cc(model, lp, .false., dur, tpeak, ev(2), whole)
+         if (whole) then
+            contact = dur(1)
+            call power_phase_times(model, lp, dur, tpeak, ev, stat, contact)
+            return
+         end if
+      end if
       if (.not. whole) call power_phase_times(model, lp, dur, tpeak, ev, stat)
    end subroutine power_times
 

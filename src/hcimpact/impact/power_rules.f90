@@ -2,8 +2,9 @@
 !> The quadrature rules of the times of a power-law impact, and their schedule.
 !>
 !> One modified Clenshaw-Curtis rule with the symmetric weight (1 - x^2)^(-alpha) over
-!> the whole contact for beta <= whole_max_beta (`power_whole_cc`); otherwise a rule on
-!> each phase (`power_piece_cc`), cut into graded pieces for large beta
+!> the whole contact for beta <= whole_max_beta (`power_whole_cc`), and for the contact
+!> time alone up to contact_max_beta; otherwise a rule on each phase (`power_piece_cc`,
+!> the compression's only below contact_max_beta), cut into graded pieces for large beta
 !> (`power_phase_split`), and tanh-sinh (hcimpact_trajectory) where a rule does not
 !> converge. doc/quadrature.md explains the rules, doc/impact.md the schedule.
 module hcimpact_power_rules
@@ -28,7 +29,7 @@ module hcimpact_power_rules
    public :: power_phase_times, power_whole_cc
    ! the thresholds and the cuts, for the unit tests of the graded pieces
    public :: power_phase_pieces, max_pieces, cc_max_beta, cc_max_compression_le, end_piece_le
-   public :: whole_max_beta
+   public :: whole_max_beta, contact_max_beta
 
    !> Above this beta the restitution time is cut into graded pieces (power_phase_split)
    real(wp), parameter :: cc_max_beta = 8.0_wp
@@ -45,6 +46,15 @@ module hcimpact_power_rules
    !> Above this beta the whole-contact rule starts at degree 16 (degree 12 was not
    !> accepted beyond about 0.55; 16 is, up to whole_max_beta: 17 evaluations, not 25)
    real(wp), parameter :: whole_16_beta = 0.5_wp
+   !> Up to this beta (above whole_max_beta) the contact time is one rule over the whole
+   !> contact at degree 24 (25 evaluations up to beta = 6, 49 beyond for most n) and the
+   !> compression a rule of its own (25), where the rules on the two phases took 25 + 49
+   !> (the restitution's was never accepted at 24 above beta = 1.8): never more
+   !> evaluations, mostly 24 fewer. The compression and the time of the peak as
+   !> incomplete integrals of the whole contact's rule (as below whole_max_beta) were
+   !> up to 6 ulp off for n = 10 from beta = 3.5 on (issue 17). Above, the restitution's
+   !> graded pieces.
+   real(wp), parameter :: contact_max_beta = cc_max_beta
    !> Width in L = beta l of the compression's end piece when the phase is cut: the
    !> complex singularities L_e +- 2 pi i lie at a Bernstein ellipse rho = 5.5 of it,
    !> degree 24 converges (at 6, rho = 4.8, it sometimes needed 48)
@@ -207,13 +217,17 @@ contains
    !> turning point must lie within |x| <= 1/2, else, or if degree 48 is not accepted,
    !> `converged` is false and the caller takes the phases one by one). Each node uses
    !> the form of S for its nearest point among the two ends and the turning point.
-   pure subroutine power_whole_cc(model, lp, dur, tpeak, evaluations, converged)
+   !> With `parts` false, only the contact time (in dur(1); dur(2) and tpeak 0) and no
+   !> condition on the turning point.
+   pure subroutine power_whole_cc(model, lp, parts, dur, tpeak, evaluations, converged)
       type(power_model), intent(in) :: model
       !> l of the peak force
       type(dd_real), intent(in) :: lp
-      !> Compression and restitution times
+      !> Whether the compression and the time of the peak are wanted too
+      logical, intent(in) :: parts
+      !> Compression and restitution times (parts), else the contact time and 0
       type(dd_real), intent(out) :: dur(2)
-      !> Time from the impact to the peak
+      !> Time from the impact to the peak (parts), else 0
       type(dd_real), intent(out) :: tpeak
       integer(ik), intent(inout) :: evaluations
       logical, intent(out) :: converged
@@ -235,14 +249,19 @@ contains
       kk = sq * dd_real(model%inv_hq(1), model%inv_hq(2))
       alpha = model%f%alpha_hi
       nu = (1.0_wp - 2.0_wp * alpha) - 2.0_wp * model%f%alpha_lo
-      ! the turning point and the peak in x: x = 1 - 2 d_c/L, L = b1 + b2 - ls%lo, and
-      ! the turning point's d_c is b1 (the nodes place l = b1 - d_c), the peak's b1 - lp
-      num = two_sum(b2, -b1) - ls%lo
-      x0 = num / length
-      xp = (num + 2.0_wp * lp) / length
-      ! (the peak lies between the turning point and the impact: x0 <= xp < 1)
-      if (.not. (abs(x0%hi) <= sym_series_max .and. xp%hi < 1.0_wp &
-         & .and. xp%hi >= -sym_series_max)) return
+      x0 = dd(0.0_wp)
+      xp = dd(0.0_wp)
+      if (parts) then
+         ! the turning point and the peak in x: x = 1 - 2 d_c/L, L = b1 + b2 - ls%lo, and
+         ! the turning point's d_c is b1 (the nodes place l = b1 - d_c), the peak's
+         ! b1 - lp
+         num = two_sum(b2, -b1) - ls%lo
+         x0 = num / length
+         xp = (num + 2.0_wp * lp) / length
+         ! (the peak lies between the turning point and the impact: x0 <= xp < 1)
+         if (.not. (abs(x0%hi) <= sym_series_max .and. xp%hi < 1.0_wp &
+            & .and. xp%hi >= -sym_series_max)) return
+      end if
       m0 = sym_m0(model%inv_np1_dd, model%np1_dd)
 
       ! degrees 12, 24, 48 (nested); above whole_16_beta, where 12 is not accepted,
@@ -250,6 +269,7 @@ contains
       first = 0
       degree = 12
       if (model%f%tr%beta%hi > whole_16_beta) degree = 16
+      if (model%f%tr%beta%hi > whole_max_beta) degree = 24
       do while (degree <= cc_max_degree)
          stride = cc_max_degree / degree
          if (first == 0) then
@@ -292,6 +312,10 @@ contains
       ! contact: the rule and the slivers the rounded ends leave (density about 1)
       total = total * (0.5_wp * length) + ((model%f%tr%gap(compression_phase) &
          & + model%f%tr%gap(restitution_phase)) + ls%lo)
+      if (.not. parts) then
+         dur(1) = total
+         return
+      end if
       ! from the impact to the turning point, and to the peak
       dur(1) = whole_part(model, x0, m0, nu, inv_den, degree, a, lin, length) &
          & + model%f%tr%gap(compression_phase)
@@ -770,7 +794,9 @@ contains
    !> into graded pieces for large beta: power_phase_split; tanh-sinh if a rule does
    !> not converge), in the units of the integrals: compression, restitution and from
    !> the impact to the peak (the compression's interpolant where it holds the peak).
-   pure subroutine power_phase_times(model, lp, dur, tpeak, ev, stat)
+   !> With `contact` (the contact time of power_whole_cc) the restitution is the contact
+   !> less the compression: no rule on it.
+   pure subroutine power_phase_times(model, lp, dur, tpeak, ev, stat, contact)
       !> The model (its integrand is the tanh-sinh rules' state)
       type(power_model), intent(inout) :: model
       !> l of the peak force
@@ -779,6 +805,8 @@ contains
       !> Evaluations: compression, restitution, peak (added to)
       integer(ik), intent(inout) :: ev(3)
       integer, intent(out) :: stat
+      !> The contact time, if known
+      type(dd_real), intent(in), optional :: contact
       type(dd_real) :: t, ct
       real(wp) :: half, c, s, length, big_c, f_turn, f_far
       real(wp) :: moment(0:cc_max_degree), coef(0:cc_max_degree), coef2(0:cc_max_degree)
@@ -845,7 +873,10 @@ contains
       ! For beta > 8 the restitution density varies on a scale 1/beta next to the
       ! turning point (the complex zeros of S near L = ln h(beta) +- 2 pi i): graded
       ! pieces there (power_phase_split).
-      if (model%f%tr%beta%hi <= cc_max_beta) then
+      if (present(contact)) then
+         dur(2) = contact - dur(1)
+         done(2) = .true.
+      else if (model%f%tr%beta%hi <= cc_max_beta) then
          call power_piece_cc(model, restitution_phase, 0.0_wp, &
             & model%f%tr%bound(restitution_phase), model%f%tr%gap(restitution_phase), -1.0_wp, &
             & .true., &
