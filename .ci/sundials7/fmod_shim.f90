@@ -351,15 +351,16 @@ module fsunmatrix_band_mod
    implicit none
    private
 
-   public :: FSUNBandMatrix, FSUNBandMatrix_Data, FSUNBandMatrix_LData, &
+   public :: FSUNBandMatrixStorage, FSUNBandMatrix_Data, FSUNBandMatrix_LData, &
       & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
 
    interface
-      ! SUNMatrix SUNBandMatrix(sunindextype N, sunindextype mu, sunindextype ml,
-      ! SUNContext)
-      function c_band_matrix(n, mu, ml, ctx) result(a) bind(C, name="SUNBandMatrix")
+      ! SUNMatrix SUNBandMatrixStorage(sunindextype N, sunindextype mu,
+      ! sunindextype ml, sunindextype smu, SUNContext)
+      function c_band_matrix(n, mu, ml, smu, ctx) result(a) &
+            & bind(C, name="SUNBandMatrixStorage")
          import :: c_int64_t, c_ptr
-         integer(c_int64_t), value :: n, mu, ml
+         integer(c_int64_t), value :: n, mu, ml, smu
          type(c_ptr), value :: ctx
          type(c_ptr) :: a
       end function c_band_matrix
@@ -391,12 +392,12 @@ module fsunmatrix_band_mod
 
 contains
 
-   function FSUNBandMatrix(n, mu, ml, sunctx) result(a)
-      integer(c_int64_t), intent(in) :: n, mu, ml
+   function FSUNBandMatrixStorage(n, mu, ml, smu, sunctx) result(a)
+      integer(c_int64_t), intent(in) :: n, mu, ml, smu
       type(c_ptr) :: sunctx
       type(SUNMatrix), pointer :: a
-      call c_f_pointer(c_band_matrix(n, mu, ml, sunctx), a)
-   end function FSUNBandMatrix
+      call c_f_pointer(c_band_matrix(n, mu, ml, smu, sunctx), a)
+   end function FSUNBandMatrixStorage
 
    function FSUNBandMatrix_LData(a) result(n)
       type(SUNMatrix), target, intent(inout) :: a

@@ -48,7 +48,7 @@ module hcimpact_cvode_chain
       & FCVodeFree, FCVodeSetStopTime, FCVodeGetDky, FCVodeGetNumRhsEvals, &
       & FCVodeGetNumJacEvals, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS
    use fnvector_serial_mod, only : FN_VMake_Serial
-   use fsunmatrix_band_mod, only : FSUNBandMatrix, FSUNBandMatrix_Data, &
+   use fsunmatrix_band_mod, only : FSUNBandMatrixStorage, FSUNBandMatrix_Data, &
       & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
    use hcimpact_cvode_chain_linear_solver, only : chain_linear_solver
    implicit none
@@ -303,11 +303,14 @@ contains
          where = "CVodeWFtolerances"
          ierr = FCVodeWFtolerances(self%mem, c_funloc(chain_error_weights))
          if (ierr /= CV_SUCCESS) exit setup
-         where = "SUNBandMatrix"
+         where = "SUNBandMatrixStorage"
          ierr = -1
-         self%jac_mat => FSUNBandMatrix(int(n_state, c_int64_t), &
+         ! (stored upper bandwidth = the upper one: no room for the band LU's pivoting,
+         ! which the region's own linear solver does not do)
+         self%jac_mat => FSUNBandMatrixStorage(int(n_state, c_int64_t), &
             & int(min(upper_band, n_state - 1), c_int64_t), &
-            & int(min(lower_band, n_state - 1), c_int64_t), self%ctx)
+            & int(min(lower_band, n_state - 1), c_int64_t), &
+            & int(min(upper_band, n_state - 1), c_int64_t), self%ctx)
          if (.not. associated(self%jac_mat)) exit setup
          where = "the region's linear solver"
          self%lin_sol => chain_linear_solver(self%region%m, self%ctx)
