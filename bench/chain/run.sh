@@ -12,7 +12,8 @@
 #            touching and integrated whole, touching with method auto, and with small gaps
 #   memory   peak RSS against N = 1e2 ... 1e6 (one process per N, the whole chain
 #            integrated)
-#   scipy    work-precision against SciPy's solve_ivp, N = 100 and N = 1000
+#   scipy    work-precision against SciPy's solve_ivp, N = 100 and N = 1000 (and
+#            N = 10000 against DOP853 alone)
 #   dilute   closed forms against CVODE on the dilute systems (interleaved rounds)
 #   row      the dilute row of N = 1e3 ... 1e5 beads with random speeds: method auto
 #            (a region per cluster), and the whole row integrated up to N = 1e3
@@ -195,6 +196,13 @@ if has_part scipy; then
         set -x
         $PYTHON bench/chain/work_precision.py --bench "$bench" --dir "$out" --states "$states" \
             --n 1000 --rounds 3
+        { set +x; } 2>/dev/null
+        # 10^4 beads: DOP853 alone (Radau and BDF with SciPy's sparse LU take minutes
+        # per solve there; at 1000 beads they were already 12-44 times slower than ours)
+        before_part "scipy (N = 10000)"
+        set -x
+        $PYTHON bench/chain/work_precision.py --bench "$bench" --dir "$out" --states "$states" \
+            --n 10000 --rounds 3 --scipy-methods DOP853
         { set +x; } 2>/dev/null
     fi
 fi
