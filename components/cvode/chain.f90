@@ -36,8 +36,8 @@ module hcimpact_cvode_chain
       & advance_failed
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, slot_state, dissipation_index, force_rate, &
-      & slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, slot_left_wall, &
-      & slot_right_wall, slot_boundary_left, slot_boundary_right
+      & slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
+      & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
       & context_create, context_free, capture_errors
@@ -943,11 +943,9 @@ contains
          if (side == 2 .and. self%due /= advance_grow_right) cycle
          if (.not. engine%time >= self%next) cycle
          j = merge(0, self%region%m, side == 1)
-         inner = merge(1, self%region%m - 1, side == 1)
+         inner = merge(1, self%region%m - 1, side == 1)  ! (a slot 0 .. m: m >= 1)
          t_start = engine%time
-         if (inner >= 0 .and. inner <= self%region%m .and. inner /= j) then
-            if (self%contact(inner)%open) t_start = min(t_start, self%contact(inner)%t_start)
-         end if
+         if (self%contact(inner)%open) t_start = min(t_start, self%contact(inner)%t_start)
          s = self%first - 1 + j
          engine%exact(s)%handed = .true.
          engine%exact(s)%active = .false.
