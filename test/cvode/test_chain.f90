@@ -93,7 +93,8 @@ contains
          & new_unittest("regions-gravity", test_regions_gravity), &
          & new_unittest("error-independent-of-size", test_size_independent), &
          & new_unittest("large-chain", test_large_chain), &
-         & new_unittest("touching-chain-grows", test_touching_grows) &
+         & new_unittest("touching-chain-grows", test_touching_grows), &
+         & new_unittest("struck-chain-16", test_struck_chain_16) &
          & ]
    end subroutine collect_chain
 
@@ -243,8 +244,11 @@ contains
    end subroutine set_wall
 
    !> Compare a run of a reference case: final velocities against the largest speed,
-   !> each contact (same pairs in the same order): end time against its duration,
-   !> speeds against the largest speed, peak force and deformation relative,
+   !> each contact (same pairs in the same order): start and end time against its
+   !> duration or, if larger, the largest deformation of the case over the approach
+   !> (separation) speed,
+   !> speeds against the largest speed, largest deformation against the case's
+   !> largest, peak force relative or, if larger, scaled like the deformation,
    !> dissipated energy against the initial kinetic energy; each within k rtol.
    !> worst: the largest error found, in units of rtol; worst_peak: the largest of
    !> the peak forces' and deformations' alone.
@@ -283,26 +287,39 @@ contains
             & // trim(tag) // " is of another pair than the reference's")
          if (allocated(error)) return
          duration = ref%contact(2, k) - ref%contact(1, k)
-         call within(result%contacts(k)%t_end, ref%contact(2, k), duration, k_time, &
-            & "end")
+         call within(result%contacts(k)%t_end, ref%contact(2, k), &
+            & time_scale(ref%contact(4, k)), k_time, "end")
          if (allocated(error)) return
-         call within(result%contacts(k)%t_start, ref%contact(1, k), duration, k_time, &
-            & "start")
+         call within(result%contacts(k)%t_start, ref%contact(1, k), &
+            & time_scale(ref%contact(3, k)), k_time, "start")
          if (allocated(error)) return
          call within(result%contacts(k)%separation_speed, ref%contact(4, k), vmax, &
             & k_velocity, "separation speed")
          if (allocated(error)) return
-         call within(result%contacts(k)%peak_force, ref%contact(5, k), ref%contact(5, k), &
-            & k_peak, "peak force")
+         ! (a light contact's deformation is known to rtol of the case's largest one,
+         ! its force in proportion)
+         call within(result%contacts(k)%peak_force, ref%contact(5, k), ref%contact(5, k) &
+            & * max(1.0_wp, maxval(ref%contact(6, :)) / ref%contact(6, k)), k_peak, &
+            & "peak force")
          if (allocated(error)) return
          call within(result%contacts(k)%max_deformation, ref%contact(6, k), &
-            & ref%contact(6, k), k_peak, "largest deformation")
+            & maxval(ref%contact(6, :)), k_peak, "largest deformation")
          if (allocated(error)) return
          call within(result%contacts(k)%dissipated, ref%contact(7, k), e0, k_energy, &
             & "dissipated energy")
          if (allocated(error)) return
       end do
    contains
+      !> A start or end is known as well as the positions (to rtol of the largest
+      !> deformation), over the speed the gap closes or opens with: behind a wave,
+      !> pairs part and meet again at 1e-4 of the speeds, their instants are that much
+      !> less determined than their durations
+      real(wp) function time_scale(speed)
+         real(wp), intent(in) :: speed
+         time_scale = duration
+         if (speed > 0.0_wp) time_scale = max(duration, maxval(ref%contact(6, :)) / speed)
+      end function time_scale
+
       subroutine within(actual, expected, scale, factor, name)
          real(wp), intent(in) :: actual, expected, scale, factor
          character(len=*), intent(in) :: name
@@ -318,11 +335,12 @@ contains
    end subroutine compare_case
 
    !> Run a reference case at the rtols given with BDF and Adams, compare; print the
-   !> largest error in units of rtol
-   subroutine check_reference_case(error, name, rtols)
+   !> largest error in units of rtol. method: method_auto unless given.
+   subroutine check_reference_case(error, name, rtols, method)
       type(error_type), allocatable, intent(out) :: error
       character(len=*), intent(in) :: name
       real(wp), intent(in) :: rtols(:)
+      integer, intent(in), optional :: method
       type(reference_case) :: ref
       type(chain_result) :: result
       type(chain_options) :: o
@@ -335,10 +353,11 @@ contains
       do integrator = 1, 2
          do i = 1, size(rtols)
             o = opts(method_auto, rtols(i))
+            if (present(method)) o%method = method
             o%integrator = integrator
             if (ref%max_contacts > 0) o%max_events = ref%max_contacts
-            write(what, '(a, a, es8.1, a, i0)') name, " rtol", rtols(i), " integrator ", &
-               & integrator
+            write(what, '(a, a, es8.1, a, i0, a, i0)') name, " rtol", rtols(i), &
+               & " integrator ", integrator, " method ", o%method
             if (ref%max_contacts > 0) then
                call run_until_contacts(error, ref, o, result, trim(what))
             else
@@ -1926,6 +1945,24 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_touching_grows
+
+   !> A struck chain of 16 touching steel balls, elastic and dissipative, to the end
+   !> (every contact over, the beads behind the wave drifting back): the final
+   !> velocities and all contacts against make_chain.py's Taylor integration, with
+   !> method auto (the region grows over the touching beads as the wave reaches
+   !> them) and with the whole chain integrated from the start
+   subroutine test_struck_chain_16(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: names(2) = [character(len=11) :: "chain16_b0", &
+         & "chain16_b01"]
+      integer :: i
+      do i = 1, size(names)
+         call check_reference_case(error, trim(names(i)), [1.0e-8_wp, 1.0e-11_wp])
+         if (allocated(error)) return
+         call check_reference_case(error, trim(names(i)), [1.0e-10_wp], method_integrated)
+         if (allocated(error)) return
+      end do
+   end subroutine test_struck_chain_16
 
    !> 10^5 bodies: a touching chain struck at one end, to 0.2 ms (the wave has crossed
    !> about five beads): it runs (the integrated region grows with the wave, not with
