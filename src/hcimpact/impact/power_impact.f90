@@ -58,7 +58,7 @@ contains
       !> Only the times depend on it: the other outputs are closed forms.
       real(wp), intent(in), optional :: rtol
       type(power_model) :: model
-      type(dd_real) :: k, t, dur(2), tpeak, q, y, u, lp
+      type(dd_real) :: k, t, dur(2), tpeak, y, u, lp
       integer(ik) :: ev(3)
       ! the compression at the peak force, and (x_peak/x_max)^(n+1) = 1 - y there
       type(dd_real) :: xp, share
@@ -79,10 +79,9 @@ contains
          model%f%rtol = max(rtol, epsilon(1.0_wp))
       end if
 
-      ! the peak (q = u/beta there, y = 1 - (x/x_max)^(n+1), l of the point), the times
-      call power_times(model, q, y, lp, dur, tpeak, ev, stat)
+      ! the peak (u = beta q there, y = 1 - (x/x_max)^(n+1), l of the point), the times
+      call power_times(model, u, y, lp, dur, tpeak, ev, stat)
       if (stat /= hcimpact_ok) return
-      u = model%f%tr%beta * q
 
       k = model%f%tr%k
       outcome%restitution = k%hi
@@ -119,13 +118,13 @@ contains
    end subroutine impact_power
 
    !> The peak of the force and the times of a power-law impact, in the units of the
-   !> integrals: q = u/beta, y = 1 - (x/x_max)^(n+1) and l at the peak; the compression
+   !> integrals: u = beta q, y = 1 - (x/x_max)^(n+1) and l at the peak; the compression
    !> and restitution times and the time from the impact to the peak. One rule over the
    !> whole contact for small beta, else rules on the phases (and their pieces). The
    !> time law takes the same times, so that its contact time is `impact`'s.
-   pure subroutine power_times(model, q, y, lp, dur, tpeak, ev, stat)
+   pure subroutine power_times(model, u, y, lp, dur, tpeak, ev, stat)
       type(power_model), intent(inout) :: model
-      type(dd_real), intent(out) :: q, y, lp, dur(2), tpeak
+      type(dd_real), intent(out) :: u, y, lp, dur(2), tpeak
       !> Evaluations (compression, restitution, peak)
       integer(ik), intent(out) :: ev(3)
       integer, intent(out) :: stat
@@ -137,7 +136,7 @@ contains
          stat = hcimpact_err_no_convergence
          return
       end if
-      call power_peak(model, q, y, lp)
+      call power_peak(model, u, y, lp)
       whole = .false.
       if (model%f%tr%beta%hi <= whole_max_beta) then
          call power_whole_cc(model, lp, .true., dur, tpeak, ev(1), whole)
@@ -266,7 +265,7 @@ contains
       !> Status
       integer, intent(out) :: stat
       type(power_model) :: model
-      type(dd_real) :: dur(2), q, y, lp, tpeak, e
+      type(dd_real) :: dur(2), u, y, lp, tpeak, e
       integer(ik) :: ev(3)
       real(wp) :: contact_time
       integer :: i
@@ -289,7 +288,7 @@ contains
       call set_end_times(model)
       ! the phases' durations of `impact`, and its contact time: from that double on the
       ! contact is over (x = 0, F = 0 exactly), as `impact` and the samples say
-      call power_times(model, q, y, lp, dur, tpeak, ev, stat)
+      call power_times(model, u, y, lp, dur, tpeak, ev, stat)
       if (stat /= hcimpact_ok) return
       e = model%time_unit * (dur(1) + dur(2))
       contact_time = e%hi

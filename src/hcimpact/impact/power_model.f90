@@ -273,16 +273,17 @@ contains
       time = self%end_coef(self%phase) * d**self%inv_np1
    end function power_end_time
 
-   !> The peak of the force during compression (power law): q = u/beta there,
-   !> y = 1 - (x/x_max)^(n+1) = h(u)/h(beta), and the point's l = (u - h(u))/beta.
+   !> The peak of the force during compression (power law): u = beta q there (q the
+   !> unknown below; u is what the outcome needs, formed once here), y = 1 -
+   !> (x/x_max)^(n+1) = h(u)/h(beta), and the point's l = (u - h(u))/beta.
    !>
    !> F(q) = n q + (n+1) beta (q^2 H(beta q) - H) = 0 is increasing and convex with
    !> F(0) < 0 <= F((n+1) beta H/n): Newton's method from the right end converges
    !> monotonically; a double iteration, then one step in double-double.
-   pure subroutine power_peak(model, q, y, lp)
+   pure subroutine power_peak(model, u, y, lp)
       type(power_model), intent(in) :: model
-      type(dd_real), intent(out) :: q, y, lp
-      type(dd_real) :: beta, hq, u, fq, hd
+      type(dd_real), intent(out) :: u, y, lp
+      type(dd_real) :: beta, hq, q, fq, hd
       real(wp) :: qd, b, n, np1, h, step, hu, hprime, dfq, dq
       integer :: it
 
@@ -290,7 +291,7 @@ contains
       b = beta%hi
       hq = model%f%tr%hq
       if (b == 0.0_wp) then
-         q = dd(0.0_wp)
+         u = dd(0.0_wp)
          y = dd(0.0_wp)
          lp = dd(0.0_wp)
          return

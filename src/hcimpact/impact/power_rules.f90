@@ -627,7 +627,7 @@ contains
       !> hcimpact_ok, or the error `impact` reports for the contact's set-up
       integer, intent(out) :: stat
       type(power_model) :: model
-      type(dd_real) :: q, y, lp
+      type(dd_real) :: u, y, lp
       split = .false.
       bound = 0.0_wp
       cut = 0.0_wp
@@ -636,7 +636,7 @@ contains
       if (stat /= hcimpact_ok) return
       call new_power_model(contact, model, stat)
       if (stat /= hcimpact_ok) return
-      call power_peak(model, q, y, lp)
+      call power_peak(model, u, y, lp)
       bound = model%f%tr%bound(phase)
       if (phase == compression_phase) then
          split = model%f%tr%beta%hi * bound > cc_max_compression_le
