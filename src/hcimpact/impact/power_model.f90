@@ -14,7 +14,7 @@ module hcimpact_power_model
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), &
-      & dd_exp, dd_log, dd_sqrt, dd_scale
+      & dd_exp, dd_log, dd_sqrt, dd_scale, dd_inverse
    use hcimpact_contact, only : contact_type, max_beta
    use hcimpact_trajectory, only : new_trajectory, phase_integrand, compression_phase, &
       & restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, log_form_beta
@@ -129,16 +129,16 @@ contains
       model%stiffness = contact%stiffness
       model%damping = contact%damping
       ! 1/(n+1) once: ln x_max and the compression at the peak divide by n + 1 too
-      model%inv_np1_dd = 1.0_wp / np1
+      ! (2**-104 relative: its products are rounded to doubles far above that)
+      model%inv_np1_dd = dd_inverse(np1)
       alpha = contact%exponent * model%inv_np1_dd
       model%f%alpha_hi = alpha%hi
       model%f%alpha_lo = alpha%lo
       model%f%inv_np1 = 1.0_wp / np1%hi
       model%f%flat = 1.0_wp
       ! 1/H = ih + il: il = (1 - H ih)/H from the exact residual of the product
-      model%inv_hq(1) = 1.0_wp / hq%hi
-      t = two_prod(hq%hi, model%inv_hq(1))
-      model%inv_hq(2) = (((1.0_wp - t%hi) - t%lo) - hq%lo * model%inv_hq(1)) * model%inv_hq(1)
+      t = dd_inverse(hq)
+      model%inv_hq = [t%hi, t%lo]
 
       ! x_max^(n+1) = (n+1) m V^2 H / c. The range tests read the binary exponents (a
       ! logarithm each cost more than the product): e ln 2 is ln x to within ln 2.
@@ -152,7 +152,8 @@ contains
          ! (n+1) m V^2 H (J), the energy unit of the peak force too
          energy = ((np1 * contact%mass) * contact%velocity) * contact%velocity * hq
          model%energy = energy
-         base = energy / contact%stiffness
+         ! (by the reciprocal of c, within 2**(+-173) here)
+         base = energy * dd_inverse(dd(contact%stiffness))
          if (alpha%hi == 0.5_wp .and. alpha%lo == 0.0_wp) then
             ! n = 1: x_max = sqrt(base), one root instead of a logarithm and an
             ! exponential in double-double (base is within the range: energy_ok)
@@ -193,7 +194,11 @@ contains
       ! by the double V. Above x_max = 2^800 the product with 1/H (up to 2^134) could
       ! overflow before the quotient brings it back into the range: x_max and V are
       ! scaled to [1/2, 1) first and the result back (exact)
-      if (model%x_max%hi < 2.0_wp**800) then
+      if (model%energy_ok) then
+         ! V within 2**(+-173) and x_max below 2**700: the product with 1/V
+         model%time_unit = model%x_max * model%inv_np1_dd &
+            & * dd_real(model%inv_hq(1), model%inv_hq(2)) * dd_inverse(dd(contact%velocity))
+      else if (model%x_max%hi < 2.0_wp**800) then
          model%time_unit = (model%x_max * model%inv_np1_dd &
             & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
       else

@@ -51,7 +51,7 @@ module hcimpact_trajectory
    use hcimpact_kinds, only : wp, ik
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
-      & operator(-), operator(*), operator(/), dd_exp, dd_log
+      & operator(-), operator(*), operator(/), dd_exp, dd_log, dd_inverse
    use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
    use hcimpact_quadrature, only : integrand_type, quadrature_result, tanh_sinh, &
       & quadrature_success, tanh_sinh_max_levels
@@ -230,8 +230,9 @@ contains
          hq = ((0.5_wp - u * third) + dd_real(0.25_wp * hq%hi, 0.25_wp * hq%lo)) &
             & - hq * (x * tail)
       else
-         ! one quotient by u^2 (two by u doubled the cost, for no accuracy needed)
-         hq = (u - dd_log(u + 1.0_wp)) / (u * u)
+         ! one product with 1/u^2 (two quotients by u doubled the cost, for no
+         ! accuracy needed; u^2 <= max_beta^2 is far inside dd_inverse's range)
+         hq = (u - dd_log(u + 1.0_wp)) * dd_inverse(u * u)
       end if
    end function h_over_square_dd
 
@@ -414,7 +415,8 @@ contains
             end if
             kb = 1.0_wp - tr%a
          end if
-         tr%k = kb / beta
+         ! (beta >= k_series_max here: its reciprocal is normal)
+         tr%k = kb * dd_inverse(beta)
       end if
 
       if (b > log_form_beta) then
