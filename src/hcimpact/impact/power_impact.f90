@@ -11,7 +11,7 @@ module hcimpact_power_impact
       & hcimpact_err_size, hcimpact_err_no_convergence
    use hcimpact_double_double, only : dd_real, dd, operator(+), &
       & operator(-), operator(*), operator(/), &
-      & dd_exp, dd_log, dd_sqrt
+      & dd_exp, dd_log, dd_sqrt, dd_inverse
    use hcimpact_contact, only : contact_type, outcome_type, check_contact, &
       & reject_unrepresentable
    use hcimpact_trajectory, only : compression_phase, restitution_phase, &
@@ -107,7 +107,13 @@ contains
       end if
       outcome%compression_at_peak_force = xp%hi
       if (model%energy_ok) then
-         t = model%energy * share * (u + 1.0_wp) / xp
+         ! (x_peak <= x_max < 2**700 here; a product with 1/x_peak where it is normal)
+         t = model%energy * share * (u + 1.0_wp)
+         if (xp%hi > 2.0_wp**(-990)) then
+            t = t * dd_inverse(xp)
+         else
+            t = t / xp
+         end if
          outcome%peak_force = t%hi
       else
          t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)

@@ -195,9 +195,10 @@ contains
       ! overflow before the quotient brings it back into the range: x_max and V are
       ! scaled to [1/2, 1) first and the result back (exact)
       if (model%energy_ok) then
-         ! V within 2**(+-173) and x_max below 2**700: the product with 1/V
-         model%time_unit = model%x_max * model%inv_np1_dd &
-            & * dd_real(model%inv_hq(1), model%inv_hq(2)) * dd_inverse(dd(contact%velocity))
+         ! 1/((n+1) H V) = m V/E with E = (n+1) m V^2 H formed above (its factors within
+         ! 2**(+-173), E within 2**(+-865): its reciprocal is normal), x_max below 2**700
+         model%time_unit = model%x_max * (two_prod(contact%mass, contact%velocity) &
+            & * dd_inverse(energy))
       else if (model%x_max%hi < 2.0_wp**800) then
          model%time_unit = (model%x_max * model%inv_np1_dd &
             & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
