@@ -17,7 +17,7 @@ module hcimpact_power_impact
    use hcimpact_trajectory, only : compression_phase, restitution_phase, &
       & invert_from_turn, invert_from_end, scaled_velocity, phase_length, branch_speed
    use hcimpact_power_model, only : power_model, new_power_model, set_end_times, &
-      & power_peak, turn_log_share, end_log_share
+      & power_peak, turn_log_share, end_log_share, peak_ratio_m1, peak_series_max_y
    use hcimpact_force_element, only : contact_force_type, contact_force
    use hcimpact_power_rules, only : power_phase_times, power_whole_cc, whole_max_beta, &
       & contact_max_beta
@@ -98,7 +98,11 @@ contains
       ! x_peak = x_max (1 - y)^(1/(n+1)); F = c x_peak^n (1 + u), which is
       ! (n+1) m V^2 H (1 - y) (1 + u)/x_peak since c x_peak^(n+1) = c x_max^(n+1) (1 - y)
       share = 1.0_wp - y
-      if (model%ln_x_max_dd) then
+      if (model%ln_x_max_dd .and. model%energy_ok .and. y%hi < peak_series_max_y) then
+         ! small beta: x_max (1 + (x_peak/x_max - 1)) by two short series (where the
+         ! scales are within energy_ok's range: the peak force below needs no ln x_peak)
+         xp = model%x_max + model%x_max * peak_ratio_m1(y, model%inv_np1_dd)
+      else if (model%ln_x_max_dd) then
          t = model%ln_x_max + dd_log(share) * model%inv_np1_dd
          xp = dd_exp(t)
       else
