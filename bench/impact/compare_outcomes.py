@@ -10,7 +10,13 @@ n log-uniform in [0.5, 3] with a quarter exactly 1.5, beta = b V log-uniform in 
 range asked for), counts the outputs whose bits differ, and for the reference rows
 prints the largest error of each library against the mpmath references, in ulps.
 
-Usage: compare_outcomes.py [--count N] [--seed S] [--beta LO HI] OLD_LIB NEW_LIB
+The same set-up serves the time law and the velocity at a depth: for the first
+`--time-law K` random contacts (default 2,000) it also compares, bit for bit,
+hcimpact_time_law_samples on 17 times and hcimpact_velocity_at_depth at 0.1, 0.5 and
+0.9 x_max on both branches.
+
+Usage: compare_outcomes.py [--count N] [--time-law K] [--seed S] [--beta LO HI]
+                           OLD_LIB NEW_LIB
 Exit status 0 whether or not outcomes differ (it reports; it does not judge).
 """
 import argparse
@@ -48,7 +54,34 @@ def load(path):
     lib = ctypes.CDLL(os.path.abspath(path), mode=ctypes.RTLD_LOCAL)
     lib.hcimpact_impact.argtypes = [ctypes.POINTER(Contact), ctypes.POINTER(Outcome)]
     lib.hcimpact_impact.restype = ctypes.c_int
+    arrays = [ctypes.POINTER(ctypes.c_double)] * 4
+    lib.hcimpact_time_law_samples.argtypes = [ctypes.POINTER(Contact), ctypes.c_int] + arrays
+    lib.hcimpact_time_law_samples.restype = ctypes.c_int
+    lib.hcimpact_velocity_at_depth.argtypes = [ctypes.POINTER(Contact), ctypes.c_double,
+                                               ctypes.c_int, ctypes.POINTER(ctypes.c_double)]
+    lib.hcimpact_velocity_at_depth.restype = ctypes.c_int
     return lib
+
+
+SAMPLES = 17
+
+
+def motion(lib, m, c, n, b, v, x_max):
+    """The time law on SAMPLES times and the velocity at three depths on both branches:
+    the statuses and every value, in one list"""
+    contact = Contact(m, c, n, b, v)
+    buffers = [(ctypes.c_double * SAMPLES)() for _ in range(4)]
+    values = [lib.hcimpact_time_law_samples(ctypes.byref(contact), SAMPLES, *buffers)]
+    for buf in buffers:
+        values.extend(buf)
+    speed = ctypes.c_double()
+    for share in (0.1, 0.5, 0.9):
+        for branch in (1, 2):
+            values.append(lib.hcimpact_velocity_at_depth(ctypes.byref(contact),
+                                                         share * x_max, branch,
+                                                         ctypes.byref(speed)))
+            values.append(speed.value)
+    return values
 
 
 def impact(lib, m, c, n, b, v):
@@ -87,6 +120,7 @@ def read_table(name):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--count", type=int, default=100000)
+    parser.add_argument("--time-law", type=int, default=2000)
     parser.add_argument("--seed", type=int, default=20261126)
     parser.add_argument("--beta", type=float, nargs=2, default=[1e-3, 100.0])
     parser.add_argument("old")
@@ -122,6 +156,7 @@ def main():
         return lo * (hi / lo) ** rng.random()
 
     differing = 0
+    motions_differing = 0
     fields = [0] * len(FIELDS)
     lo, hi = args.beta
     for i in range(args.count):
@@ -136,12 +171,19 @@ def main():
             differing += 1
             for j, d in enumerate(diff):
                 fields[j] += d
+        if i < args.time_law and results[0][0] == 0:
+            x_max = results[0][1][FIELDS.index("max_compression")]
+            old, new = (motion(lib, m, c, n, b, v, x_max) for lib in libs)
+            if any(bits(float(x)) != bits(float(y)) for x, y in zip(old, new)):
+                motions_differing += 1
     print()
     print(f"random contacts (seed {args.seed}, beta log-uniform in [{lo:g}, {hi:g}]): "
           f"{args.count}, outcomes differing: {differing}")
     if differing:
         print("differing per output: " + ", ".join(
             f"{name} {k}" for name, k in zip(FIELDS, fields) if k))
+    print(f"time law ({SAMPLES} samples) and velocity at 3 depths on both branches, the "
+          f"first {min(args.time_law, args.count)} contacts: {motions_differing} differing")
     return 0
 
 
