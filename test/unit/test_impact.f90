@@ -35,6 +35,9 @@ module test_impact
    use hcimpact_restitution_law, only : restitution_inverse
    use hcimpact_power_rules, only : power_phase_pieces, max_pieces, cc_max_beta, &
       & cc_max_compression_le, end_piece_le, whole_max_beta
+   use hcimpact_power_model, only : peak_ratio_m1, peak_series_max_y
+   use hcimpact_double_double, only : dd_real, dd, operator(+), operator(-), &
+      & operator(*), dd_exp, dd_log, dd_inverse
    use hcimpact_hertz, only : hertz_constant, effective_mass, two_body_velocities
    use hcimpact_elastic, only : elastic_law, power_law
    use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome
@@ -215,6 +218,7 @@ contains
          & new_unittest("graded-pieces-tile", test_graded_pieces_tile), &
          & new_unittest("graded-pieces-evaluations", test_graded_pieces_evaluations), &
          & new_unittest("graded-pieces-seams", test_graded_pieces_seams), &
+         & new_unittest("peak-ratio-series", test_peak_ratio_series), &
          & new_unittest("whole-contact-seam", test_whole_contact_seam), &
          & new_unittest("whole-contact-reference", test_whole_contact_reference), &
          & new_unittest("extremes-reference", test_extremes_reference), &
@@ -1675,6 +1679,40 @@ contains
    !> rules on the two phases: four contacts a step 2**-40 beta apart, two on each side
    !> (checked through the evaluation counts), whose second differences stay within
    !> goal_seam ulps, as at the seams of the graded pieces.
+   !> x_peak/x_max - 1 = (1 - y)^(1/(n+1)) - 1 by the series of peak_ratio_m1 (small
+   !> beta) against the logarithm and exponential in double-double it replaces, over
+   !> y from 2^-60 to the threshold (both sides of it) and n from 1e-6 to 100: within
+   !> 2^-66 of the value (the series claim 2^-68), plus the reference's own 2^-104
+   !> (an exponential near 1 minus 1). y = 0 gives 0 exactly.
+   subroutine test_peak_ratio_series(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: exponents(6) = [1.0e-6_wp, 0.5_wp, 1.0_wp, 1.5_wp, 3.0_wp, &
+         & 100.0_wp]
+      type(dd_real) :: inv_np1, y, ratio, ref, diff
+      real(wp) :: bound
+      integer :: i, j
+      do j = 1, size(exponents)
+         inv_np1 = dd_inverse(dd(exponents(j)) + 1.0_wp)
+         ratio = peak_ratio_m1(dd(0.0_wp), inv_np1)
+         call check(error, ratio%hi == 0.0_wp .and. ratio%lo == 0.0_wp, "y = 0: not 0")
+         if (allocated(error)) return
+         do i = 0, 520
+            ! y = 2^-60 .. 2^-8 (the last just below the threshold), a trailing part too
+            y = dd(min(2.0_wp**(-60.0_wp + 0.1_wp * real(i, wp)), &
+               & peak_series_max_y * (1.0_wp - epsilon(1.0_wp))))
+            y = dd_real(y%hi, y%hi * 0.37_wp * epsilon(1.0_wp))
+            ratio = peak_ratio_m1(y, inv_np1)
+            ref = dd_exp(dd_log(1.0_wp - y) * inv_np1) - 1.0_wp
+            diff = ratio - ref
+            bound = 2.0_wp**(-66) * abs(ref%hi) + 2.0_wp**(-104)
+            call check(error, abs(diff%hi) <= bound, "n = " // format_real(exponents(j)) &
+               & // ", y = " // format_real(y%hi) // ": series " // format_real(ratio%hi) &
+               & // " differs from exp(ln(1 - y)/(n+1)) - 1 by " // format_real(diff%hi))
+            if (allocated(error)) return
+         end do
+      end do
+   end subroutine test_peak_ratio_series
+
    subroutine test_whole_contact_seam(error)
       type(error_type), allocatable, intent(out) :: error
       type(outcome_type) :: outcome

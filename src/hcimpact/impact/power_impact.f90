@@ -11,13 +11,13 @@ module hcimpact_power_impact
       & hcimpact_err_size, hcimpact_err_no_convergence
    use hcimpact_double_double, only : dd_real, dd, operator(+), &
       & operator(-), operator(*), operator(/), &
-      & dd_exp, dd_log, dd_sqrt
+      & dd_exp, dd_log, dd_sqrt, dd_inverse
    use hcimpact_contact, only : contact_type, outcome_type, check_contact, &
       & reject_unrepresentable
    use hcimpact_trajectory, only : compression_phase, restitution_phase, &
       & invert_from_turn, invert_from_end, scaled_velocity, phase_length, branch_speed
    use hcimpact_power_model, only : power_model, new_power_model, set_end_times, &
-      & power_peak, turn_log_share, end_log_share
+      & power_peak, turn_log_share, end_log_share, peak_ratio_m1, peak_series_max_y
    use hcimpact_force_element, only : contact_force_type, contact_force
    use hcimpact_power_rules, only : power_phase_times, power_whole_cc, whole_max_beta, &
       & contact_max_beta
@@ -58,7 +58,7 @@ contains
       !> Only the times depend on it: the other outputs are closed forms.
       real(wp), intent(in), optional :: rtol
       type(power_model) :: model
-      type(dd_real) :: k, t, dur(2), tpeak, q, y, u, lp
+      type(dd_real) :: k, t, dur(2), tpeak, y, u, lp
       integer(ik) :: ev(3)
       ! the compression at the peak force, and (x_peak/x_max)^(n+1) = 1 - y there
       type(dd_real) :: xp, share
@@ -79,10 +79,9 @@ contains
          model%f%rtol = max(rtol, epsilon(1.0_wp))
       end if
 
-      ! the peak (q = u/beta there, y = 1 - (x/x_max)^(n+1), l of the point), the times
-      call power_times(model, q, y, lp, dur, tpeak, ev, stat)
+      ! the peak (u = beta q there, y = 1 - (x/x_max)^(n+1), l of the point), the times
+      call power_times(model, u, y, lp, dur, tpeak, ev, stat)
       if (stat /= hcimpact_ok) return
-      u = model%f%tr%beta * q
 
       k = model%f%tr%k
       outcome%restitution = k%hi
@@ -99,7 +98,11 @@ contains
       ! x_peak = x_max (1 - y)^(1/(n+1)); F = c x_peak^n (1 + u), which is
       ! (n+1) m V^2 H (1 - y) (1 + u)/x_peak since c x_peak^(n+1) = c x_max^(n+1) (1 - y)
       share = 1.0_wp - y
-      if (model%ln_x_max_dd) then
+      if (model%ln_x_max_dd .and. model%energy_ok .and. y%hi < peak_series_max_y) then
+         ! small beta: x_max (1 + (x_peak/x_max - 1)) by two short series (where the
+         ! scales are within energy_ok's range: the peak force below needs no ln x_peak)
+         xp = model%x_max + model%x_max * peak_ratio_m1(y, model%inv_np1_dd)
+      else if (model%ln_x_max_dd) then
          t = model%ln_x_max + dd_log(share) * model%inv_np1_dd
          xp = dd_exp(t)
       else
@@ -108,7 +111,13 @@ contains
       end if
       outcome%compression_at_peak_force = xp%hi
       if (model%energy_ok) then
-         t = model%energy * share * (u + 1.0_wp) / xp
+         ! (x_peak <= x_max < 2**700 here; a product with 1/x_peak where it is normal)
+         t = model%energy * share * (u + 1.0_wp)
+         if (xp%hi > 2.0_wp**(-990)) then
+            t = t * dd_inverse(xp)
+         else
+            t = t / xp
+         end if
          outcome%peak_force = t%hi
       else
          t = dd_log(dd(contact%stiffness)) + model%n * t + dd_log(u + 1.0_wp)
@@ -119,13 +128,13 @@ contains
    end subroutine impact_power
 
    !> The peak of the force and the times of a power-law impact, in the units of the
-   !> integrals: q = u/beta, y = 1 - (x/x_max)^(n+1) and l at the peak; the compression
+   !> integrals: u = beta q, y = 1 - (x/x_max)^(n+1) and l at the peak; the compression
    !> and restitution times and the time from the impact to the peak. One rule over the
    !> whole contact for small beta, else rules on the phases (and their pieces). The
    !> time law takes the same times, so that its contact time is `impact`'s.
-   pure subroutine power_times(model, q, y, lp, dur, tpeak, ev, stat)
+   pure subroutine power_times(model, u, y, lp, dur, tpeak, ev, stat)
       type(power_model), intent(inout) :: model
-      type(dd_real), intent(out) :: q, y, lp, dur(2), tpeak
+      type(dd_real), intent(out) :: u, y, lp, dur(2), tpeak
       !> Evaluations (compression, restitution, peak)
       integer(ik), intent(out) :: ev(3)
       integer, intent(out) :: stat
@@ -137,7 +146,7 @@ contains
          stat = hcimpact_err_no_convergence
          return
       end if
-      call power_peak(model, q, y, lp)
+      call power_peak(model, u, y, lp)
       whole = .false.
       if (model%f%tr%beta%hi <= whole_max_beta) then
          call power_whole_cc(model, lp, .true., dur, tpeak, ev(1), whole)
@@ -266,7 +275,7 @@ contains
       !> Status
       integer, intent(out) :: stat
       type(power_model) :: model
-      type(dd_real) :: dur(2), q, y, lp, tpeak, e
+      type(dd_real) :: dur(2), u, y, lp, tpeak, e
       integer(ik) :: ev(3)
       real(wp) :: contact_time
       integer :: i
@@ -289,7 +298,7 @@ contains
       call set_end_times(model)
       ! the phases' durations of `impact`, and its contact time: from that double on the
       ! contact is over (x = 0, F = 0 exactly), as `impact` and the samples say
-      call power_times(model, q, y, lp, dur, tpeak, ev, stat)
+      call power_times(model, u, y, lp, dur, tpeak, ev, stat)
       if (stat /= hcimpact_ok) return
       e = model%time_unit * (dur(1) + dur(2))
       contact_time = e%hi

@@ -14,7 +14,7 @@ module hcimpact_power_model
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), &
-      & dd_exp, dd_log, dd_sqrt, dd_scale
+      & dd_exp, dd_log, dd_sqrt, dd_scale, dd_inverse
    use hcimpact_contact, only : contact_type, max_beta
    use hcimpact_trajectory, only : new_trajectory, phase_integrand, compression_phase, &
       & restitution_phase, h_over_square_dd, h_over_square, turn_q, end_r, log_form_beta
@@ -22,7 +22,7 @@ module hcimpact_power_model
    private
 
    public :: power_integrand, power_model, new_power_model, set_end_times, power_peak
-   public :: turn_log_share, end_log_share
+   public :: turn_log_share, end_log_share, peak_ratio_m1, peak_series_max_y
 
    !> Time integrand of the power law: (x/x_max)^(-n) - 1 per unit l; `flat` = 1.
    type, extends(phase_integrand) :: power_integrand
@@ -66,6 +66,11 @@ module hcimpact_power_model
       !> set by power_phase_times)
       real(wp) :: inv_hb(2)
    end type power_model
+
+   !> Below this y = 1 - (x_peak/x_max)^(n+1) (beta below about 0.04), x_peak/x_max - 1
+   !> by the series of `peak_ratio_m1` instead of a logarithm and an exponential in
+   !> double-double
+   real(wp), parameter :: peak_series_max_y = 2.0_wp**(-8)
 
 contains
 
@@ -129,16 +134,16 @@ contains
       model%stiffness = contact%stiffness
       model%damping = contact%damping
       ! 1/(n+1) once: ln x_max and the compression at the peak divide by n + 1 too
-      model%inv_np1_dd = 1.0_wp / np1
+      ! (2**-104 relative: its products are rounded to doubles far above that)
+      model%inv_np1_dd = dd_inverse(np1)
       alpha = contact%exponent * model%inv_np1_dd
       model%f%alpha_hi = alpha%hi
       model%f%alpha_lo = alpha%lo
       model%f%inv_np1 = 1.0_wp / np1%hi
       model%f%flat = 1.0_wp
       ! 1/H = ih + il: il = (1 - H ih)/H from the exact residual of the product
-      model%inv_hq(1) = 1.0_wp / hq%hi
-      t = two_prod(hq%hi, model%inv_hq(1))
-      model%inv_hq(2) = (((1.0_wp - t%hi) - t%lo) - hq%lo * model%inv_hq(1)) * model%inv_hq(1)
+      t = dd_inverse(hq)
+      model%inv_hq = [t%hi, t%lo]
 
       ! x_max^(n+1) = (n+1) m V^2 H / c. The range tests read the binary exponents (a
       ! logarithm each cost more than the product): e ln 2 is ln x to within ln 2.
@@ -152,7 +157,8 @@ contains
          ! (n+1) m V^2 H (J), the energy unit of the peak force too
          energy = ((np1 * contact%mass) * contact%velocity) * contact%velocity * hq
          model%energy = energy
-         base = energy / contact%stiffness
+         ! (by the reciprocal of c, within 2**(+-173) here)
+         base = energy * dd_inverse(dd(contact%stiffness))
          if (alpha%hi == 0.5_wp .and. alpha%lo == 0.0_wp) then
             ! n = 1: x_max = sqrt(base), one root instead of a logarithm and an
             ! exponential in double-double (base is within the range: energy_ok)
@@ -193,7 +199,12 @@ contains
       ! by the double V. Above x_max = 2^800 the product with 1/H (up to 2^134) could
       ! overflow before the quotient brings it back into the range: x_max and V are
       ! scaled to [1/2, 1) first and the result back (exact)
-      if (model%x_max%hi < 2.0_wp**800) then
+      if (model%energy_ok) then
+         ! 1/((n+1) H V) = m V/E with E = (n+1) m V^2 H formed above (its factors within
+         ! 2**(+-173), E within 2**(+-865): its reciprocal is normal), x_max below 2**700
+         model%time_unit = model%x_max * (two_prod(contact%mass, contact%velocity) &
+            & * dd_inverse(energy))
+      else if (model%x_max%hi < 2.0_wp**800) then
          model%time_unit = (model%x_max * model%inv_np1_dd &
             & * dd_real(model%inv_hq(1), model%inv_hq(2))) / contact%velocity
       else
@@ -273,16 +284,17 @@ contains
       time = self%end_coef(self%phase) * d**self%inv_np1
    end function power_end_time
 
-   !> The peak of the force during compression (power law): q = u/beta there,
-   !> y = 1 - (x/x_max)^(n+1) = h(u)/h(beta), and the point's l = (u - h(u))/beta.
+   !> The peak of the force during compression (power law): u = beta q there (q the
+   !> unknown below; u is what the outcome needs, formed once here), y = 1 -
+   !> (x/x_max)^(n+1) = h(u)/h(beta), and the point's l = (u - h(u))/beta.
    !>
    !> F(q) = n q + (n+1) beta (q^2 H(beta q) - H) = 0 is increasing and convex with
    !> F(0) < 0 <= F((n+1) beta H/n): Newton's method from the right end converges
    !> monotonically; a double iteration, then one step in double-double.
-   pure subroutine power_peak(model, q, y, lp)
+   pure subroutine power_peak(model, u, y, lp)
       type(power_model), intent(in) :: model
-      type(dd_real), intent(out) :: q, y, lp
-      type(dd_real) :: beta, hq, u, fq, hd
+      type(dd_real), intent(out) :: u, y, lp
+      type(dd_real) :: beta, hq, q, fq, hd
       real(wp) :: qd, b, n, np1, h, step, hu, hprime, dfq, dq
       integer :: it
 
@@ -290,7 +302,7 @@ contains
       b = beta%hi
       hq = model%f%tr%hq
       if (b == 0.0_wp) then
-         q = dd(0.0_wp)
+         u = dd(0.0_wp)
          y = dd(0.0_wp)
          lp = dd(0.0_wp)
          return
@@ -339,6 +351,43 @@ contains
          lp = q - u * q * hd
       end if
    end subroutine power_peak
+
+   !> x_peak/x_max - 1 = (1 - y)^(1/(n+1)) - 1 = expm1(log1p(-y)/(n+1)) for
+   !> 0 <= y < peak_series_max_y, by the two series: the first two terms of each in
+   !> double-double, the rest (below y^2 of the sum) in double from the leading parts.
+   !> Their rounding and the terms left out are below 2**-68 of the sum, which is
+   !> below y/(n+1) <= 2**-8: below 2**-76 of x_peak, far below its rounding. About a
+   !> third of the cost of dd_log and dd_exp, which it replaces where beta is small.
+   pure function peak_ratio_m1(y, inv_np1) result(ratio)
+      !> y = 1 - (x_peak/x_max)^(n+1), 0 <= y < peak_series_max_y
+      type(dd_real), intent(in) :: y
+      !> 1/(n+1)
+      type(dd_real), intent(in) :: inv_np1
+      !> x_peak/x_max - 1 (<= 0)
+      type(dd_real) :: ratio
+      integer :: k
+      type(dd_real) :: y2, z, z2
+      real(wp) :: tail
+      ! ln(1 - y) = -y - y^2/2 - y^3 sum_{k>=3} y^(k-3)/k, to k = 11 (the first term
+      ! left out is below y^11 <= 2**-88 of the sum; the double part below y^2/3)
+      tail = 1.0_wp / 11.0_wp
+      do k = 10, 3, -1
+         tail = tail * y%hi + 1.0_wp / real(k, wp)
+      end do
+      y2 = y * y
+      z = (-(y + dd_real(0.5_wp * y2%hi, 0.5_wp * y2%lo)) - y%hi * y2%hi * tail) * inv_np1
+      ! expm1(z) = z + z^2/2 + z^3 sum_{k>=3} z^(k-3)/k!, to k = 8, |z| <= |ln(1 - y)|
+      ! (n + 1 >= 1) below 1.01 2**-8: the first term left out is below 2**-82 of the
+      ! sum, the double part below z^2/6
+      tail = 1.0_wp / 40320.0_wp
+      tail = tail * z%hi + 1.0_wp / 5040.0_wp
+      tail = tail * z%hi + 1.0_wp / 720.0_wp
+      tail = tail * z%hi + 1.0_wp / 120.0_wp
+      tail = tail * z%hi + 1.0_wp / 24.0_wp
+      tail = tail * z%hi + 1.0_wp / 6.0_wp
+      z2 = z * z
+      ratio = (z + dd_real(0.5_wp * z2%hi, 0.5_wp * z2%lo)) + z%hi * z2%hi * tail
+   end function peak_ratio_m1
 
    !> ln((x/x_max)^(n+1)) near the turning point, at |l| = lt: (x/x_max)^(n+1) = 1 - q,
    !> formed exactly from q (double-double; accurate relative to itself near the turn).

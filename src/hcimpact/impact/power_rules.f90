@@ -14,7 +14,7 @@ module hcimpact_power_rules
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), &
-      & dd_exp, dd_log, dd_sqrt
+      & dd_exp, dd_log, dd_sqrt, dd_inverse
    use hcimpact_modified_cc, only : cc_max_degree, cc_moments, cc_moments_pair, &
       & cc_coefficients, cc_sum, cc_converged, cc_end_share, cc_turn_share, cc_node, &
       & inv_end_share_hi, inv_end_share_lo, sym_m0, sym_moments, sym_partial_moments, &
@@ -234,7 +234,7 @@ contains
       real(wp) :: f(0:cc_max_degree), g(0:cc_max_degree), a(0:cc_max_degree)
       real(wp) :: moment(0:cc_max_degree)
       real(wp) :: lin(2), b1, b2, length, nu, fmax, alpha, inv_den(cc_max_degree)
-      type(dd_real) :: ls, sq, kk, total, num, x0, xp, m0
+      type(dd_real) :: ls, sq, kk, total, num, x0, xp, m0, inv_length
       integer :: degree, stride, first
 
       converged = .false.
@@ -255,9 +255,11 @@ contains
          ! the turning point and the peak in x: x = 1 - 2 d_c/L, L = b1 + b2 - ls%lo, and
          ! the turning point's d_c is b1 (the nodes place l = b1 - d_c), the peak's
          ! b1 - lp
+         ! (two products with 1/L, L of order 1, instead of two quotients)
          num = two_sum(b2, -b1) - ls%lo
-         x0 = num / length
-         xp = (num + 2.0_wp * lp) / length
+         inv_length = dd_inverse(dd(length))
+         x0 = num * inv_length
+         xp = (num + 2.0_wp * lp) * inv_length
          ! (the peak lies between the turning point and the impact: x0 <= xp < 1)
          if (.not. (abs(x0%hi) <= sym_series_max .and. xp%hi < 1.0_wp &
             & .and. xp%hi >= -sym_series_max)) return
@@ -627,7 +629,7 @@ contains
       !> hcimpact_ok, or the error `impact` reports for the contact's set-up
       integer, intent(out) :: stat
       type(power_model) :: model
-      type(dd_real) :: q, y, lp
+      type(dd_real) :: u, y, lp
       split = .false.
       bound = 0.0_wp
       cut = 0.0_wp
@@ -636,7 +638,7 @@ contains
       if (stat /= hcimpact_ok) return
       call new_power_model(contact, model, stat)
       if (stat /= hcimpact_ok) return
-      call power_peak(model, q, y, lp)
+      call power_peak(model, u, y, lp)
       bound = model%f%tr%bound(phase)
       if (phase == compression_phase) then
          split = model%f%tr%beta%hi * bound > cc_max_compression_le

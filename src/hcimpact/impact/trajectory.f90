@@ -51,7 +51,7 @@ module hcimpact_trajectory
    use hcimpact_kinds, only : wp, ik
    use hcimpact_libm, only : log1p, expm1
    use hcimpact_double_double, only : dd_real, dd, two_sum, two_prod, operator(+), &
-      & operator(-), operator(*), operator(/), dd_exp, dd_log
+      & operator(-), operator(*), operator(/), dd_exp, dd_log, dd_inverse
    use hcimpact_lambertw, only : lambert_w0p1, lambert_wm1p1
    use hcimpact_quadrature, only : integrand_type, quadrature_result, tanh_sinh, &
       & quadrature_success, tanh_sinh_max_levels
@@ -222,12 +222,17 @@ contains
             odd = odd * x2 + inv_integer(j + 1)
          end do
          tail = even - x * odd
-         ! 1/2 - u/3 + u^2/4 - u^3 tail
+         ! 1/2 - u/3 + u^2/4 - u^3 tail. u^2/4 is the exact quarter of both parts
+         ! (a double-double product by 1/4 rounds to the same two doubles: u^2 is
+         ! normalised, so its parts scaled by 1/4 are too; only below 2^-1020, where
+         ! u^2 leaves no trace in 1/2 - u/3, could they differ)
          hq = u * u
-         hq = ((0.5_wp - u * third) + 0.25_wp * hq) - hq * (x * tail)
+         hq = ((0.5_wp - u * third) + dd_real(0.25_wp * hq%hi, 0.25_wp * hq%lo)) &
+            & - hq * (x * tail)
       else
-         ! one quotient by u^2 (two by u doubled the cost, for no accuracy needed)
-         hq = (u - dd_log(u + 1.0_wp)) / (u * u)
+         ! one product with 1/u^2 (two quotients by u doubled the cost, for no
+         ! accuracy needed; u^2 <= max_beta^2 is far inside dd_inverse's range)
+         hq = (u - dd_log(u + 1.0_wp)) * dd_inverse(u * u)
       end if
    end function h_over_square_dd
 
@@ -353,6 +358,9 @@ contains
       b = beta%hi
       tr%hq = h_over_square_dd(beta)
       tr%one_plus_beta = beta + 1.0_wp
+      ! beta H (both ends, and h(beta) = (beta H) beta below: a double-double product
+      ! does not depend on the order of its factors, Dekker's error term being exact)
+      bh = beta * tr%hq
 
       if (b == 0.0_wp) then
          tr%k = dd(1.0_wp)
@@ -367,7 +375,7 @@ contains
          tr%a = 1.0_wp - kb
          tr%ln_a = log1p(-kb%hi)
       else
-         hb = tr%hq * beta * beta
+         hb = bh * beta
          ! 1 + W0(-exp(-1 - h)) = k beta (seed eq. 21), then Newton in double-double
          kb0 = lambert_w0p1(hb%hi)
          if (kb0 < 0.5_wp) then
@@ -407,11 +415,10 @@ contains
             end if
             kb = 1.0_wp - tr%a
          end if
-         tr%k = kb / beta
+         ! (beta >= k_series_max here: its reciprocal is normal)
+         tr%k = kb * dd_inverse(beta)
       end if
 
-      ! beta H once, for both ends
-      bh = beta * tr%hq
       if (b > log_form_beta) then
          ! l_e = ln(1 + beta)/beta: 1 - beta H is that difference, which keeps only
          ! about 2**-105 beta/ln(beta) of it (nothing above beta = 4e33)

@@ -7,7 +7,6 @@
 !> the Fortran, C, FORTRAN 77 and Python interfaces, the closed forms and the ODE path
 !> accept and refuse the same values with the same statuses.
 module hcimpact_contact
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp, ik, nan, finite_value
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
@@ -153,15 +152,28 @@ contains
       type(outcome_type), intent(inout) :: outcome
       integer, intent(inout) :: stat
       if (stat /= hcimpact_ok) return
-      if (all(ieee_is_finite([outcome%restitution, outcome%energy_loss_ratio, &
-         & outcome%rebound_velocity, outcome%max_compression, outcome%compression_time, &
-         & outcome%contact_time, outcome%time_at_peak_force, &
-         & outcome%compression_at_peak_force, outcome%peak_force])) .and. &
-         & all([outcome%restitution, -outcome%rebound_velocity, outcome%max_compression, &
-         & outcome%compression_time, outcome%contact_time, outcome%time_at_peak_force, &
-         & outcome%compression_at_peak_force, outcome%peak_force] > 0.0_wp)) return
+      ! one scalar test each (the two array constructors this replaced cost more than
+      ! all the tests)
+      if (positive_finite(outcome%restitution) .and. &
+         & finite_value(outcome%energy_loss_ratio) .and. &
+         & positive_finite(-outcome%rebound_velocity) .and. &
+         & positive_finite(outcome%max_compression) .and. &
+         & positive_finite(outcome%compression_time) .and. &
+         & positive_finite(outcome%contact_time) .and. &
+         & positive_finite(outcome%time_at_peak_force) .and. &
+         & positive_finite(outcome%compression_at_peak_force) .and. &
+         & positive_finite(outcome%peak_force)) return
       outcome = outcome_type()
       stat = hcimpact_err_domain
    end subroutine reject_unrepresentable
+
+   !> x finite and above 0 (false for NaN, infinities, zero and negative values): the
+   !> bits first, so that a NaN never reaches the ordered comparison (check_parameters)
+   elemental function positive_finite(x) result(ok)
+      real(wp), intent(in) :: x
+      logical :: ok
+      ok = .false.
+      if (finite_value(x)) ok = x > 0.0_wp
+   end function positive_finite
 
 end module hcimpact_contact

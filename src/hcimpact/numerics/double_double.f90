@@ -41,7 +41,7 @@ module hcimpact_double_double
 
    public :: dd_real, dd, two_sum, two_prod, dd_two_prod_ext
    public :: operator(+), operator(-), operator(*), operator(/)
-   public :: dd_exp, dd_log, dd_sqrt, dd_scale
+   public :: dd_exp, dd_log, dd_sqrt, dd_scale, dd_inverse
 
    !> A double-double number hi + lo
    type :: dd_real
@@ -461,6 +461,24 @@ contains
       r = sub_dd_dd(a, two_prod(s, s))
       c = quick_two_sum(s, r%hi / (2.0_wp * s))
    end function dd_sqrt
+
+   !> 1/b to about 2**-104 relative: the rounded reciprocal r = 1/b%hi and its
+   !> correction (1 - b r) r, the residual formed from the exact product b%hi r (one
+   !> quotient, one exact product). A product with it costs about half a quotient by b
+   !> (div_dd_dd, div_dd_r: two remainders, about 2**-106), for use where a few ulps
+   !> of a double-double number are far below what the result needs. The trailing
+   !> part is not renormalised (it may reach an ulp of the leading one; the operators
+   !> accept that). For 2**-996 < |b%hi| < 2**996 (r normal, the product splittable).
+   elemental function dd_inverse(b) result(c)
+      !> Divisor
+      type(dd_real), intent(in) :: b
+      !> 1/b as the double nearest to it and the rest
+      type(dd_real) :: c
+      type(dd_real) :: t
+      c%hi = 1.0_wp / b%hi
+      t = two_prod(b%hi, c%hi)
+      c%lo = (((1.0_wp - t%hi) - t%lo) - b%lo * c%hi) * c%hi
+   end function dd_inverse
 
    !> exp(a) = 2^e (1 + wh + wl) for |a| <= 746 (Tang's reduction with two tables).
    !> w lies in [2^-1/2 - 1, 2^1/2 - 1]; when precise it is accurate to about 2^-103
