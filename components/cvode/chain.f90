@@ -64,10 +64,11 @@ module hcimpact_cvode_chain
       !> before this region)
       real(wp) :: t_start = nan, approach = nan, e_base = 0.0_wp, peak = 0.0_wp, &
          & deformation = 0.0_wp, earlier = 0.0_wp
-      !> Closed: the start of a contact of the slot that ended without pressing beyond
-      !> the positions' absolute tolerance (rounding), while its gap has stayed within
-      !> it since; a contact that opens again began then (NaN: none)
-      real(wp) :: touching_since = nan
+      !> Closed: the start and approach speed of a contact of the slot that began
+      !> touching (approach within the velocities' absolute tolerance) and ended
+      !> without pressing beyond the positions' (rounding), while its gap has stayed
+      !> within it since; a contact that opens again began then (NaN: none)
+      real(wp) :: touching_since = nan, touching_approach = nan
    end type open_contact
 
    !> A slot at the end of the last step: time, deformation, its rate, force, the
@@ -588,6 +589,8 @@ contains
                   & call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
                if (h > 0.0_wp) wc = dense_rate(self, j, t0 + tc, wc)
                call close_contact(self, engine, j, self%first - 1 + j, t0 + tc, wc)
+               ! (a gap already beyond the tolerance: it no longer touches)
+               if (.not. x >= -self%atol(1)) self%contact(j)%touching_since = nan
                ended = .true.
             end if
          end if
@@ -765,11 +768,15 @@ contains
       type(cvode_chain_integrator), intent(inout) :: self
       integer, intent(in) :: j
       real(wp), intent(in) :: t_start, approach, e_base
-      real(wp) :: since
+      real(wp) :: since, approach_then
       since = self%contact(j)%touching_since
+      approach_then = self%contact(j)%touching_approach
       self%contact(j) = open_contact(open=.true., t_start=t_start, approach=approach, &
          & e_base=e_base, peak=0.0_wp, deformation=0.0_wp, earlier=0.0_wp)
-      if (since <= t_start) self%contact(j)%t_start = since
+      if (since <= t_start) then
+         self%contact(j)%t_start = since
+         self%contact(j)%approach = approach_then
+      end if
    end subroutine open_at
 
    !> The largest value on [0, h] of the cubic with values p0, p1 and slopes d0, d1 at
@@ -813,17 +820,19 @@ contains
       real(wp), intent(in) :: t_end, w
       type(contact_record) :: r
       self%contact(j)%open = .false.
-      ! a touching pair that never pressed beyond rounding (the positions' absolute
-      ! tolerance) was no contact yet: its bodies moved apart by rounding (ahead of a
+      ! a touching pair (approach within the velocities' absolute tolerance) that never
+      ! pressed beyond rounding (the positions' absolute tolerance) was no contact yet: its bodies moved apart by rounding (ahead of a
       ! wave, subnormal speeds from the Newton corrections), and a contact that opens
       ! again while its gap stays that small began when this one did (before, the
       ! struck chain of 16, Adams at rtol 1e-11, recorded pair 12 from 4.2e-5 s with an
       ! approach of 1.6e-315 m/s instead of from 0)
-      if (.not. (self%contact(j)%deformation > self%atol(1))) then
-         if (.not. (self%contact(j)%touching_since <= self%contact(j)%t_start)) &
-            & self%contact(j)%touching_since = self%contact(j)%t_start
+      if (.not. (self%contact(j)%deformation > self%atol(1)) .and. &
+         & self%contact(j)%approach <= self%atol(2)) then
+         self%contact(j)%touching_since = self%contact(j)%t_start
+         self%contact(j)%touching_approach = self%contact(j)%approach
          return
       end if
+      if (.not. (self%contact(j)%peak > 0.0_wp)) return
       engine%counters%integrated_contacts = engine%counters%integrated_contacts + 1
       r%pair = s
       r%t_start = self%contact(j)%t_start

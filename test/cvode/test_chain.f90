@@ -246,8 +246,8 @@ contains
    !> Compare a run of a reference case: final velocities against the largest speed,
    !> each contact (same pairs in the same order): start and end time against its
    !> duration or, if larger, the largest deformation of the case over the approach
-   !> (separation) speed,
-   !> speeds against the largest speed, largest deformation against the case's
+   !> (separation) speed, the number of contacts equal where the run goes to the end,
+   !> approach and separation speeds against the largest speed, largest deformation against the case's
    !> largest, peak force relative or, if larger, scaled like the deformation,
    !> dissipated energy against the initial kinetic energy; each within k rtol.
    !> worst: the largest error found, in units of rtol; worst_peak: the largest of
@@ -278,8 +278,14 @@ contains
             if (allocated(error)) return
          end do
       end if
-      call check(error, size(result%contacts) >= size(ref%pair), what // &
-         & ": fewer contacts than the reference")
+      if (ref%max_contacts == 0) then
+         call check(error, size(result%contacts) == size(ref%pair), what // ": " // &
+            & format_real(real(size(result%contacts), wp)) // " contacts, the reference " &
+            & // format_real(real(size(ref%pair), wp)))
+      else
+         call check(error, size(result%contacts) >= size(ref%pair), what // &
+            & ": fewer contacts than the reference")
+      end if
       if (allocated(error)) return
       do k = 1, size(ref%pair)
          write(tag, '(i0)') k
@@ -292,6 +298,9 @@ contains
          if (allocated(error)) return
          call within(result%contacts(k)%t_start, ref%contact(1, k), &
             & time_scale(ref%contact(3, k)), k_time, "start")
+         if (allocated(error)) return
+         call within(result%contacts(k)%approach_speed, ref%contact(3, k), vmax, &
+            & k_velocity, "approach speed")
          if (allocated(error)) return
          call within(result%contacts(k)%separation_speed, ref%contact(4, k), vmax, &
             & k_velocity, "separation speed")
