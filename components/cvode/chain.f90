@@ -64,7 +64,7 @@ module hcimpact_cvode_chain
       !> before this region)
       real(wp) :: t_start = nan, approach = nan, e_base = 0.0_wp, peak = 0.0_wp, &
          & deformation = 0.0_wp, earlier = 0.0_wp
-      !> Closed: the start and approach speed of a contact of the slot that began
+      !> Once closed, the start and approach speed of a contact of the slot that began
       !> touching (approach within the velocities' absolute tolerance) and ended
       !> without pressing beyond the positions' (rounding), while its gap has stayed
       !> within it since; a contact that opens again began then (NaN: none)
