@@ -543,8 +543,6 @@ contains
             cycle
          end select
          df = force_rate(self%region, j, dy, w, e)
-         ! a gap the integrator resolves: the pair no longer touches
-         if (.not. x >= -self%atol(1)) self%contact(j)%touching_since = nan
          if (.not. self%contact(j)%open) then
             if (x > 0.0_wp .and. h > 0.0_wp) then
                ! started in the step
@@ -589,11 +587,11 @@ contains
                   & call hermite_crossing(last%x, last%w, x, w, h, tc, wc)
                if (h > 0.0_wp) wc = dense_rate(self, j, t0 + tc, wc)
                call close_contact(self, engine, j, self%first - 1 + j, t0 + tc, wc)
-               ! (a gap already beyond the tolerance: it no longer touches)
-               if (.not. x >= -self%atol(1)) self%contact(j)%touching_since = nan
                ended = .true.
             end if
          end if
+         ! a gap the integrator resolves: the pair no longer touches
+         if (.not. x >= -self%atol(1)) self%contact(j)%touching_since = nan
          self%history(j) = slot_history(t, x, w, e%force, df, &
             & self%y(dissipation_index(m, j)))
       end do
@@ -699,22 +697,16 @@ contains
       integer, intent(in) :: j
       real(wp), intent(in) :: t, fallback
       real(wp) :: w
-      real(c_double), pointer, contiguous :: dky(:)
-      type(N_Vector), pointer :: dky_vec
+      real(c_double), allocatable, target :: dky(:)
       type(contact_force_type) :: e
       real(wp) :: x
       integer :: alloc_stat
+      logical :: ok
       w = fallback
       allocate(dky(size(self%y)), stat=alloc_stat)
       if (alloc_stat /= 0) return
-      dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
-      if (associated(dky_vec)) then
-         if (FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec) == CV_SUCCESS) then
-            call slot_state(self%region, j, t, dky, x, w, e)
-         end if
-         call FN_VDestroy(dky_vec)
-      end if
-      deallocate(dky)
+      call interpolate(self, t, dky, ok)
+      if (ok) call slot_state(self%region, j, t, dky, x, w, e)
    end function dense_rate
 
    !> The time (from the step's start, in [0, h]) where the cubic Hermite interpolant
@@ -751,16 +743,28 @@ contains
    subroutine move_to(self, t)
       type(cvode_chain_integrator), intent(inout) :: self
       real(wp), intent(in) :: t
-      real(c_double), pointer, contiguous :: dky(:)
-      type(N_Vector), pointer :: dky_vec
-      integer(c_int) :: ierr
+      real(c_double), allocatable, target :: dky(:)
+      logical :: ok
       allocate(dky(size(self%y)))
-      dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
-      ierr = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec)
-      if (ierr == CV_SUCCESS) self%y = dky
-      call FN_VDestroy(dky_vec)
-      deallocate(dky)
+      call interpolate(self, t, dky, ok)
+      if (ok) self%y = dky
    end subroutine move_to
+
+   !> The region's state at the time t within the last step from CVODE's interpolant
+   !> (of the method's order) into state, of the state's size; ok false (state
+   !> undefined) where it cannot be evaluated.
+   subroutine interpolate(self, t, state, ok)
+      type(cvode_chain_integrator), intent(in) :: self
+      real(wp), intent(in) :: t
+      real(c_double), intent(inout), target, contiguous :: state(:)
+      logical, intent(out) :: ok
+      type(N_Vector), pointer :: vec
+      ok = .false.
+      vec => FN_VMake_Serial(int(size(state), c_int64_t), state, self%ctx)
+      if (.not. associated(vec)) return
+      ok = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, vec) == CV_SUCCESS
+      call FN_VDestroy(vec)
+   end subroutine interpolate
 
    !> Open the record of a contact of slot j that started at t_start with the
    !> approach speed given, the slot's dissipated energy then being e_base.
@@ -821,11 +825,12 @@ contains
       type(contact_record) :: r
       self%contact(j)%open = .false.
       ! a touching pair (approach within the velocities' absolute tolerance) that never
-      ! pressed beyond rounding (the positions' absolute tolerance) was no contact yet: its bodies moved apart by rounding (ahead of a
-      ! wave, subnormal speeds from the Newton corrections), and a contact that opens
-      ! again while its gap stays that small began when this one did (before, the
-      ! struck chain of 16, Adams at rtol 1e-11, recorded pair 12 from 4.2e-5 s with an
-      ! approach of 1.6e-315 m/s instead of from 0)
+      ! pressed beyond rounding (the positions' absolute tolerance) was no contact yet:
+      ! its bodies moved apart by rounding (ahead of a wave, subnormal speeds from the
+      ! Newton corrections), and a contact that opens again while its gap stays that
+      ! small began when this one did (before, the struck chain of 16, Adams at rtol
+      ! 1e-11, recorded pair 12 from 4.2e-5 s with an approach of 1.6e-315 m/s instead
+      ! of from 0)
       if (.not. (self%contact(j)%deformation > self%atol(1)) .and. &
          & self%contact(j)%approach <= self%atol(2)) then
          self%contact(j)%touching_since = self%contact(j)%t_start
@@ -906,11 +911,9 @@ contains
       type(chain_engine), intent(in) :: engine
       real(wp), intent(in) :: t
       real(wp), intent(out) :: u(:), v(:)
-      real(c_double), pointer, contiguous :: dky(:)
-      type(N_Vector), pointer :: dky_vec
-      integer(c_int) :: ierr
+      real(c_double), allocatable, target :: dky(:)
       integer :: m
-      logical :: halting(3)
+      logical :: halting(3), ok
       m = self%region%m
       ! self%y holds the state at the end of the last step until its contacts are
       ! followed, then at self%time
@@ -921,17 +924,14 @@ contains
       end if
       call halting_suspend(halting)
       allocate(dky(region_size(m)))
-      dky_vec => FN_VMake_Serial(int(size(dky), c_int64_t), dky, self%ctx)
-      ierr = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec)
-      if (ierr == CV_SUCCESS) then
+      call interpolate(self, t, dky, ok)
+      if (ok) then
          u = dky(1:3 * m:3)
          v = dky(2:3 * m:3)
       else
          u = self%y(1:3 * m:3)
          v = self%y(2:3 * m:3)
       end if
-      call FN_VDestroy(dky_vec)
-      deallocate(dky)
       call halting_resume(halting)
    end subroutine region_state_at
 

@@ -405,6 +405,17 @@ def simulate(sys_, P, TOL, EPS, t_stop=None, max_contacts=10 ** 6):
             vv[rb] += imp / sys_.m[rb]
             uu[rb] += disp / sys_.m[rb]
 
+    def before_ends(slots, X, h):
+        """The step h shortened so that no contact of `slots` ends inside it (its
+        end is stepped over)"""
+        for j in slots:
+            if not X[j][0] > NOISE:
+                continue   # no force yet: it cannot end (see NOISE)
+            r = first_root(X[j], h, rising=False)
+            if r is not None:
+                h = r / 2
+        return h
+
     def track(slots, X, F, h):
         """The largest deformation and force of the contacts of `slots` over a
         step h of their series"""
@@ -441,11 +452,7 @@ def simulate(sys_, P, TOL, EPS, t_stop=None, max_contacts=10 ** 6):
             return
         # the others go on as in a step: none may end inside it, their largest
         # deformation and force are followed
-        for j in others:
-            if X[j][0] > NOISE:
-                r = first_root(X[j], tau, rising=False)
-                if r is not None:
-                    tau = r / 2
+        tau = before_ends(others, X, tau)
         track(others, X, F, tau)
         uu = [polyval(U[i], tau) for i in range(N)]
         vv = [polyval(V[i], tau) for i in range(N)]
@@ -617,13 +624,7 @@ def simulate(sys_, P, TOL, EPS, t_stop=None, max_contacts=10 ** 6):
             h = min(c.tscale for c in active.values())
         if t_stop is not None:
             h = min(h, t_stop - t)
-        # a contact must not end inside the step (its end is stepped over)
-        for j in active:
-            if not X[j][0] > NOISE:
-                continue   # no force yet: it cannot end (see NOISE)
-            r = first_root(X[j], h, rising=False)
-            if r is not None:
-                h = r / 2
+        h = before_ends(active, X, h)
         # a gap that closes in the step: stop there
         starts = None
         for j in sys_.slots:
