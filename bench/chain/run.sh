@@ -118,9 +118,12 @@ has_part() {
     case ",$only," in *",$1,"*) return 0 ;; *) return 1 ;; esac
 }
 
-# the machine, once per run, and its load before every part
+# the machine, once per run, and its load before every part: a full run writes it anew
+# (a partial one adds its loads to it); so does every --sundials7 run, whose page holds
+# the SciPy part alone
 machine="$out/machine.txt"
-if [ "$only" = "scaling,memory,scipy,dilute,row" ] || [ ! -f "$machine" ]; then
+if [ "$only" = "scaling,memory,scipy,dilute,row" ] || [ -n "$sundials7" ] ||
+    [ ! -f "$machine" ]; then
     {
         echo "date: $(date -u '+%Y-%m-%d %H:%M UTC')"
         echo "cpu: $(sed -n 's/^model name[[:space:]]*: //p' /proc/cpuinfo | head -n 1)," \
