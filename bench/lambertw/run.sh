@@ -132,6 +132,12 @@ if [ -n "$(git status --porcelain -- src include 2>/dev/null || true)" ]; then
     rev="$rev + uncommitted changes in src/ or include/"
 fi
 
+# the machine's load average now (1, 5, 15 min) and the time, for the record: a table-based
+# path suffers more than the peers' series when other jobs thrash the shared caches
+load_now() {
+    echo "$(cut -d' ' -f1-3 /proc/loadavg 2>/dev/null || echo unknown) at $(date -u '+%H:%M UTC')"
+}
+
 tmp="$out.tmp.$$"
 mkdir -p "$(dirname "$out")"
 trap 'rm -f "$tmp"' EXIT INT TERM
@@ -150,6 +156,7 @@ trap 'rm -f "$tmp"' EXIT INT TERM
     echo "Programs: \`$speed${quick:+ $quick}\` (throughput), \`$speed${quick:+ $quick} --latency\`${pressure:+, \`$speed${quick:+ $quick} --cache-pressure $pressure\`},"
     echo "\`$peers $csv\`, \`$PYTHON bench/lambertw/scipy_accuracy.py $csv\`${random_exe:+, \`$random_exe $random_points\`}."
     echo "How the numbers are made, and how to read them: bench/README.md."
+    echo "Load average of the machine (1, 5, 15 min; other jobs share it) before the views: $(load_now)."
     echo
     echo "## Speed"
     echo
@@ -170,6 +177,7 @@ if [ -n "$pressure" ]; then
     # shellcheck disable=SC2086
     "$speed" $quick --cache-pressure "$pressure" >>"$tmp"
 fi
+echo "Load average after the views: $(load_now)." >>"$tmp"
 
 {
     echo
