@@ -1333,15 +1333,21 @@ contains
    !> has E >= -sum B + B_j. So E + sum B < min B means at rest. Huge when the region
    !> is not a stack on such a wall. u and v: the displacements and velocities of the
    !> region's bodies a .. b.
+   !>
+   !> The bound is met with equality by a region released touching at rest (E = 0,
+   !> sum B = min B for one contact), and E carries the integration's error: the margin
+   !> is E + sum B - min B plus max(rtol, 16 eps) times the sum of the magnitudes of its
+   !> terms, so rest is declared only when the bound holds beyond that error. A region
+   !> whose contacts are all undamped (b = 0) keeps its energy and never rests: huge.
    function capture_margin(engine, a, b, u, v) result(margin)
       type(chain_engine), intent(in) :: engine
       integer, intent(in) :: a, b
       real(wp), intent(in) :: u(:), v(:)
       real(wp) :: margin
-      real(wp) :: e, b_sum, b_min, weight, x, xs, bound
+      real(wp) :: e, b_sum, b_min, weight, x, xs, bound, term, scale
       integer :: i, k, s
       type(contact_law) :: law
-      logical :: from_left
+      logical :: from_left, damped
 
       margin = huge(1.0_wp)
       if (a <= 0 .or. engine%gravity == 0.0_wp) return
@@ -1352,6 +1358,8 @@ contains
       do i = a, b
          e = e + kinetic_energy(engine%chain%mass(i), v(i - a + 1))
       end do
+      scale = e
+      damped = .false.
       b_sum = 0.0_wp
       b_min = huge(1.0_wp)
       ! contacts from the outermost inwards to the wall, the weight beyond each
@@ -1366,15 +1374,19 @@ contains
             weight = weight + engine%chain%mass(s) * abs(engine%gravity)
          end if
          law = slot_law(engine, s)
+         damped = damped .or. law%damping > 0.0_wp
          x = region_deformation(engine, a, s, u)
-         e = e + power_law_potential(law%stiffness, law%exponent, max(x, 0.0_wp)) &
-            & - weight * x
+         term = power_law_potential(law%stiffness, law%exponent, max(x, 0.0_wp))
+         e = e + term - weight * x
+         scale = scale + term + abs(weight * x)
          xs = (weight / law%stiffness)**(1.0_wp / law%exponent)
          bound = weight * xs * (law%exponent / (law%exponent + 1.0_wp))
          b_sum = b_sum + bound
          b_min = min(b_min, bound)
       end do
-      margin = e + b_sum - b_min
+      if (.not. damped) return
+      scale = scale + b_sum
+      margin = e + b_sum - b_min + max(engine%options%rtol, 16.0_wp * epsilon(1.0_wp)) * scale
    end function capture_margin
 
    !> Kinetic + elastic + gravitational energy of the region of bodies a .. b
