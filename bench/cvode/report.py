@@ -418,7 +418,7 @@ def main():
     machine = None
     if os.path.exists(machine_path):
         with open(machine_path) as fh:
-            machine = [line.strip() for line in fh if line.strip()]
+            machine = [" ".join(line.split()) for line in fh if line.strip()]
     goal_md, goal_list = goals(wp, ratio_rows, machine)
     print(table)
     print()
