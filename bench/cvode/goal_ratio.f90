@@ -140,7 +140,7 @@ contains
             & ": clock read ", 1.0e6_wp * t_clock(r), " us"
       end do
 
-      write(*, '(a, 3(f0.3, a))') "closed forms timed by whole passes over timed alone: ", &
+      write(*, '(a, 3(f5.3, a))') "closed forms timed by whole passes over timed alone: ", &
          & median(whole_over_split), " (", minval(whole_over_split), " to ", &
          & maxval(whole_over_split), " over the rounds)"
       open(newunit=unit, file=trim(out_path), status="replace", action="write", iostat=stat)
