@@ -9,7 +9,8 @@ numbers.
 
 Usage: python3 bench/cvode/report.py --dir DIR --doc doc/cvode.md
                                      --figure doc/figures/work_precision.png
-   DIR holds work_precision.csv, scipy_work_precision.csv and stability.csv.
+   DIR holds work_precision.csv, scipy_work_precision.csv, stability.csv and, from
+   bench_cvode_goal_ratio, goal_ratio.csv and goal_ratio_machine.txt (run.sh).
 """
 import argparse
 import csv
@@ -180,7 +181,7 @@ def work_precision_table(rows):
     return "\n".join(lines)
 
 
-def goals(rows, ratio_rows=None):
+def goals(rows, ratio_rows=None, machine=None):
     out = []
     # 1. contact time within 100 rtol for rtol 1e-4 ... 1e-11, every contact
     worst = {}
@@ -216,12 +217,13 @@ def goals(rows, ratio_rows=None):
             speed.setdefault(r["method"], []).append(num(r, "seconds") / num(c, "seconds"))
             ce = max(max_err(c), 2.0 ** -53)
             acc.setdefault(r["method"], []).append(max_err(r) / ce)
-    how = "the times of the work-precision runs"
+    how = "the times of the work-precision runs (each contact repeated)"
     if ratio_rows:
-        # interleaved rounds (work_precision.f90 --ratio): the median of per-round ratios
+        # issue 17's protocol (goal_ratio.f90): per contact the median of per-round ratios
         speed = {"adams": [float(r["ratio_adams"]) for r in ratio_rows],
                  "bdf": [float(r["ratio_bdf"]) for r in ratio_rows]}
-        how = "per contact the median of per-round ratios (goal_ratio.csv)"
+        how = ("per contact the median of per-round ratios, shared libraries, contacts in "
+               "a fresh random order every pass (goal_ratio.csv)")
     sp = "; ".join("%s: %.1f\u00d7 (median over the contacts), %.1f\u00d7 to %.1f\u00d7" % (
         LABELS[m], statistics.median(v), min(v), max(v)) for m, v in sorted(speed.items()))
     sp += "; " + how
@@ -247,18 +249,7 @@ def goals(rows, ratio_rows=None):
     for g, res, nums in out:
         lines.append("| %s | **%s** | %s |" % (g, res, nums))
     if ratio_rows:
-        lines.append("")
-        lines.append("Speed per contact at rtol = 1e-10 (interleaved rounds; times are the "
-                     "medians of the rounds, ratios the medians of the per-round ratios):")
-        lines.append("")
-        lines.append("| contact | n | \u03b2 | V | closed forms (\u00b5s) | CVODE Adams (\u00b5s) "
-                     "| CVODE BDF (\u00b5s) | Adams / closed | BDF / closed |")
-        lines.append("|---|---|---|---|---|---|---|---|---|")
-        for r in ratio_rows:
-            lines.append("| %s | %g | %g | %g | %.2f | %.0f | %.0f | %.0f\u00d7 | %.0f\u00d7 |" % (
-                r["case"], float(r["n"]), float(r["beta"]), float(r["V"]),
-                1e6 * float(r["closed_seconds"]), 1e6 * float(r["adams_seconds"]),
-                1e6 * float(r["bdf_seconds"]), float(r["ratio_adams"]), float(r["ratio_bdf"])))
+        lines += goal_ratio_table(ratio_rows, machine)
     # equal-error comparison: the cheapest CVODE run whose error reaches 1e-12
     lines.append("")
     lines.append("Equal error. No CVODE or SciPy run reaches the closed forms' accuracy; "
@@ -280,6 +271,55 @@ def goals(rows, ratio_rows=None):
         LABELS["closed"], fmt_e(max_err(c)),
         max(num(c, "ulps_" + k) for k in OUTPUTS), fmt_us(num(c, "seconds"))))
     return "\n".join(lines), out
+
+
+def goal_ratio_table(ratio_rows, machine):
+    """The speed ratio per contact under issue 17's protocol (goal_ratio.f90)."""
+    lines = [""]
+    if machine:
+        lines.append("Run: " + "; ".join(machine) + ".")
+        lines.append("")
+    lines.append("Speed per contact at rtol = 1e-10 (issue 17's protocol: the shared libraries "
+                 "through their Fortran API; every call timed alone in thread CPU time, the "
+                 "clock's cost of %.2f \u00b5s subtracted; the closed forms in passes over all "
+                 "21 contacts in a fresh random order, CVODE's 42 solves likewise, interleaved "
+                 "in each round; times the medians over the rounds, ratios the medians of the "
+                 "per-round ratios with the smallest and largest round in brackets. \"Old "
+                 "protocol\": in the same rounds, each contact repeated in a batch, 64 calls of "
+                 "the closed forms, 4 solves of CVODE, the clock read once a batch; the last "
+                 "column is the closed forms' batch time over their time in random order):"
+                 % (1e6 * float(ratio_rows[0]["clock_seconds"])))
+    lines.append("")
+    lines.append("| contact | n | \u03b2 | V | closed forms (\u00b5s) | CVODE Adams (\u00b5s) "
+                 "| CVODE BDF (\u00b5s) | Adams / closed | BDF / closed "
+                 "| old protocol: Adams, BDF / closed | closed forms: batch / random order |")
+    lines.append("|---|---|---|---|---|---|---|---|---|---|---|")
+
+    def spread(r, key, fmt):
+        return ("%s (%s\u2013%s)" % (fmt % float(r[key]), fmt % float(r[key + "_min"]),
+                                        fmt % float(r[key + "_max"])))
+    for r in ratio_rows:
+        lines.append("| %s | %g | %g | %g | %.2f | %.0f | %.0f | %s | %s | %.0f\u00d7, %.0f\u00d7 "
+                     "| %s |" % (
+                         r["case"], float(r["n"]), float(r["beta"]), float(r["V"]),
+                         1e6 * float(r["closed_seconds"]), 1e6 * float(r["adams_seconds"]),
+                         1e6 * float(r["bdf_seconds"]),
+                         spread(r, "ratio_adams", "%.0f\u00d7"),
+                         spread(r, "ratio_bdf", "%.0f\u00d7"),
+                         float(r["old_ratio_adams"]), float(r["old_ratio_bdf"]),
+                         spread(r, "ratio_batch", "%.2f")))
+    med = {k: statistics.median(float(r[k]) for r in ratio_rows)
+           for k in ("closed_seconds", "adams_seconds", "bdf_seconds", "ratio_adams",
+                     "ratio_bdf", "old_ratio_adams", "old_ratio_bdf", "ratio_batch")}
+    low = {k: min(float(r[k]) for r in ratio_rows) for k in ("ratio_adams", "ratio_bdf")}
+    lines.append("| median over the contacts | | | | %.2f | %.0f | %.0f | %.0f\u00d7 (smallest "
+                 "contact %.0f\u00d7) | %.0f\u00d7 (smallest contact %.0f\u00d7) "
+                 "| %.0f\u00d7, %.0f\u00d7 | %.2f |" % (
+                     1e6 * med["closed_seconds"], 1e6 * med["adams_seconds"],
+                     1e6 * med["bdf_seconds"], med["ratio_adams"], low["ratio_adams"],
+                     med["ratio_bdf"], low["ratio_bdf"], med["old_ratio_adams"],
+                     med["old_ratio_bdf"], med["ratio_batch"]))
+    return lines
 
 
 def stability_tables(rows):
@@ -374,7 +414,12 @@ def main():
     table = work_precision_table(wp)
     ratio_path = os.path.join(args.dir, "goal_ratio.csv")
     ratio_rows = read(ratio_path) if os.path.exists(ratio_path) else None
-    goal_md, goal_list = goals(wp, ratio_rows)
+    machine_path = os.path.join(args.dir, "goal_ratio_machine.txt")
+    machine = None
+    if os.path.exists(machine_path):
+        with open(machine_path) as fh:
+            machine = [" ".join(line.split()) for line in fh if line.strip()]
+    goal_md, goal_list = goals(wp, ratio_rows, machine)
     print(table)
     print()
     print(goal_md)

@@ -2,21 +2,16 @@
 !> Error against run time of CVODE (BDF and Adams, rtol 1e-3 ... 1e-13) and of the
 !> closed forms, on the contacts of bench/cvode/reference.csv (doc/cvode.md).
 !>
-!>   bench_cvode_work_precision REFERENCE.csv OUT.csv [--quick] [--ratio RATIO.csv]
+!>   bench_cvode_work_precision REFERENCE.csv OUT.csv [--quick]
 !>
 !> For every contact and setting: the relative errors of the contact time, the
 !> restitution, the maximum compression and the peak force against the mpmath
 !> reference, the CPU time of one call (median of the measurements; one measurement
 !> repeats the call until 20 ms have passed, reading the clock once per batch of
 !> calls), and CVODE's counters. The closed forms (hcimpact_impact_model's `impact`)
-!> get one row per contact (method "closed").
-!>
-!> With --ratio, the speed ratio of issue #4's goal (CVODE at rtol = 1e-10 against the
-!> closed forms) is also measured as this shared machine allows it to be compared: per
-!> contact, rounds of closed forms, CVODE Adams and CVODE BDF timed one after the other
-!> (each for at least 5 ms), the ratio taken within each round and the median over the
-!> rounds (a slow phase of the machine then slows both sides of a ratio). RATIO.csv:
-!> case, n, beta, V, the medians of the three times (s) and of the two ratios.
+!> get one row per contact (method "closed"). These times repeat one contact and so
+!> flatter the closed forms (the branch predictor learns the call); the speed ratio of
+!> the goal is measured under issue 17's protocol by bench_cvode_goal_ratio.
 program bench_cvode_work_precision
    use, intrinsic :: iso_fortran_env, only : error_unit
    use hcimpact_kinds, only : wp
@@ -29,7 +24,7 @@ program bench_cvode_work_precision
 
    integer, parameter :: n_rtol = 11
    type(reference_case), allocatable :: cases(:)
-   character(len=1024) :: ref_path, out_path, arg, ratio_path
+   character(len=1024) :: ref_path, out_path, arg
    integer :: unit, ic, im, ir, stat, repeats, ia
    real(wp) :: rtol, seconds, values(n_outputs)
    real(wp) :: min_seconds
@@ -45,15 +40,11 @@ program bench_cvode_work_precision
    call get_command_argument(1, ref_path)
    call get_command_argument(2, out_path)
    quick = .false.
-   ratio_path = ""
    ia = 3
    do while (ia <= command_argument_count())
       call get_command_argument(ia, arg)
       if (trim(arg) == "--quick") then
          quick = .true.
-      else if (trim(arg) == "--ratio" .and. ia < command_argument_count()) then
-         ia = ia + 1
-         call get_command_argument(ia, ratio_path)
       else
          write(error_unit, '(a)') "bench_cvode_work_precision: unknown option " // trim(arg)
          error stop 1
@@ -97,36 +88,8 @@ program bench_cvode_work_precision
       write(error_unit, '(a, i0, a, i0)') "case ", ic, " of ", size(cases)
    end do
    close(unit)
-   if (len_trim(ratio_path) > 0) call goal_ratios(trim(ratio_path), merge(3, 9, quick))
 
 contains
-
-   !> The goal's speed ratios at rtol = 1e-10, measured in interleaved rounds (see the
-   !> program's description), written to `path`.
-   subroutine goal_ratios(path, rounds)
-      character(len=*), intent(in) :: path
-      integer, intent(in) :: rounds
-      real(wp), parameter :: round_seconds = 0.005_wp
-      real(wp) :: t_closed(rounds), t_adams(rounds), t_bdf(rounds)
-      integer :: ratio_unit, ic, r, stat
-      open(newunit=ratio_unit, file=path, status="replace", action="write")
-      write(ratio_unit, '(a)') "case,n,beta,V,closed_seconds,adams_seconds,bdf_seconds," // &
-         & "ratio_adams,ratio_bdf"
-      do ic = 1, size(cases)
-         do r = 1, rounds
-            t_closed(r) = time_closed(cases(ic), 1, round_seconds, closed, stat)
-            t_adams(r) = time_cvode(cases(ic), cvode_adams, 1.0e-10_wp, 1, round_seconds, &
-               & sim, stat)
-            t_bdf(r) = time_cvode(cases(ic), cvode_bdf, 1.0e-10_wp, 1, round_seconds, sim, &
-               & stat)
-         end do
-         write(ratio_unit, '(i0, 8(",", es12.5e3))') ic, cases(ic)%contact%exponent, &
-            & cases(ic)%contact%damping * cases(ic)%contact%velocity, &
-            & cases(ic)%contact%velocity, median(t_closed), median(t_adams), &
-            & median(t_bdf), median(t_adams / t_closed), median(t_bdf / t_closed)
-      end do
-      close(ratio_unit)
-   end subroutine goal_ratios
 
    subroutine write_row(method, ic, rtol, stat, seconds, values, counters, stiffness)
       character(len=*), intent(in) :: method

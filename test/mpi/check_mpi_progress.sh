@@ -28,7 +28,9 @@ if [ -n "$bad" ]; then
   printf '%s\n' "$bad" >&2
   exit 1
 fi
-if ! printf '%s\n' "$lines" | grep -qE "/s, $left left\$"; then
+# grep reads to the end (no -q): with pipefail, grep -q stopping at the first match
+# left printf writing into a closed pipe (SIGPIPE) on long runs of lines
+if ! printf '%s\n' "$lines" | grep -E "/s, $left left\$" >/dev/null; then
   echo "FAIL: no progress line with a rate and a time left: $lines" >&2
   exit 1
 fi
