@@ -110,7 +110,7 @@ typedef struct {
  *  or a NULL pointer means every default. */
 typedef struct {
   double t_end;       /**< end time in s; <= 0: until no contact can happen again */
-  double rtol;        /**< CVODE's relative tolerance in (0, 1); 0: 1e-10 */
+  double rtol;        /**< CVODE's relative tolerance in (0, 0.01]; 0: 1e-10 */
   int64_t max_steps;  /**< most integration steps, all clusters together; 0: 1e8 */
   int64_t max_events; /**< most contacts computed before giving up; 0: 1e8 */
   int method;         /**< HCIMPACT_CHAIN_AUTO (0), _EXACT or _INTEGRATED */
@@ -191,8 +191,8 @@ typedef struct {
  *  none; options: NULL for the defaults. Outputs: *result (required);
  *  positions[n] and final_velocities[n] at result->time (each may be NULL);
  *  contacts[contact_capacity]: the first contact_capacity contacts in the order
- *  they ended (result->contacts_recorded of them); result->n_contacts counts them
- *  all, so a caller who needs every contact and gave too small an array calls again
+ *  they ended (result->contacts_recorded of them; one still in progress at t_end is
+ *  not listed); result->n_contacts counts them all, so a caller who needs every contact and gave too small an array calls again
  *  with contact_capacity = n_contacts (the run is deterministic: the same input
  *  gives the same contacts); contact_capacity 0 and contacts NULL record none.
  *  samples: NULL for none. message: "success" or what went wrong (e.g. "gap 3 is
@@ -211,7 +211,7 @@ typedef struct {
  *  HCIMPACT_ERR_NOT_FINITE (1), _MASS (2), _STIFFNESS (3), _EXPONENT (4),
  *  _DAMPING (6)             a NaN or infinite value, a mass or a law out of range,
  *  HCIMPACT_ERR_DOMAIN (8)  a negative gap (bodies may touch, not overlap), rtol
- *                           outside (0, 1), an unknown method or integrator,
+ *                           outside (0, 0.01], an unknown method or integrator,
  *                           negative limits, negative sample times,
  *  HCIMPACT_ERR_UNAVAILABLE (12) method HCIMPACT_CHAIN_EXACT met a cluster,
  *  HCIMPACT_ERR_SOLVER (11) CVODE failed (the message names its flag),

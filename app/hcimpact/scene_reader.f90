@@ -42,6 +42,7 @@ module hcimpact_scene_reader
       & vary_b => b, vary_combine => combine, vary_mass => mass, &
       & vary_stiffness => stiffness, vary_exponent => exponent, vary_impact_speed => speed
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
+      & max_chain_rtol, &
       & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
       & integrator_adams
    use hcimpact_scene_text, only : lower, str, real_str, join, printable, count_str
@@ -1758,9 +1759,10 @@ contains
       end if
       if (ieee_is_nan(sys%rtol)) then
          sys%rtol = 1.0e-10_wp
-      else if (.not. (sys%rtol >= 1.0e-14_wp .and. sys%rtol <= 0.1_wp)) then
+      else if (.not. (sys%rtol >= 1.0e-14_wp .and. sys%rtol <= max_chain_rtol)) then
          error = at(src, g_bodies, "rtol") // "rtol = " // real_str(sys%rtol, 6) &
-            & // ": relative tolerances lie in [1e-14, 0.1]"
+            & // ": the relative tolerance of a system lies in [1e-14, " &
+            & // real_str(max_chain_rtol, 6) // "]"
          return
       end if
       call choose(src, "method", body_method, [character(len=10) :: "auto", "exact", &

@@ -63,7 +63,8 @@ class ChainResult:
 
     ``positions`` and ``velocities`` are the state at ``time`` (for a system that came
     to rest on a wall, its rest state); ``contacts`` a structured NumPy array, one
-    record per contact in the order they ended, with the fields ``pair``, ``t_start``,
+    record per contact that ended, in the order they ended (one still in progress at
+    ``t_end`` is not listed), with the fields ``pair``, ``t_start``,
     ``t_end``, ``approach_speed``, ``separation_speed``, ``peak_force``,
     ``max_deformation``, ``dissipated`` and ``method`` (:data:`BY_CLOSED_FORMS` or
     :data:`BY_INTEGRATION`); ``n_contacts`` counts every contact (more than
@@ -197,7 +198,7 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
       gravity = -9.81);
     - ``t_end`` (s, > 0), or None: until no contact can happen again (all bodies
       separating with no wall ahead, or at rest on a wall);
-    - ``rtol``: CVODE's relative tolerance in (0, 1); ``method``: ``"auto"``,
+    - ``rtol``: CVODE's relative tolerance in (0, 0.01]; ``method``: ``"auto"``,
       ``"exact"`` (the closed forms only: a cluster is an :class:`UnavailableError`)
       or ``"integrated"`` (CVODE for everything); ``integrator``: ``"bdf"`` or
       ``"adams"``;
@@ -241,8 +242,8 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
             raise InputError(_ERR_DOMAIN, f"t_end = {t_end!r} must be positive (None: until "
                              "no contact can happen again)", _WHERE)
     options.rtol = _scalar(rtol, "rtol", _WHERE)
-    if not 0.0 < options.rtol < 1.0:     # (0 would mean the default to the C interface)
-        raise InputError(_ERR_DOMAIN, f"rtol = {rtol!r} must lie in (0, 1)", _WHERE)
+    if not 0.0 < options.rtol <= 1e-2:   # (0 would mean the default to the C interface)
+        raise InputError(_ERR_DOMAIN, f"rtol = {rtol!r} must lie in (0, 0.01]", _WHERE)
     options.method = _choice(method, _METHODS, "method")
     options.integrator = _choice(integrator, _INTEGRATORS, "integrator")
     options.max_steps = _limit(max_steps, "max_steps")

@@ -80,6 +80,7 @@ contains
          & new_unittest("energy-mid-contact", test_energy_mid_contact), &
          & new_unittest("touching-at-rest", test_touching_at_rest), &
          & new_unittest("released-touching", test_released_touching), &
+         & new_unittest("method-used-mid-cluster", test_method_used_mid_cluster), &
          & new_unittest("bad-input", test_bad_input), &
          & new_unittest("energy-range", test_energy_range), &
          & new_unittest("tiny-masses", test_tiny_masses), &
@@ -1193,6 +1194,22 @@ contains
       end do
    end subroutine test_released_touching
 
+   !> A run that ends while its only cluster is still integrated (three touching
+   !> balls, to 1 us of a contact that lasts about 100 us) has recorded no contact, but
+   !> it was integrated: method_used says so (it said closed forms, found by an attack
+   !> on the entry points)
+   subroutine test_method_used_mid_cluster(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_result) :: result
+      call run(error, steel_row(3, 1.0_wp, 0.0_wp, 0.0_wp), opts(method_auto, 1.0e-10_wp, &
+         & 1.0e-6_wp), result, "three balls to 1 us")
+      if (allocated(error)) return
+      call check(error, result%counters%steps > 0 .and. size(result%contacts) == 0 .and. &
+         & result%method_used == by_integration, "three balls to 1 us: method_used " // &
+         & int_text(result%method_used) // ", steps " // int_text(int(result%counters%steps)) &
+         & // ", contacts " // int_text(size(result%contacts)))
+   end subroutine test_method_used_mid_cluster
+
    !> Bodies that touch each other and both walls, all at rest, no gravity, no end
    !> time: nothing can ever happen. Every method and integrator ends at once, with
    !> the bodies where they were. (Integrated, no contact ever ended, so the region was
@@ -1248,6 +1265,8 @@ contains
       type(error_type), allocatable, intent(out) :: error
       type(chain_type) :: good, bad
       type(chain_options) :: o
+      type(chain_result) :: result
+      integer :: stat
       real(wp) :: nan, inf
 
       nan = ieee_value(1.0_wp, ieee_quiet_nan)
@@ -1337,6 +1356,19 @@ contains
       call expect(good, opts(method_auto, 0.0_wp), hcimpact_err_domain, "rtol 0")
       if (allocated(error)) return
       call expect(good, opts(method_auto, 1.0_wp), hcimpact_err_domain, "rtol 1")
+      ! beyond 1 % a pair pressed within the tolerance reads as touching by rounding
+      ! and real contacts went unrecorded (rtol 0.5: none, with success)
+      call expect(good, opts(method_auto, 0.5_wp), hcimpact_err_domain, "rtol 0.5")
+      if (allocated(error)) return
+      call expect(good, opts(method_integrated, 1.0e-2_wp * (1.0_wp + epsilon(1.0_wp))), &
+         & hcimpact_err_domain, "rtol just above 0.01")
+      if (allocated(error)) return
+      ! at the loosest rtol the contacts of three touching balls are all recorded
+      call chain_simulate(steel_row(3, 1.0_wp, 0.0_wp, 0.0_wp), result, stat, &
+         & opts(method_integrated, 1.0e-2_wp))
+      call check(error, stat == hcimpact_ok .and. result%n_contacts >= 2, &
+         & "three touching balls at rtol 0.01: status " // int_text(stat) // ", " // &
+         & int_text(int(result%n_contacts)) // " contacts")
       if (allocated(error)) return
       call expect(good, opts(method_auto, nan), hcimpact_err_not_finite, "rtol NaN")
       if (allocated(error)) return

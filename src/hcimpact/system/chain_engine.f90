@@ -53,7 +53,8 @@ module hcimpact_chain_engine
    use hcimpact_power_force, only : power_law_potential
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, contact_record, &
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
-      & method_integrated, by_closed_forms, by_integration, max_message, kinetic_energy
+      & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
+      & kinetic_energy
    implicit none
    private
 
@@ -1646,12 +1647,14 @@ contains
       result%counters = engine%counters
       allocate(result%switches(engine%n_switches))
       result%switches = engine%switches(:engine%n_switches)
-      if (engine%counters%integrated_contacts == 0) then
+      ! a cluster still integrated at t_end has recorded no contact yet, but it was
+      ! integrated all the same
+      if (engine%counters%integrated_contacts == 0 .and. engine%counters%clusters == 0) then
          result%method_used = by_closed_forms
       else if (engine%counters%closed_form_contacts == 0) then
          result%method_used = by_integration
       else
-         result%method_used = 3
+         result%method_used = by_both
       end if
       result%message = "success"
       stat = hcimpact_ok
