@@ -13,7 +13,8 @@ module test_modified_cc
    use hcimpact_check, only : format_real, reference_path
    use hcimpact_kinds, only : wp
    use hcimpact_modified_cc, only : cc_max_degree, cc_moments, cc_moments_pair, &
-      & cc_coefficients, cc_sum, cc_tail, cc_converged, cc_end_share, cc_node, sym_m0, &
+      & cc_coefficients, cc_sum, cc_tail, cc_converged, cc_plain, cc_end_share, cc_node, &
+      & sym_m0, &
       & sym_moments, sym_partial_moments, sym_q0, sym_q0_near_end, sym_series_max
    use hcimpact_libm, only : log1p
    use hcimpact_double_double, only : dd_real, dd_log, dd_exp, two_sum, operator(+), &
@@ -67,7 +68,8 @@ contains
          & new_unittest("refuses-unresolved", test_refuses_unresolved), &
          & new_unittest("moments-pair", test_moments_pair), &
          & new_unittest("symmetric-m0", test_symmetric_m0), &
-         & new_unittest("symmetric-moments", test_symmetric_moments) &
+         & new_unittest("symmetric-moments", test_symmetric_moments), &
+         & new_unittest("plain-rule", test_plain_rule) &
          & ]
    end subroutine collect_modified_cc
 
@@ -516,5 +518,91 @@ contains
             & // " times the bound")
       end if
    end subroutine report_worst
+
+   !> The plain rule by its weights (cc_plain) against the transform (cc_coefficients
+   !> and cc_sum with the moments 2/(1 - k^2), k even) and against exact integrals over
+   !> [-1, 1]: e^x (e - 1/e), 1/(2 - x) (ln 3), a constant, T_n (2/(1 - n^2): the
+   !> weight of the last coefficient, which a smooth function hardly tests) and values
+   !> at random (the transform's integral of their interpolant); its last two
+   !> coefficients are the transform's. Degrees 12, 24 and 48.
+   subroutine test_plain_rule(error)
+      type(error_type), allocatable, intent(out) :: error
+      integer, parameter :: degrees(3) = [12, 24, 48]
+      real(wp) :: f(0:cc_max_degree), a(0:cc_max_degree), moment(0:cc_max_degree)
+      real(wp) :: a_last(2), total, exact, by_transform, fmax, x
+      integer :: idegree, n, j, k, kind
+      character(len=8), parameter :: names(5) = [character(len=8) :: "exp", "1/(2-x)", &
+         & "1", "T_n", "random"]
+      real(wp) :: noise
+
+      do k = 0, cc_max_degree
+         moment(k) = 0.0_wp
+         if (mod(k, 2) == 0) moment(k) = 2.0_wp / real(1 - k * k, wp)
+      end do
+      do idegree = 1, size(degrees)
+         n = degrees(idegree)
+         do kind = 1, 5
+            do j = 0, n
+               x = cc_node(j * (cc_max_degree / n))
+               select case (kind)
+               case (1)
+                  f(j) = exp(x)
+               case (2)
+                  f(j) = 1.0_wp / (2.0_wp - x)
+               case (3)
+                  f(j) = 0.75_wp
+               case (4)
+                  ! T_n(x_j) = cos(pi j) = (-1)^j
+                  f(j) = real(1 - 2 * mod(j, 2), wp)
+               case default
+                  call random_number(noise)
+                  f(j) = 0.5_wp + noise
+               end select
+            end do
+            fmax = maxval(abs(f(0:n)))
+            call cc_plain(n, f, total, a_last)
+            call cc_coefficients(n, f, a)
+            by_transform = cc_sum(n, a, moment)
+            select case (kind)
+            case (1)
+               exact = exp(1.0_wp) - exp(-1.0_wp)
+            case (2)
+               exact = log(3.0_wp)
+            case (3)
+               exact = 1.5_wp
+            case (4)
+               exact = 2.0_wp / real(1 - n * n, wp)
+            case default
+               exact = by_transform
+            end select
+            ! the weights are positive and sum to 2: rounding of n + 1 terms; the
+            ! transform's sum of n + 1 coefficients times moments (sum |J_k| < 3)
+            if (abs(total - by_transform) > 16.0_wp * epsilon(1.0_wp) * fmax) then
+               call test_failed(error, "plain rule: weights and transform disagree", &
+                  & trim(names(kind)) // ", degree " // format_real(real(n, wp)) // ": " // &
+                  & format_real(total) // " against " // format_real(by_transform))
+               return
+            end if
+            ! (both are sums of n + 1 terms of up to 2 fmax/n, in different orders)
+            if (abs(a_last(1) - a(n - 1)) > 16.0_wp * epsilon(1.0_wp) * fmax &
+               & .or. abs(a_last(2) - a(n)) > 16.0_wp * epsilon(1.0_wp) * fmax) then
+               call test_failed(error, "plain rule: last coefficients", &
+                  & trim(names(kind)) // ", degree " // format_real(real(n, wp)) // ": " // &
+                  & format_real(a_last(1)) // ", " // format_real(a_last(2)) // &
+                  & " against " // format_real(a(n - 1)) // ", " // format_real(a(n)))
+               return
+            end if
+            ! 1/(2 - x) (its pole at 2: rho = 2 + sqrt(3), an error of rho^(-n), 2e-14
+            ! at degree 24) is resolved at 48
+            if (kind == 2 .and. n < 48) cycle
+            if (abs(total - exact) > 4.0_wp * epsilon(1.0_wp) * fmax) then
+               call test_failed(error, "plain rule: integral", trim(names(kind)) // &
+                  & ", degree " // format_real(real(n, wp)) // ": " // format_real(total) // &
+                  & " against " // format_real(exact))
+               return
+            end if
+         end do
+      end do
+   end subroutine test_plain_rule
 
 end module test_modified_cc

@@ -57,7 +57,7 @@ module hcimpact_modified_cc
    private
 
    public :: cc_max_degree, cc_moments, cc_moments_pair, cc_coefficients, cc_sum, cc_tail, &
-      & cc_converged
+      & cc_converged, cc_plain
    public :: cc_end_share, cc_turn_share, cc_node, inv_end_share_hi, inv_end_share_lo
    public :: sym_m0, sym_moments, sym_partial_moments, sym_q0, sym_q0_near_end, sym_series_max
 
@@ -136,6 +136,54 @@ module hcimpact_modified_cc
    real(wp), parameter :: cos_odd48(0:23, 0:23) = reshape([((merge(real(cos(pi_xp &
       & * real((2 * i_ + 1) * j_, xp) / cc_max_degree), wp), 0.0_wp, i_ <= 23), &
       & i_ = 0, 23), j_ = 0, 23)], [24, 24])
+
+   ! The plain Clenshaw-Curtis rule (weight 1) of degree n on [-1, 1]: its weights
+   ! w_j = c_j (2/n) sum''_k 2/(1 - k^2) cos(pi j k/n) (k even; c_0 = c_n = 1/2, the
+   ! last k halved), the integral of the interpolant sum''_k a_k int T_k as a sum over
+   ! the values; computed in the extended kind and rounded once.
+   !> The terms of the weights of degree 12: node j (first index), k = 2m (second)
+   real(xp), parameter :: plain_terms12(0:12, 0:6) = reshape([((merge(0.5_xp, 1.0_xp, &
+      & i_ == 0 .or. i_ == 12) * merge(0.5_xp, 1.0_xp, j_ == 0 .or. j_ == 6) &
+      & * (2.0_xp / 12) * 2.0_xp / (1.0_xp - real(2 * j_, xp)**2) &
+      & * cos(pi_xp * real(2 * i_ * j_, xp) / 12), i_ = 0, 12), j_ = 0, 6)], [13, 7])
+   !> Weights of the plain rule of degree 12 at its nodes j = 0 .. 12
+   real(wp), parameter :: plain_weight12(0:12) = real(sum(plain_terms12, dim=2), wp)
+   !> The terms of the weights of degree 24: node j (first index), k = 2m (second)
+   real(xp), parameter :: plain_terms24(0:24, 0:12) = reshape([((merge(0.5_xp, 1.0_xp, &
+      & i_ == 0 .or. i_ == 24) * merge(0.5_xp, 1.0_xp, j_ == 0 .or. j_ == 12) &
+      & * (2.0_xp / 24) * 2.0_xp / (1.0_xp - real(2 * j_, xp)**2) &
+      & * cos(pi_xp * real(2 * i_ * j_, xp) / 24), i_ = 0, 24), j_ = 0, 12)], [25, 13])
+   !> Weights of the plain rule of degree 24 at its nodes j = 0 .. 24
+   real(wp), parameter :: plain_weight24(0:24) = real(sum(plain_terms24, dim=2), wp)
+   !> The terms of the weights of degree 48: node j (first index), k = 2m (second)
+   real(xp), parameter :: plain_terms48(0:48, 0:24) = reshape([((merge(0.5_xp, 1.0_xp, &
+      & i_ == 0 .or. i_ == 48) * merge(0.5_xp, 1.0_xp, j_ == 0 .or. j_ == 24) &
+      & * (2.0_xp / 48) * 2.0_xp / (1.0_xp - real(2 * j_, xp)**2) &
+      & * cos(pi_xp * real(2 * i_ * j_, xp) / 48), i_ = 0, 48), j_ = 0, 24)], [49, 25])
+   !> Weights of the plain rule of degree 48 at its nodes j = 0 .. 48
+   real(wp), parameter :: plain_weight48(0:48) = real(sum(plain_terms48, dim=2), wp)
+
+   !> The rows of a_(n-1) and a_n of the plain rule of degree 12: (2/n) c_j (-1)^j x_j
+   !> and (2/n) c_j (-1)^j, c_0 = c_n = 1/2 (n even: (-1)^n = 1)
+   real(wp), parameter :: plain_last12(0:12, 2) = reshape([ &
+      & (real(merge(0.5_xp, 1.0_xp, i_ == 0 .or. i_ == 12) * (2.0_xp / 12) * (-1)**i_ &
+      & * cos(pi_xp * real(i_, xp) / 12), wp), i_ = 0, 12), &
+      & (real(merge(0.5_xp, 1.0_xp, i_ == 0 .or. i_ == 12) * (2.0_xp / 12) * (-1)**i_, wp), &
+      & i_ = 0, 12)], [13, 2])
+   !> The rows of a_(n-1) and a_n of the plain rule of degree 24: (2/n) c_j (-1)^j x_j
+   !> and (2/n) c_j (-1)^j, c_0 = c_n = 1/2 (n even: (-1)^n = 1)
+   real(wp), parameter :: plain_last24(0:24, 2) = reshape([ &
+      & (real(merge(0.5_xp, 1.0_xp, i_ == 0 .or. i_ == 24) * (2.0_xp / 24) * (-1)**i_ &
+      & * cos(pi_xp * real(i_, xp) / 24), wp), i_ = 0, 24), &
+      & (real(merge(0.5_xp, 1.0_xp, i_ == 0 .or. i_ == 24) * (2.0_xp / 24) * (-1)**i_, wp), &
+      & i_ = 0, 24)], [25, 2])
+   !> The rows of a_(n-1) and a_n of the plain rule of degree 48: (2/n) c_j (-1)^j x_j
+   !> and (2/n) c_j (-1)^j, c_0 = c_n = 1/2 (n even: (-1)^n = 1)
+   real(wp), parameter :: plain_last48(0:48, 2) = reshape([ &
+      & (real(merge(0.5_xp, 1.0_xp, i_ == 0 .or. i_ == 48) * (2.0_xp / 48) * (-1)**i_ &
+      & * cos(pi_xp * real(i_, xp) / 48), wp), i_ = 0, 48), &
+      & (real(merge(0.5_xp, 1.0_xp, i_ == 0 .or. i_ == 48) * (2.0_xp / 48) * (-1)**i_, wp), &
+      & i_ = 0, 48)], [49, 2])
 
    !> Largest |y| for which sym_q0 sums its series (terms fall like y^2 per step)
    real(wp), parameter :: sym_series_max = 0.5_wp
@@ -343,6 +391,52 @@ contains
          sums(m + 3) = s3
       end do
    end subroutine block_sums
+
+   !> The plain Clenshaw-Curtis rule (weight 1) of degree n on values g at its nodes
+   !> x_j = cos(pi j/n): the integral of the interpolant over [-1, 1], sum_j w_j g_j
+   !> with the rule's weights, and the two coefficients a_(n-1), a_n of the
+   !> interpolant that cc_converged reads. The same integral as cc_coefficients and
+   !> cc_sum with the moments 2/(1 - k^2) (k even), without the transform: the weights
+   !> do not depend on the integrand, so a plain rule costs three products per node.
+   pure subroutine cc_plain(n, g, total, a_last)
+      !> Degree: 12, 24 or 48
+      integer, intent(in) :: n
+      !> Values at the n + 1 nodes of this rule
+      real(wp), intent(in) :: g(0:)
+      !> The integral sum_j w_j g_j
+      real(wp), intent(out) :: total
+      !> a_(n-1) and a_n: (2/n) sum''_j (-1)^j x_j g_j and (2/n) sum''_j (-1)^j g_j
+      !> (cos(pi j (n-1)/n) = (-1)^j x_j, cos(pi j) = (-1)^j)
+      real(wp), intent(out) :: a_last(2)
+      select case (n)
+      case (12)
+         call plain_sums(12, g, plain_weight12, plain_last12, total, a_last)
+      case (24)
+         call plain_sums(24, g, plain_weight24, plain_last24, total, a_last)
+      case default
+         call plain_sums(48, g, plain_weight48, plain_last48, total, a_last)
+      end select
+   end subroutine cc_plain
+
+   !> The three sums of cc_plain over the nodes j = 0 .. n, in increasing j: three
+   !> independent chains of products and sums
+   pure subroutine plain_sums(n, g, weight, last, total, a_last)
+      integer, intent(in) :: n
+      real(wp), intent(in) :: g(0:), weight(0:), last(0:, :)
+      real(wp), intent(out) :: total, a_last(2)
+      real(wp) :: s, s1, s2
+      integer :: j
+      s = 0.0_wp
+      s1 = 0.0_wp
+      s2 = 0.0_wp
+      do j = 0, n
+         s = s + weight(j) * g(j)
+         s1 = s1 + last(j, 1) * g(j)
+         s2 = s2 + last(j, 2) * g(j)
+      end do
+      total = s
+      a_last = [s1, s2]
+   end subroutine plain_sums
 
    !> sum''_k a_k J_k (first and last terms halved), k = 0 .. n.
    pure function cc_sum(n, a, moment) result(total)
