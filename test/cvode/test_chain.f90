@@ -1398,7 +1398,35 @@ contains
       bad%right_gap = 1.0e-3_wp
       o = opts(method_auto, 1.0e-10_wp)
       o%max_events = 1000
-      call expect(bad, o, hcimpact_err_no_convergence, "bouncing forever between walls")
+      ! refused up front (it ran into the limits: minutes to hours with the defaults)
+      call expect(bad, o, hcimpact_err_domain, "bouncing forever between walls")
+      if (allocated(error)) return
+      ! damped, the same: slower and slower, for ever
+      bad%left_law%damping = 1.0_wp
+      call expect(bad, o, hcimpact_err_domain, "damped between walls")
+      if (allocated(error)) return
+      ! at rest between the walls: nothing happens, the run ends
+      bad%velocity = 0.0_wp
+      call run(error, bad, o, result, "at rest between walls")
+      if (allocated(error)) return
+      ! with an end time far away, the limit on the contacts stops it
+      bad%velocity = 1.0_wp
+      o%t_end = 1.0e6_wp
+      call expect(bad, o, hcimpact_err_no_convergence, "between walls to 1e6 s, 1000 contacts")
+      if (allocated(error)) return
+      o%t_end = -1.0_wp
+      if (allocated(error)) return
+      ! an undamped ball on a floor under gravity bounces for ever; damped, it rests
+      bad = steel_row(1, 0.0_wp, 0.0_wp, 0.0_wp)
+      bad%left_wall = .true.
+      bad%left_law = contact_law(steel_wall, 1.5_wp, 0.0_wp)
+      bad%left_gap = 1.0e-3_wp
+      bad%gravity = -9.81_wp
+      call expect(bad, o, hcimpact_err_domain, "undamped ball on a floor")
+      if (allocated(error)) return
+      bad%gravity = 9.81_wp
+      call run(error, bad, o, result, "undamped ball falling away from its wall")
+      if (allocated(error)) return
    contains
       subroutine expect(chain, options, status, what)
          type(chain_type), intent(in) :: chain

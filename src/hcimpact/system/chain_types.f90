@@ -195,7 +195,7 @@ contains
    !> - the statuses of `check_parameters` for a law (stiffness, exponent, damping);
    !> - hcimpact_err_domain: a negative gap (initial overlap), rtol outside (0, 0.01], a
    !>   method or an integrator that does not exist, max_steps, max_events < 1,
-   !>   max_contacts < 0.
+   !>   max_contacts < 0, t_end unset for a system that never ends (`never_ends`).
    pure subroutine check_chain(chain, options, stat, message)
       !> The system
       type(chain_type), intent(in) :: chain
@@ -331,6 +331,12 @@ contains
          message = "max_steps and max_events must be positive, max_contacts not negative"
          return
       end if
+      if (.not. options%t_end > 0.0_wp .and. never_ends(chain)) then
+         message = "t_end is unset, but this system never ends: bodies between two walls " &
+            & // "without gravity keep colliding, and an undamped system falling onto a " &
+            & // "wall keeps bouncing (give t_end)"
+         return
+      end if
       if (allocated(options%sample_times)) then
          stat = hcimpact_err_not_finite
          if (.not. all(ieee_is_finite(options%sample_times))) then
@@ -355,6 +361,31 @@ contains
       stat = hcimpact_ok
       message = "success"
    end subroutine check_chain
+
+   !> Whether no end time would ever be reached by running "until no contact can happen
+   !> again" (a valid chain): between two walls without gravity a body in motion hits
+   !> them for ever (damping slows the bodies but never stops them), and under gravity
+   !> towards a wall with every contact undamped the energy stays and the bodies bounce
+   !> or oscillate for ever (even released touching at rest). Left to the limits on
+   !> steps and contacts, such runs took minutes to hours to fail.
+   pure logical function never_ends(chain)
+      type(chain_type), intent(in) :: chain
+      logical :: undamped
+      never_ends = .false.
+      if (chain%gravity == 0.0_wp) then
+         never_ends = chain%left_wall .and. chain%right_wall .and. &
+            & any(chain%velocity /= 0.0_wp)
+         return
+      end if
+      undamped = all(chain%law%damping == 0.0_wp)
+      if (chain%gravity < 0.0_wp .and. chain%left_wall) then
+         never_ends = undamped .and. chain%left_law%damping == 0.0_wp .and. &
+            & .not. (chain%right_wall .and. chain%right_law%damping > 0.0_wp)
+      else if (chain%gravity > 0.0_wp .and. chain%right_wall) then
+         never_ends = undamped .and. chain%right_law%damping == 0.0_wp .and. &
+            & .not. (chain%left_wall .and. chain%left_law%damping > 0.0_wp)
+      end if
+   end function never_ends
 
    !> The status of a contact law (the library's one validator)
    elemental function law_status(law) result(stat)
