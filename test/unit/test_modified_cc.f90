@@ -576,16 +576,18 @@ contains
                exact = by_transform
             end select
             ! the weights are positive and sum to 2: rounding of n + 1 terms; the
-            ! transform's sum of n + 1 coefficients times moments (sum |J_k| < 3)
-            if (abs(total - by_transform) > 16.0_wp * epsilon(1.0_wp) * fmax) then
+            ! transform's sum of n + 1 coefficients times moments (sum |J_k| < 3): a
+            ! bound of the order of n ulps of fmax either way (a fixed 16 ulps failed on
+            ! random values in one build: 8 ulps apart at degree 24)
+            if (abs(total - by_transform) > 4.0_wp * n * epsilon(1.0_wp) * fmax) then
                call test_failed(error, "plain rule: weights and transform disagree", &
                   & trim(names(kind)) // ", degree " // format_real(real(n, wp)) // ": " // &
                   & format_real(total) // " against " // format_real(by_transform))
                return
             end if
             ! (both are sums of n + 1 terms of up to 2 fmax/n, in different orders)
-            if (abs(a_last(1) - a(n - 1)) > 16.0_wp * epsilon(1.0_wp) * fmax &
-               & .or. abs(a_last(2) - a(n)) > 16.0_wp * epsilon(1.0_wp) * fmax) then
+            if (abs(a_last(1) - a(n - 1)) > 4.0_wp * n * epsilon(1.0_wp) * fmax &
+               & .or. abs(a_last(2) - a(n)) > 4.0_wp * n * epsilon(1.0_wp) * fmax) then
                call test_failed(error, "plain rule: last coefficients", &
                   & trim(names(kind)) // ", degree " // format_real(real(n, wp)) // ": " // &
                   & format_real(a_last(1)) // ", " // format_real(a_last(2)) // &
@@ -595,6 +597,8 @@ contains
             ! 1/(2 - x) (its pole at 2: rho = 2 + sqrt(3), an error of rho^(-n), 2e-14
             ! at degree 24) is resolved at 48
             if (kind == 2 .and. n < 48) cycle
+            ! random values have no exact integral but the transform's, compared above
+            if (kind == 5) cycle
             if (abs(total - exact) > 4.0_wp * epsilon(1.0_wp) * fmax) then
                call test_failed(error, "plain rule: integral", trim(names(kind)) // &
                   & ", degree " // format_real(real(n, wp)) // ": " // format_real(total) // &
