@@ -210,13 +210,15 @@ typedef struct {
  *                           decrease,
  *  HCIMPACT_ERR_NOT_FINITE (1), _MASS (2), _STIFFNESS (3), _EXPONENT (4),
  *  _DAMPING (6)             a NaN or infinite value, a mass or a law out of range,
- *  HCIMPACT_ERR_DOMAIN (8)  a negative gap (bodies may touch, not overlap), rtol
+ *  HCIMPACT_ERR_DOMAIN (8)  a negative gap (bodies may touch, not overlap), gaps
+ *                           that add up beyond a quarter of the range of doubles,
+ *                           method HCIMPACT_CHAIN_EXACT meeting a cluster, a
+ *                           position or velocity beyond the range at the end, rtol
  *                           outside (0, 0.01], an unknown method or integrator,
  *                           negative limits, negative sample times, t_end
  *                           unset (<= 0) for a system that never ends (bodies
  *                           between two walls without gravity, or an undamped
  *                           system falling onto a wall),
- *  HCIMPACT_ERR_UNAVAILABLE (12) method HCIMPACT_CHAIN_EXACT met a cluster,
  *  HCIMPACT_ERR_SOLVER (11) CVODE failed (the message names its flag),
  *  HCIMPACT_ERR_NO_CONVERGENCE (9) more than max_events contacts or max_steps
  *                           steps (a ball that would bounce for ever: give t_end).

@@ -304,10 +304,7 @@ contains
       subroutine failed(status, message)
          integer, intent(in) :: status
          character(len=*), intent(in) :: message
-         ! (the method 'exact' refuses clusters whatever the build: not a missing part)
-         if (status == hcimpact_err_unavailable .and. sc%system%method == method_exact) then
-            error = "the method 'exact' computes isolated contacts only: " // trim(message)
-         else if (status == hcimpact_err_unavailable .and. .not. ode_available) then
+         if (status == hcimpact_err_unavailable .and. .not. ode_available) then
             unavailable = .true.
             error = "the system of bodies needs the CVODE component: " // trim(message) &
                & // ". " // ode_missing

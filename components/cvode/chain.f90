@@ -104,7 +104,7 @@ module hcimpact_cvode_chain
       !> forces on the one inside push it outwards only, so such a gap never opens:
       !> it closes as soon as the body inside is pushed.
       logical :: touching(2) = .false.
-      !> The size of the last step (s)
+      !> The size of the last step, or before the first the initial step (s)
       real(wp) :: h_last = 0.0_wp
    contains
       procedure :: begin => region_begin
@@ -120,7 +120,7 @@ contains
    !> hcimpact_chain_types; doc/chains.md.
    !>
    !> Errors: those of `check_chain` (size, not finite, mass, the laws, domain);
-   !> hcimpact_err_unavailable for a cluster with method exact; hcimpact_err_solver
+   !> hcimpact_err_domain for a cluster with method exact; hcimpact_err_solver
    !> when CVODE fails (the message names its flag); hcimpact_err_no_convergence for
    !> more than options%max_events contacts (give t_end) or max_steps steps.
    subroutine chain_simulate(chain, result, stat, options)
@@ -329,6 +329,7 @@ contains
          where = "CVodeSetInitStep"
          h0 = 0.01_wp * sqrt(engine%options%rtol) * x_ref / v_ref
          if (self%first_step > 0.0_wp) h0 = self%first_step
+         self%h_last = h0
          ierr = FCVodeSetInitStep(self%mem, real(h0, c_double))
          if (ierr /= CV_SUCCESS) exit setup
          where = "CVodeSetMaxNumSteps"
@@ -418,6 +419,12 @@ contains
             end if
          end if
          if (.not. t_end > self%time) exit run
+         if (self%tn == self%time .and. too_short(t_end - self%tn, &
+            & max(abs(self%tn), abs(t_end)), self%h_last)) then
+            call drift_to(self, engine, t_end, stat)
+            if (stat /= hcimpact_ok) what = advance_failed
+            exit run
+         end if
          if (engine%counters%steps >= engine%options%max_steps) then
             stat = hcimpact_err_solver
             write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", self%time, &
@@ -468,6 +475,44 @@ contains
       end block run
       call halting_resume(halting)
    end subroutine region_advance
+
+   !> Whether the interval dt from CVODE's time to t_end (both about t_scale) is too
+   !> short for a step of CVODE: within a few ulps of the time (CVODE refuses an
+   !> output time that close), or short against the step h the region takes (below
+   !> epsilon h: CVODE's first checks, (t_end - t) h, can underflow, as at t_end =
+   !> 5e-324). A Taylor step of first order is exact to rounding there (`drift_to`).
+   pure logical function too_short(dt, t_scale, h)
+      real(wp), intent(in) :: dt, t_scale, h
+      too_short = dt <= 8.0_wp * spacing(t_scale) .or. dt <= epsilon(1.0_wp) * h
+   end function too_short
+
+   !> Carry the region from CVODE's time (self%time, no step pending) to t_end, too
+   !> short an interval for CVODE (`too_short`), by one Taylor step of first order,
+   !> y + (t_end - t) y': its error, of second order, is below rounding there. No
+   !> contact starts or ends within it (one that does is in progress at t_end).
+   subroutine drift_to(self, engine, t_end, stat)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      real(wp), intent(in) :: t_end
+      integer, intent(out) :: stat
+      real(wp), allocatable :: dy(:)
+      logical :: ok
+      stat = hcimpact_ok
+      allocate(dy(size(self%y)))
+      call region_rhs(self%region, self%time, self%y, dy, ok)
+      if (.not. ok) then
+         stat = hcimpact_err_solver
+         write(engine%message, '(a, es10.3, a)') "at t = ", self%time, &
+            & " s: a force of the region is not finite"
+         return
+      end if
+      self%y = self%y + (t_end - self%time) * dy
+      engine%counters%rhs_evals = engine%counters%rhs_evals + 1
+      self%time = t_end
+      self%tn = t_end
+      self%next = t_end
+      self%stepped = .false.
+   end subroutine drift_to
 
    !> After a step: where the engine must come back (self%next, self%due): the first
    !> instant in the step at which a gap at the region's boundary closes (from the

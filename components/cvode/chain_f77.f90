@@ -14,7 +14,8 @@
 !> INFO = 0 success; -i the i-th argument is invalid (the first one found, in the
 !> order of the arguments; the real outputs are NaN, the counts 0); > 0 the library's
 !> status code (HCMSG gives its text; MSG says more): 9 more than MAXEVT contacts or
-!> MAXSTP steps, 11 CVODE failed, 12 a cluster with METHOD = 1 (exact only).
+!> MAXSTP steps, 11 CVODE failed, 8 a cluster with METHOD = 1 (exact only) or another
+!> argument outside the domain (MSG names it).
 subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt, maxc, &
       & ldc, cont, icon, msg, info)
    use, intrinsic :: iso_fortran_env, only : int64

@@ -135,7 +135,7 @@ contains
          vr = 0.0_wp
       case (slot_boundary_left)
          tau = t - region%out_t0(1)
-         ql = region%out_u0(1) + (region%out_v0(1) + 0.5_wp * region%gravity * tau) * tau
+         ql = region%out_u0(1) + (region%out_v0(1) + 0.5_wp * (region%gravity * tau)) * tau
          vl = region%out_v0(1) + region%gravity * tau
          qr = y(1)
          vr = y(2)
@@ -143,7 +143,7 @@ contains
          tau = t - region%out_t0(2)
          ql = y(3 * region%m - 2)
          vl = y(3 * region%m - 1)
-         qr = region%out_u0(2) + (region%out_v0(2) + 0.5_wp * region%gravity * tau) * tau
+         qr = region%out_u0(2) + (region%out_v0(2) + 0.5_wp * (region%gravity * tau)) * tau
          vr = region%out_v0(2) + region%gravity * tau
       case default
          ql = 0.0_wp

@@ -199,7 +199,7 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
     - ``t_end`` (s, > 0), or None: until no contact can happen again (all bodies
       separating with no wall ahead, or at rest on a wall);
     - ``rtol``: CVODE's relative tolerance in (0, 0.01]; ``method``: ``"auto"``,
-      ``"exact"`` (the closed forms only: a cluster is an :class:`UnavailableError`)
+      ``"exact"`` (the closed forms only: a cluster is an :class:`InputError`)
       or ``"integrated"`` (CVODE for everything); ``integrator``: ``"bdf"`` or
       ``"adams"``;
     - ``sample_times``: times (s, increasing, >= 0) at which to sample positions,

@@ -121,7 +121,7 @@ def test_right_wall_and_methods():
     assert exact.contacts["pair"][0] == 2                    # the right wall first
     # (to a small multiple of rtol times the speed scale, 1 m/s)
     assert integrated.velocities == pytest.approx(exact.velocities, abs=1e-7)
-    with pytest.raises(hcimpact.UnavailableError):
+    with pytest.raises(hcimpact.InputError, match="method exact: at t = "):
         hcimpact.chain([0.1] * 3, [1.0, 0.0, 0.0], stiffness=PAIR, method="exact")
 
 
@@ -208,6 +208,11 @@ def test_bad_input_checked_here(kwargs, text):
      "must not decrease"),
     (dict(masses=[0.1], velocities=[1.0], sample_times=[-0.1]), "HCIMPACT_ERR_DOMAIN",
      "must not be negative"),
+    (dict(masses=[0.1] * 3, velocities=[1.0, 0.0, -1.0], gaps=[1e308, 1e308], stiffness=PAIR),
+     "HCIMPACT_ERR_DOMAIN", "add up beyond the range"),
+    # (found only at the end: bodies flying apart beyond 1.8e308 m by t_end)
+    (dict(masses=[0.1, 0.1], velocities=[-1e10, 1e10], stiffness=PAIR, t_end=1e300),
+     "HCIMPACT_ERR_DOMAIN", "a position or a velocity leaves the range"),
 ])
 def test_bad_input_from_the_library(kwargs, name, text):
     with pytest.raises(hcimpact.InputError) as info:

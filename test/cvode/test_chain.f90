@@ -19,7 +19,7 @@ module test_cvode_chain
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_size, hcimpact_err_not_finite, &
       & hcimpact_err_mass, hcimpact_err_domain, hcimpact_err_stiffness, &
       & hcimpact_err_exponent, hcimpact_err_damping, hcimpact_err_no_convergence, &
-      & hcimpact_err_unavailable, hcimpact_err_solver
+      & hcimpact_err_solver
    use hcimpact_contact, only : contact_type, outcome_type
    use hcimpact_impact_model, only : impact
    use hcimpact_restitution_law, only : restitution
@@ -83,6 +83,7 @@ contains
          & new_unittest("method-used-mid-cluster", test_method_used_mid_cluster), &
          & new_unittest("bad-input", test_bad_input), &
          & new_unittest("energy-range", test_energy_range), &
+         & new_unittest("extreme-scales", test_extreme_scales), &
          & new_unittest("tiny-masses", test_tiny_masses), &
          & new_unittest("dilute-stays-exact", test_dilute_exact), &
          & new_unittest("clusters-form-dissolve", test_clusters), &
@@ -1487,6 +1488,91 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_energy_range
+
+   !> Times, gaps and gravity at the ends of the range of doubles:
+   !> - a cluster at t = 0 given t_end = 5e-324 or 1e-300, and one that forms 2 ulps of
+   !>   the time before t_end (intervals CVODE refuses or cannot step: CV_ILL_INPUT
+   !>   before): the state at t_end, velocities unchanged;
+   !> - gaps that add up beyond the range: hcimpact_err_domain (an infinite position
+   !>   with success before);
+   !> - a gravity of 5e-324 m/s^2 towards a floor 1 cm below: the ball lands at
+   !>   t_c = sqrt(2 gap / g) = 6.4e160 s (taken for no contact before) and is, at
+   !>   1.5 t_c, 2.5 mm below its start at half its landing speed (references in
+   !>   quadruple precision; the bounce, at 3e-163 m/s, is elastic to rounding).
+   subroutine test_extreme_scales(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: t_ends(2) = [5.0e-324_wp, 1.0e-300_wp]
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      type(chain_options) :: o
+      real(real128) :: g, t_c, t_q, v_ref, q_ref
+      real(wp) :: t_end, t0
+      integer :: k, method, stat
+      do method = method_auto, method_integrated, method_integrated - method_auto
+         do k = 1, size(t_ends)
+            chain = steel_row(3, 1.0_wp, steel_damping, 0.0_wp)
+            call run(error, chain, opts(method, 1.0e-10_wp, t_ends(k)), result, &
+               & "touching, t_end = " // format_real(t_ends(k)))
+            if (allocated(error)) return
+            call check(error, result%time == t_ends(k) .and. all(result%velocities == &
+               & chain%velocity), "touching, t_end = " // format_real(t_ends(k)) &
+               & // ": time " // format_real(result%time) // ", velocity 1 " &
+               & // format_real(result%velocities(1)))
+            if (allocated(error)) return
+         end do
+         ! the first ball reaches the touching pair at t0 = 1 ms (within an ulp)
+         chain = steel_row(3, 1.0_wp, steel_damping, 0.0_wp)
+         chain%gap(1) = 1.0e-3_wp
+         t0 = 1.0e-3_wp
+         t_end = t0 + 2.0_wp * spacing(t0)
+         call run(error, chain, opts(method, 1.0e-10_wp, t_end), result, &
+            & "a cluster 2 ulps before t_end")
+         if (allocated(error)) return
+         call check(error, result%time == t_end .and. maxval(abs(result%velocities - &
+            & chain%velocity)) <= 1.0e-12_wp, "a cluster 2 ulps before t_end: velocities " &
+            & // format_real(result%velocities(1)) // ", " // format_real(result%velocities(2)))
+         if (allocated(error)) return
+      end do
+      chain = steel_row(3, 1.0_wp, steel_damping, 0.0_wp)
+      chain%gap = 1.0e308_wp
+      call chain_simulate(chain, result, stat, opts(method_auto, 1.0e-10_wp))
+      call check(error, stat == hcimpact_err_domain .and. index(result%message, &
+         & "add up beyond the range") > 0, "gaps adding up to 2e308: status " &
+         & // int_text(stat) // " (" // trim(result%message) // ")")
+      if (allocated(error)) return
+      ! a ball above a floor under the least gravity there is
+      chain = chain_type()
+      allocate(chain%mass(1), chain%velocity(1), chain%gap(0), chain%law(0))
+      chain%mass = 1.0_wp
+      chain%velocity = 0.0_wp
+      chain%left_wall = .true.
+      chain%left_law = contact_law(1.0e9_wp, 1.5_wp, 0.5_wp)
+      chain%left_gap = 1.0e-2_wp
+      chain%gravity = -tiny(1.0_wp) * epsilon(1.0_wp)
+      g = -real(chain%gravity, real128)
+      t_c = sqrt(2 * real(chain%left_gap, real128) / g)
+      t_end = real(1.5_real128 * t_c, wp)
+      t_q = real(t_end, real128)
+      v_ref = g * (t_c - (t_q - t_c))
+      q_ref = -real(chain%left_gap, real128) + g * t_c * (t_q - t_c) - g * (t_q - t_c)**2 / 2
+      do method = method_auto, method_exact
+         o = opts(method, 1.0e-10_wp, t_end)
+         call run(error, chain, o, result, "gravity 5e-324")
+         if (allocated(error)) return
+         call check(error, result%n_contacts == 1, "gravity 5e-324: " &
+            & // int_text(int(result%n_contacts)) // " contacts, not 1")
+         if (allocated(error)) return
+         call check(error, abs(result%contacts(1)%t_start - t_c) <= 4 * spacing(real(t_c, wp)) &
+            & .and. abs(result%velocities(1) - v_ref) <= 1.0e-14_wp * abs(v_ref) .and. &
+            & abs(result%positions(1) - q_ref) <= 1.0e-14_wp * chain%left_gap, &
+            & "gravity 5e-324: landing at " // format_real(result%contacts(1)%t_start) &
+            & // " s (" // format_real(real(t_c, wp)) // "), at 1.5 t_c velocity " &
+            & // format_real(result%velocities(1)) // " (" // format_real(real(v_ref, wp)) &
+            & // "), position " // format_real(result%positions(1)) // " (" &
+            & // format_real(real(q_ref, wp)) // ")")
+         if (allocated(error)) return
+      end do
+   end subroutine test_extreme_scales
 
    !> Bodies of 2.2e-319 kg (subnormal) to 1e-200 kg, touching, one struck at 1 m/s:
    !> integrated, the two velocities after the contact are those of the closed forms

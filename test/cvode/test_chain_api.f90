@@ -15,7 +15,7 @@ module test_cvode_chain_api
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size, &
       & hcimpact_err_not_finite, hcimpact_err_mass, hcimpact_err_domain, &
-      & hcimpact_err_stiffness, hcimpact_err_unavailable
+      & hcimpact_err_stiffness
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
       & method_exact, method_integrated, integrator_adams
    use hcimpact_cvode, only : chain_simulate
@@ -633,7 +633,7 @@ contains
       ! the touching balls are a cluster, which the closed forms alone refuse
       bad_options = options
       bad_options%method = method_exact
-      call expect(chain, bad_options, hcimpact_err_unavailable, "a cluster, method exact")
+      call expect(chain, bad_options, hcimpact_err_domain, "a cluster, method exact")
 
    contains
 
@@ -733,7 +733,7 @@ contains
       call good(); iopts(1) = 1
       call hcchn(3, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt, maxc, ldc, &
          & cont, icon, msg, info)
-      call check(error, info, hcimpact_err_unavailable, "touching balls, exact only: " &
+      call check(error, info, hcimpact_err_domain, "touching balls, exact only: " &
          & // trim(msg))
 
    contains

@@ -32,8 +32,8 @@
 !> each with its own integrator and clock, kept apart by at least one body in free
 !> flight (a region that reaches another merges with it); the engine handles the
 !> events of all of them and of the closed forms in the order of time (see
-!> `cluster_integrator`). Without an integrator (the core alone, or method_exact) a
-!> cluster is hcimpact_err_unavailable.
+!> `cluster_integrator`). A cluster is hcimpact_err_domain with method_exact, and
+!> hcimpact_err_unavailable without an integrator (the core alone).
 !>
 !> Coordinates: every body's displacement u from its initial position (q_i(0) of
 !> hcimpact_chain_types) and its velocity; a gap is its initial value plus a difference
@@ -229,7 +229,7 @@ contains
    ! =================================================================================
 
    !> Compute a system with the closed forms and, for clusters, the integrator given
-   !> (none: clusters are hcimpact_err_unavailable). The result as documented in
+   !> (none: clusters are hcimpact_err_unavailable; `refuse_cluster`). The result as in
    !> hcimpact_chain_types.
    subroutine run_engine(chain, options, result, stat, integrator)
       type(chain_type), intent(in) :: chain
@@ -497,7 +497,7 @@ contains
       s = engine%body(i)%busy
       if (s < 0) then
          tau = t - engine%body(i)%t0
-         u = engine%body(i)%u0 + (engine%body(i)%v0 + 0.5_wp * engine%gravity * tau) * tau
+         u = engine%body(i)%u0 + (engine%body(i)%v0 + 0.5_wp * (engine%gravity * tau)) * tau
          v = engine%body(i)%v0 + engine%gravity * tau
          return
       end if
@@ -514,7 +514,7 @@ contains
          mass_l = engine%chain%mass(s)
          mass_r = engine%chain%mass(s + 1)
          total = mass_l + mass_r
-         ucm = engine%exact(s)%ucm0 + (engine%exact(s)%vcm0 + 0.5_wp * engine%gravity * tau) &
+         ucm = engine%exact(s)%ucm0 + (engine%exact(s)%vcm0 + 0.5_wp * (engine%gravity * tau)) &
             & * tau
          vcm = engine%exact(s)%vcm0 + engine%gravity * tau
          ! u_L - u_R = x + gap0
@@ -682,7 +682,7 @@ contains
    pure function first_zero(gap, rate, g) result(tau)
       real(wp), intent(in) :: gap, rate, g
       real(wp) :: tau
-      real(wp) :: disc, q, r1, r2
+      real(wp) :: disc, q, r1, r2, w, sc
       tau = huge(1.0_wp)
       if (gap <= 0.0_wp .and. (rate < 0.0_wp .or. (rate == 0.0_wp .and. g < 0.0_wp))) then
          tau = 0.0_wp
@@ -692,13 +692,19 @@ contains
          if (rate < 0.0_wp .and. gap > 0.0_wp) tau = -gap / rate
          return
       end if
-      ! g tau^2/2 + rate tau + gap = 0 in the stable form: roots q/g and 2 gap/q
-      disc = rate * rate - 2.0_wp * g * gap
+      ! g tau^2/2 + rate tau + gap = 0 in the stable form: roots q/g and 2 gap/q. The
+      ! discriminant rate^2 - 2 g gap is formed scaled by s^2, s the larger of |rate|
+      ! and w = sqrt(2 |g gap|): unscaled, it underflows to 0 for a gravity of 5e-324
+      ! (a root of 6e160 s lost) or overflows for speeds beyond 1e154 m/s
+      w = sqrt(2.0_wp * abs(g)) * sqrt(abs(gap))
+      sc = max(abs(rate), w)
+      if (.not. sc > 0.0_wp) return
+      disc = (rate / sc)**2 - sign(1.0_wp, g) * sign(1.0_wp, gap) * (w / sc)**2
       if (disc < 0.0_wp) return
-      q = -(rate + sign(sqrt(disc), rate))
+      q = -(rate + sign(sc * sqrt(disc), rate))
       if (q == 0.0_wp) return
       r1 = q / g
-      r2 = 2.0_wp * gap / q
+      r2 = (gap / q) * 2.0_wp
       ! the smallest positive root where the gap decreases (g tau + rate < 0)
       if (r1 > 0.0_wp .and. g * r1 + rate < 0.0_wp) tau = min(tau, r1)
       if (r2 > 0.0_wp .and. g * r2 + rate < 0.0_wp) tau = min(tau, r2)
@@ -771,6 +777,28 @@ contains
    ! Events
    ! =================================================================================
 
+   !> Whether a cluster that forms now (why) can be integrated: hcimpact_ok, or
+   !> hcimpact_err_domain with method exact (the closed forms cannot compute contacts
+   !> that overlap: the system is outside that method's domain), or
+   !> hcimpact_err_unavailable in a build without the CVODE component.
+   subroutine refuse_cluster(engine, why, have_integrator, stat)
+      type(chain_engine), intent(inout) :: engine
+      character(len=*), intent(in) :: why
+      logical, intent(in) :: have_integrator
+      integer, intent(out) :: stat
+      stat = hcimpact_ok
+      if (engine%options%method == method_exact) then
+         stat = hcimpact_err_domain
+         write(engine%message, '(a, es10.3, a)') "method exact: at t = ", engine%time, &
+            & " s a cluster forms (" // trim(why) // "), contacts that overlap, which " &
+            & // "the closed forms do not compute (method auto or integrated)"
+      else if (.not. have_integrator) then
+         stat = hcimpact_err_unavailable
+         engine%message = "a cluster forms (" // trim(why) // &
+            & "): it needs the CVODE component (method auto or integrated)"
+      end if
+   end subroutine refuse_cluster
+
    !> Process the event of slot s at its time.
    subroutine process_event(engine, s, stat, integrator)
       type(chain_engine), intent(inout) :: engine
@@ -792,23 +820,15 @@ contains
       case (event_start)
          call start_contact(engine, s, why, neighbour)
          if (len_trim(why) > 0) then
-            if (.not. have_integrator .or. engine%options%method == method_exact) then
-               stat = hcimpact_err_unavailable
-               engine%message = "a cluster forms (" // trim(why) // &
-                  & "): it needs the CVODE component (method auto or integrated)"
-               return
-            end if
+            call refuse_cluster(engine, why, have_integrator, stat)
+            if (stat /= hcimpact_ok) return
             call form_cluster(engine, s, why, neighbour, integrator)
          end if
       case (event_cluster)
          write(why, '(a, i0, a)') "the gap of pair ", s, &
             & " may close while a neighbouring contact goes on"
-         if (.not. have_integrator .or. engine%options%method == method_exact) then
-            stat = hcimpact_err_unavailable
-            engine%message = "a cluster forms (" // trim(why) // &
-               & "): it needs the CVODE component (method auto or integrated)"
-            return
-         end if
+         call refuse_cluster(engine, why, have_integrator, stat)
+         if (stat /= hcimpact_ok) return
          call form_cluster(engine, s, why, -1, integrator)
       case default
          call heap_update(engine, s, huge(1.0_wp))
@@ -844,9 +864,9 @@ contains
          return
       end if
       law = slot_law(engine, s)
-      if ((s == 0 .or. s == engine%n) .and. engine%gravity /= 0.0_wp) then
-         write(why, '(a, i0, a)') "a wall contact (pair ", s, &
-            & ") under gravity has no closed form"
+      if (pressed) then
+         write(why, '(a, i0, a)') "a body pressed on a wall (pair ", s, &
+            & ") by gravity has no closed form"
          return
       end if
       if (s == 0) then
@@ -875,6 +895,17 @@ contains
          write(why, '(a, i0, a)') "the closed forms cannot compute pair ", s, &
             & " (status of the one impact)"
          return
+      end if
+      ! against a wall under gravity: the closed forms (without gravity) only where
+      ! gravity changes nothing within the contact, its speed g T against the approach
+      ! speed (and its displacement g T^2/2 against v T) below an eighth of rounding
+      if ((s == 0 .or. s == engine%n) .and. engine%gravity /= 0.0_wp) then
+         if (.not. abs(engine%gravity) * c%outcome%contact_time <= &
+            & 0.125_wp * epsilon(1.0_wp) * abs(rate)) then
+            write(why, '(a, i0, a)') "a wall contact (pair ", s, &
+               & ") under gravity has no closed form"
+            return
+         end if
       end if
       c%t_end = c%t_start + c%outcome%contact_time
       if (s > 0 .and. s < engine%n) then
@@ -986,7 +1017,7 @@ contains
          engine%body(engine%n) = body_state(t0=t_end, u0=engine%chain%right_gap, v0=xd)
       else
          total = engine%chain%mass(left) + engine%chain%mass(right)
-         ucm = engine%exact(s)%ucm0 + (engine%exact(s)%vcm0 + 0.5_wp * engine%gravity * tau) &
+         ucm = engine%exact(s)%ucm0 + (engine%exact(s)%vcm0 + 0.5_wp * (engine%gravity * tau)) &
             & * tau
          vcm = engine%exact(s)%vcm0 + engine%gravity * tau
          u = ucm + (engine%chain%mass(right) / total) * engine%chain%gap(s)
@@ -1665,6 +1696,12 @@ contains
          stat = hcimpact_err_domain
          engine%message = "the energies of the system leave the range of doubles (kinetic, " &
             & // "elastic or gravitational energy, or their balance, beyond 1.8e308 J)"
+      end if
+      if (.not. (all(ieee_is_finite(result%positions)) .and. &
+         & all(ieee_is_finite(result%velocities)))) then
+         stat = hcimpact_err_domain
+         write(engine%message, '(a, es10.3, a)') "at t = ", engine%time, " s a position or " &
+            & // "a velocity leaves the range of doubles (beyond 1.8e308 m or m/s)"
       end if
    end subroutine fill_result
 

@@ -35,7 +35,7 @@ module hcimpact_chain_types
    !> The method that decides per contact (closed forms where contacts are isolated,
    !> CVODE for clusters); the default
    integer, parameter :: method_auto = 0
-   !> The method of closed forms only (a cluster is an error, hcimpact_err_unavailable)
+   !> The method of closed forms only (a cluster is an error, hcimpact_err_domain)
    integer, parameter :: method_exact = 1
    !> The method that integrates the whole system with CVODE from the start
    integer, parameter :: method_integrated = 2
@@ -193,7 +193,8 @@ contains
    !> - hcimpact_err_not_finite: a NaN or infinite value;
    !> - hcimpact_err_mass: a mass not positive;
    !> - the statuses of `check_parameters` for a law (stiffness, exponent, damping);
-   !> - hcimpact_err_domain: a negative gap (initial overlap), rtol outside (0, 0.01], a
+   !> - hcimpact_err_domain: a negative gap (initial overlap), gaps that add up beyond a
+   !>   quarter of the range of doubles, rtol outside (0, 0.01], a
    !>   method or an integrator that does not exist, max_steps, max_events < 1,
    !>   max_contacts < 0, t_end unset for a system that never ends (`never_ends`).
    pure subroutine check_chain(chain, options, stat, message)
@@ -307,6 +308,12 @@ contains
             return
          end if
       end if
+      stat = hcimpact_err_domain
+      if (.not. extent_within_range(chain)) then
+         message = "the gaps (with the walls') add up beyond the range of doubles: the " &
+            & // "positions and the distance between the ends must be doubles"
+         return
+      end if
       stat = hcimpact_err_not_finite
       if (.not. (ieee_is_finite(options%t_end) .and. ieee_is_finite(options%rtol))) then
          message = "t_end or rtol is NaN or infinite"
@@ -386,6 +393,29 @@ contains
             & .not. (chain%left_wall .and. chain%left_law%damping > 0.0_wp)
       end if
    end function never_ends
+
+   !> Whether the extent of a system (its gaps, with the walls' gaps, all finite and
+   !> not negative) stays a factor 4 short of the range of doubles, found without
+   !> forming a sum beyond it: the positions are partial sums of the gaps, and the
+   !> engine forms differences of positions and the distance between the walls.
+   pure logical function extent_within_range(chain)
+      type(chain_type), intent(in) :: chain
+      real(wp), parameter :: limit = 0.25_wp * huge(1.0_wp)
+      real(wp) :: total
+      integer :: i
+      extent_within_range = .false.
+      total = 0.0_wp
+      if (chain%left_wall) total = chain%left_gap
+      if (chain%right_wall) then
+         if (chain%right_gap > limit - total) return
+         total = total + chain%right_gap
+      end if
+      do i = 1, size(chain%mass) - 1
+         if (chain%gap(i) > limit - total) return
+         total = total + chain%gap(i)
+      end do
+      extent_within_range = total <= limit
+   end function extent_within_range
 
    !> The status of a contact law (the library's one validator)
    elemental function law_status(law) result(stat)
