@@ -240,11 +240,13 @@ contains
    !> smallest maximum compression of its contacts at its largest relative speed, or
    !> the static compression under gravity; that speed v_ref (m/s), twice the largest
    !> speed of a body; and the kinetic energy e_ref (J) of that speed (the error
-   !> weights' scales, `chain_region`%scale)
-   pure function region_scales(region, y) result(scale)
+   !> weights' scales, `chain_region`%scale); and the weakest force, the smallest of
+   !> the contacts' peak forces c x^n at their compressions above (N; huge when no
+   !> contact has a scale).
+   pure subroutine region_scales(region, y, scale, weakest_force)
       type(chain_region), intent(in) :: region
       real(wp), intent(in) :: y(:)
-      real(wp) :: scale(3)
+      real(wp), intent(out) :: scale(3), weakest_force
       ! exp of at most this is a double
       real(wp), parameter :: max_log = 709.0_wp
       real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total, lq
@@ -261,6 +263,7 @@ contains
       total = sum(region%mass)
       x_ref = huge(1.0_wp)
       e_ref = 0.0_wp
+      weakest_force = huge(1.0_wp)
       do j = 0, m
          if (region%kind(j) == slot_none .or. region%kind(j) == slot_boundary_left &
             & .or. region%kind(j) == slot_boundary_right) cycle
@@ -299,7 +302,12 @@ contains
                x_max = max(x_max, exp(min(max_log, lq / law%exponent)))
             end if
          end if
-         if (x_max > 0.0_wp) x_ref = min(x_ref, x_max)
+         if (x_max > 0.0_wp) then
+            x_ref = min(x_ref, x_max)
+            ! (by logarithms: c x^n of a compression near the range's ends)
+            lq = log(law%stiffness) + law%exponent * log(x_max)
+            weakest_force = min(weakest_force, exp(max(-max_log - 50.0_wp, min(max_log, lq))))
+         end if
          e_ref = max(e_ref, kinetic_energy(mu, v_ref))
       end do
       if (.not. (x_ref > 0.0_wp .and. x_ref < huge(1.0_wp))) x_ref = 1.0e-6_wp
@@ -307,7 +315,7 @@ contains
       if (.not. v_ref > 0.0_wp) v_ref = 1.0_wp
       if (.not. e_ref > 0.0_wp) e_ref = kinetic_energy(total, v_ref)
       scale = [x_ref, v_ref, e_ref]
-   end function region_scales
+   end subroutine region_scales
 
    !> Right-hand side dy/dt at the time t; ok false if a force is not finite. With
    !> the optional arrays (indices 0 .. m), each slot's deformation, rate and element

@@ -1498,7 +1498,17 @@ contains
    !> - a gravity of 5e-324 m/s^2 towards a floor 1 cm below: the ball lands at
    !>   t_c = sqrt(2 gap / g) = 6.4e160 s (taken for no contact before) and is, at
    !>   1.5 t_c, 2.5 mm below its start at half its landing speed (references in
-   !>   quadruple precision; the bounce, at 3e-163 m/s, is elastic to rounding).
+   !>   quadruple precision; the bounce, at 3e-163 m/s, is elastic to rounding);
+   !> - two touching 1 kg bodies (c = 1e9 N/m^1.5, b = 0.1 s/m) struck at 1e-250 to
+   !>   1e-307 m/s, where the one impact refuses its peak force (1e-312 N at 1e-262
+   !>   m/s; the run was integrated, to 7e-8 relative, and from 1e-300 m/s went on to
+   !>   max_steps): by the closed forms, the velocities exchanged to 1 ulp, and the
+   !>   duration and compression those at 1 m/s times V^(-1/5) and V^(4/5)
+   !>   (dimensional analysis; 1e-12 relative, the rounding of 4/5 amplified by |ln V|);
+   !>   integrated (method integrated) from 1e-262 m/s, whose
+   !>   forces are below the normal range, it is hcimpact_err_domain at once. Subnormal
+   !>   speeds too (1e-315 and 5e-324 m/s: both bodies stopped before, half the speed
+   !>   of the centre of mass rounding to 0).
    subroutine test_extreme_scales(error)
       type(error_type), allocatable, intent(out) :: error
       real(wp), parameter :: t_ends(2) = [5.0e-324_wp, 1.0e-300_wp]
@@ -1506,7 +1516,10 @@ contains
       type(chain_result) :: result
       type(chain_options) :: o
       real(real128) :: g, t_c, t_q, v_ref, q_ref
-      real(wp) :: t_end, t0
+      real(wp), parameter :: speeds(7) = [1.0e-250_wp, 1.0e-262_wp, 1.0e-280_wp, &
+         & 1.0e-300_wp, 1.0e-307_wp, 1.0e-315_wp, tiny(1.0_wp) * epsilon(1.0_wp)]
+      type(chain_result) :: unit
+      real(wp) :: t_end, t0, v
       integer :: k, method, stat
       do method = method_auto, method_integrated, method_integrated - method_auto
          do k = 1, size(t_ends)
@@ -1570,6 +1583,45 @@ contains
             & // format_real(result%velocities(1)) // " (" // format_real(real(v_ref, wp)) &
             & // "), position " // format_real(result%positions(1)) // " (" &
             & // format_real(real(q_ref, wp)) // ")")
+         if (allocated(error)) return
+      end do
+      chain = chain_type()
+      allocate(chain%mass(2), chain%velocity(2), chain%gap(1), chain%law(1))
+      chain%mass = 1.0_wp
+      chain%gap = 0.0_wp
+      chain%law = contact_law(1.0e9_wp, 1.5_wp, 0.1_wp)
+      ! (at 1 m/s with the damping b V, 0 to rounding: the outcome depends on b V)
+      chain%velocity = [1.0_wp, 0.0_wp]
+      chain%law%damping = 0.0_wp
+      call run(error, chain, opts(method_auto, 1.0e-10_wp), unit, "1 m/s")
+      if (allocated(error)) return
+      chain%law%damping = 0.1_wp
+      do k = 1, size(speeds)
+         v = speeds(k)
+         chain%velocity = [v, 0.0_wp]
+         call run(error, chain, opts(method_auto, 1.0e-10_wp), result, "struck at " &
+            & // format_real(v) // " m/s")
+         if (allocated(error)) return
+         call check(error, result%method_used == by_closed_forms .and. &
+            & abs(result%velocities(2) - v) <= spacing(v) .and. &
+            & abs(result%velocities(1)) <= spacing(v) .and. result%n_contacts == 1, &
+            & "struck at " // format_real(v) // " m/s: method " &
+            & // int_text(result%method_used) // ", velocities " &
+            & // format_real(result%velocities(1)) // ", " // format_real(result%velocities(2)))
+         if (allocated(error)) return
+         call check(error, abs(result%contacts(1)%t_end / (unit%contacts(1)%t_end &
+            & * real(real(v, real128)**(-0.2_real128), wp)) - 1.0_wp) <= 1.0e-12_wp .and. &
+            & abs(result%contacts(1)%max_deformation / (unit%contacts(1)%max_deformation &
+            & * real(real(v, real128)**0.8_real128, wp)) - 1.0_wp) <= 1.0e-12_wp, &
+            & "struck at " // format_real(v) // " m/s: duration " &
+            & // format_real(result%contacts(1)%t_end) // ", compression " &
+            & // format_real(result%contacts(1)%max_deformation))
+         if (allocated(error)) return
+         if (k == 1) cycle
+         call chain_simulate(chain, result, stat, opts(method_integrated, 1.0e-10_wp))
+         call check(error, stat == hcimpact_err_domain .and. index(result%message, &
+            & "below the normal range") > 0, "integrated at " // format_real(v) &
+            & // " m/s: status " // int_text(stat) // " (" // trim(result%message) // ")")
          if (allocated(error)) return
       end do
    end subroutine test_extreme_scales

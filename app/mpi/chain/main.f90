@@ -140,7 +140,7 @@ contains
          & y_whole(:)
       integer, allocatable :: counts(:), displs(:)
       real(wp) :: dissipated_local, dissipated, energy0, energy_error, t0, t1, seconds, q0, &
-         & energy_end
+         & energy_end, weakest_force
       integer(int64) :: exchanges, halo_bytes, unconverged
       type(contact_record), allocatable :: contacts(:)
       integer :: rank, n_ranks, stat, k, m, n, r, first, size_r, i
@@ -166,7 +166,12 @@ contains
       allocate(y(region_size(n)))
       y = 0.0_wp
       y(2:3 * n - 1:3) = chain%velocity
-      run%scale = region_scales(whole, y)
+      call region_scales(whole, y, run%scale, weakest_force)
+      ! (as the serial chain's integration: forces below the normal range keep fewer
+      ! bits than the tolerance needs)
+      if (weakest_force < tiny(1.0_wp)) call fail_all(rank, exit_usage, "the contacts' " &
+         & // "peak forces fall below the normal range of doubles, which the " &
+         & // "integration cannot resolve")
       energy0 = region_energy(whole, y)
       deallocate(y)
 

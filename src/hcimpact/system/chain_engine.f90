@@ -92,8 +92,13 @@ module hcimpact_chain_engine
       !> The impact: effective mass, law, approach speed; and its outcome
       type(contact_type) :: contact
       type(outcome_type) :: outcome
-      !> Centre of mass of a pair at t_start: displacement and velocity
-      real(wp) :: ucm0 = nan, vcm0 = nan
+      !> The impact the time law runs on, and the factors that carry its compression,
+      !> velocity, time and force to this contact's (1: the same; `scaled_impact`)
+      type(contact_type) :: law_contact
+      real(wp) :: scale_x = 1.0_wp, scale_v = 1.0_wp, scale_t = 1.0_wp, scale_f = 1.0_wp
+      !> Centre of mass of a pair at t_start: displacement and velocity; the velocities
+      !> of its two bodies then
+      real(wp) :: ucm0 = nan, vcm0 = nan, vl0 = nan, vr0 = nan
       !> Handed over to the integrator in the middle: what the closed forms had
       !> computed of its record so far (dissipated energy, peak force, deformation)
       logical :: handed = .false.
@@ -555,10 +560,13 @@ contains
          f = 0.0_wp
          return
       end if
-      call time_law(engine%exact(s)%contact, tt, xx, vv, ff, stat)
-      x = max(xx(1), 0.0_wp)
-      xd = vv(1)
-      f = ff(1)
+      associate (c => engine%exact(s))
+         tt(1) = tt(1) / c%scale_t
+         call time_law(c%law_contact, tt, xx, vv, ff, stat)
+         x = max(xx(1), 0.0_wp) * c%scale_x
+         xd = vv(1) * c%scale_v
+         f = ff(1) * c%scale_f
+      end associate
       if (stat /= hcimpact_ok) then
          x = 0.0_wp
          xd = engine%exact(s)%contact%velocity
@@ -890,7 +898,7 @@ contains
       c%t_start = engine%time
       c%contact = contact_type(mass=mass, stiffness=law%stiffness, exponent=law%exponent, &
          & damping=law%damping, velocity=-rate)
-      call impact(c%contact, c%outcome, stat)
+      call scaled_impact(c, stat)
       if (stat /= hcimpact_ok) then
          write(why, '(a, i0, a)') "the closed forms cannot compute pair ", s, &
             & " (status of the one impact)"
@@ -914,6 +922,8 @@ contains
          total = engine%chain%mass(left) + engine%chain%mass(right)
          c%ucm0 = (engine%chain%mass(left) * ul + engine%chain%mass(right) * ur) / total
          c%vcm0 = (engine%chain%mass(left) * vl + engine%chain%mass(right) * vr) / total
+         c%vl0 = vl
+         c%vr0 = vr
       end if
       ! tentatively in contact, then the neighbouring gaps over its duration
       call occupy(engine, s, c)
@@ -926,6 +936,53 @@ contains
       call schedule(engine, s - 1)
       call schedule(engine, s + 1)
    end subroutine start_contact
+
+   !> The outcome of the impact c%contact, and the impact its time law runs on. Where
+   !> the closed forms refuse it for its scale (an approach speed below about 1e-260
+   !> m/s: its peak force leaves the normal range), the impact is computed at 1 m/s
+   !> with the damping b V (the outcome depends on b V alone once the speed is scaled
+   !> out) and carried back exactly: with V the speed and p = 2 / (n + 1), compression
+   !> scales as V^p, velocity as V, time as V^(p - 1) and force as V^(n p). The peak
+   !> force then may be subnormal, or 0 where it is below the range. The velocities
+   !> are the closed forms'; the compression, the duration and the force carry the
+   !> rounding of p, amplified by |ln V| (about 1e-13 relative at 1e-300 m/s).
+   subroutine scaled_impact(c, stat)
+      type(exact_contact), intent(inout) :: c
+      integer, intent(out) :: stat
+      type(contact_type) :: unit_speed
+      type(outcome_type) :: o
+      real(wp) :: v, p
+      c%law_contact = c%contact
+      c%scale_x = 1.0_wp
+      c%scale_v = 1.0_wp
+      c%scale_t = 1.0_wp
+      c%scale_f = 1.0_wp
+      call impact(c%contact, c%outcome, stat)
+      v = c%contact%velocity
+      if (stat /= hcimpact_err_domain .or. .not. (v > 0.0_wp .and. v < 1.0_wp)) return
+      unit_speed = c%contact
+      unit_speed%velocity = 1.0_wp
+      unit_speed%damping = c%contact%damping * v
+      call impact(unit_speed, o, stat)
+      if (stat /= hcimpact_ok) then
+         stat = hcimpact_err_domain
+         return
+      end if
+      p = 2.0_wp / (c%contact%exponent + 1.0_wp)
+      c%law_contact = unit_speed
+      c%scale_v = v
+      c%scale_x = v**p
+      c%scale_t = c%scale_x / v
+      c%scale_f = c%scale_x**c%contact%exponent
+      c%outcome = o
+      c%outcome%rebound_velocity = o%rebound_velocity * c%scale_v
+      c%outcome%max_compression = o%max_compression * c%scale_x
+      c%outcome%compression_at_peak_force = o%compression_at_peak_force * c%scale_x
+      c%outcome%peak_force = o%peak_force * c%scale_f
+      c%outcome%time_at_peak_force = o%time_at_peak_force * c%scale_t
+      c%outcome%compression_time = o%compression_time * c%scale_t
+      c%outcome%contact_time = o%contact_time * c%scale_t
+   end subroutine scaled_impact
 
    !> Whether slot s is inside a region or at its boundary (one of its bodies is
    !> integrated)
@@ -1022,9 +1079,18 @@ contains
          vcm = engine%exact(s)%vcm0 + engine%gravity * tau
          u = ucm + (engine%chain%mass(right) / total) * engine%chain%gap(s)
          v = vcm + (engine%chain%mass(right) / total) * xd
+         ! (subnormal speeds: vcm, half of 5e-324 m/s, rounds to 0 and both bodies
+         ! stopped; from each body's velocity at the start and the change of x' the
+         ! sums of subnormals are exact)
+         if (abs(engine%exact(s)%vcm0) < 4.0_wp * tiny(1.0_wp)) v = engine%exact(s)%vl0 &
+            & + (engine%chain%mass(right) / total) * (xd - engine%exact(s)%contact%velocity) &
+            & + engine%gravity * tau
          engine%body(left) = body_state(t0=t_end, u0=u, v0=v)
          u = ucm - (engine%chain%mass(left) / total) * engine%chain%gap(s)
          v = vcm - (engine%chain%mass(left) / total) * xd
+         if (abs(engine%exact(s)%vcm0) < 4.0_wp * tiny(1.0_wp)) v = engine%exact(s)%vr0 &
+            & - (engine%chain%mass(left) / total) * (xd - engine%exact(s)%contact%velocity) &
+            & + engine%gravity * tau
          engine%body(right) = body_state(t0=t_end, u0=u, v0=v)
       end if
       r%pair = s
@@ -1661,7 +1727,9 @@ contains
          & / max(e_kin0 + abs(e_grav), tiny(1.0_wp))
       if (.not. (engine%chain%left_wall .or. engine%chain%right_wall) .and. &
          & engine%chain%gravity == 0.0_wp) then
-         result%momentum_error = abs(p - p0) / max(scale, tiny(1.0_wp))
+         ! (not max(scale, tiny): momenta of subnormal size are errors of their size)
+         result%momentum_error = 0.0_wp
+         if (scale > 0.0_wp) result%momentum_error = abs(p - p0) / scale
       end if
       result%rested = engine%rested
       result%rest_time = engine%rest_time
