@@ -981,6 +981,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       type(chain_type) :: chain
       type(chain_result) :: result, longer
+      type(chain_options) :: o
       integer :: n, drop, i
       real(wp) :: expect, weight, xs, b
       character(len=32) :: what
@@ -1021,6 +1022,22 @@ contains
                   & ": a contact opened after the rest time")
                if (allocated(error)) return
             end do
+            ! to t_end = 1e300: once settled to the tolerance the state is the rest
+            ! state (it was integrated on, and failed on max_steps after minutes);
+            ! one case of the six (each takes about 800,000 steps to settle, 3 s)
+            if (n /= 2 .or. drop /= 1) cycle
+            o = opts(method_auto, 1.0e-10_wp, 1.0e300_wp)
+            o%max_steps = 10000000_int64
+            call run(error, chain, o, longer, trim(what) // " to 1e300 s")
+            if (allocated(error)) return
+            call check(error, longer%rested .and. longer%time == 1.0e300_wp .and. &
+               & all(longer%velocities == 0.0_wp) .and. all(abs(longer%positions - &
+               & result%positions) <= 1.0e-12_wp * abs(result%positions(n) + chain%left_gap)), &
+               & trim(what) // " to 1e300 s: not the rest state, time " &
+               & // format_real(longer%time) // ", position 1 " &
+               & // format_real(longer%positions(1)) // " against " &
+               & // format_real(result%positions(1)))
+            if (allocated(error)) return
          end do
       end do
    end subroutine test_rest_stacks

@@ -151,7 +151,8 @@ module hcimpact_chain_types
       !> time at which the system came to rest
       real(wp) :: time = nan
       !> Positions (m, module header) and velocities (m/s) at that time; for a system
-      !> at rest, its rest state (velocities 0)
+      !> at rest, its rest state (velocities 0): without t_end from the rest time on,
+      !> with t_end once it has settled within 100 rtol of it (doc/chains.md)
       real(wp), allocatable :: positions(:), velocities(:)
       !> True when the system came to rest on a wall under gravity (rest_time: when
       !> its energy fell below what any contact needs to open)
