@@ -211,7 +211,7 @@ typedef struct {
  *  HCIMPACT_ERR_NOT_FINITE (1), _MASS (2), _STIFFNESS (3), _EXPONENT (4),
  *  _DAMPING (6)             a NaN or infinite value, a mass or a law out of range,
  *  HCIMPACT_ERR_DOMAIN (8)  a negative gap (bodies may touch, not overlap), gaps
- *                           that add up beyond a quarter of the range of doubles,
+ *                           or masses that add up beyond a quarter of the range,
  *                           method HCIMPACT_CHAIN_EXACT meeting a cluster, a
  *                           position or velocity beyond the range at the end, rtol
  *                           outside (0, 0.01], an unknown method or integrator,

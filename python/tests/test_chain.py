@@ -210,6 +210,8 @@ def test_bad_input_checked_here(kwargs, text):
      "must not be negative"),
     (dict(masses=[0.1] * 3, velocities=[1.0, 0.0, -1.0], gaps=[1e308, 1e308], stiffness=PAIR),
      "HCIMPACT_ERR_DOMAIN", "add up beyond the range"),
+    (dict(masses=[1e308, 1e308], velocities=[1.0, 0.0], gaps=[0.01], stiffness=PAIR),
+     "HCIMPACT_ERR_DOMAIN", "masses add up beyond"),
     # (found only at the end: bodies flying apart beyond 1.8e308 m by t_end)
     (dict(masses=[0.1, 0.1], velocities=[-1e10, 1e10], stiffness=PAIR, t_end=1e300),
      "HCIMPACT_ERR_DOMAIN", "a position or a velocity leaves the range"),

@@ -1511,7 +1511,8 @@ contains
    !>   the time before t_end (intervals CVODE refuses or cannot step: CV_ILL_INPUT
    !>   before): the state at t_end, velocities unchanged;
    !> - gaps that add up beyond the range: hcimpact_err_domain (an infinite position
-   !>   with success before);
+   !>   with success before); masses too (two of 1e308 kg were integrated: the sum in
+   !>   their effective mass overflowed), while two of 1e307 kg are exact;
    !> - a gravity of 5e-324 m/s^2 towards a floor 1 cm below: the ball lands at
    !>   t_c = sqrt(2 gap / g) = 6.4e160 s (taken for no contact before) and is, at
    !>   1.5 t_c, 2.5 mm below its start at half its landing speed (references in
@@ -1569,6 +1570,23 @@ contains
       call check(error, stat == hcimpact_err_domain .and. index(result%message, &
          & "add up beyond the range") > 0, "gaps adding up to 2e308: status " &
          & // int_text(stat) // " (" // trim(result%message) // ")")
+      if (allocated(error)) return
+      ! two bodies of 1e308 kg: their sum, 2e308, overflowed, the effective mass was 0
+      ! and the pair went to the integrator; refused, and 1e307 kg by the closed forms
+      chain = steel_row(2, 1.0_wp, 0.0_wp, 1.0e-2_wp)
+      chain%mass = 1.0e308_wp
+      call chain_simulate(chain, result, stat, opts(method_auto, 1.0e-10_wp))
+      call check(error, stat == hcimpact_err_domain .and. index(result%message, &
+         & "masses add up") > 0, "masses of 1e308 kg: status " // int_text(stat) // " (" &
+         & // trim(result%message) // ")")
+      if (allocated(error)) return
+      chain%mass = 1.0e307_wp
+      call run(error, chain, opts(method_auto, 1.0e-10_wp), result, "masses of 1e307 kg")
+      if (allocated(error)) return
+      call check(error, result%method_used == by_closed_forms .and. all(result%velocities &
+         & == [0.0_wp, 1.0_wp]), "masses of 1e307 kg: method " &
+         & // int_text(result%method_used) // ", velocities " &
+         & // format_real(result%velocities(1)) // ", " // format_real(result%velocities(2)))
       if (allocated(error)) return
       ! a ball above a floor under the least gravity there is
       chain = chain_type()

@@ -195,7 +195,7 @@ contains
    !> - hcimpact_err_mass: a mass not positive;
    !> - the statuses of `check_parameters` for a law (stiffness, exponent, damping);
    !> - hcimpact_err_domain: a negative gap (initial overlap), gaps that add up beyond a
-   !>   quarter of the range of doubles, rtol outside (0, 0.01], a
+   !>   quarter of the range of doubles (masses too), rtol outside (0, 0.01], a
    !>   method or an integrator that does not exist, max_steps, max_events < 1,
    !>   max_contacts < 0, t_end unset for a system that never ends (`never_ends`).
    pure subroutine check_chain(chain, options, stat, message)
@@ -260,8 +260,13 @@ contains
             return
          end if
       end do
-      ! the result reports the energies and the momentum: they must be doubles
+      ! the result reports the energies and the momentum: they must be doubles; and the
+      ! engine forms sums of masses (a pair's, for its effective mass, a stack's)
       stat = hcimpact_err_domain
+      if (.not. sum_within_range(chain%mass)) then
+         message = "the masses add up beyond a quarter of the range of doubles"
+         return
+      end if
       if (.not. within_range(chain%mass, chain%velocity)) then
          message = "the initial kinetic energy or momentum is beyond the range of doubles"
          return
@@ -395,27 +400,37 @@ contains
       end if
    end function never_ends
 
+   !> Whether values not negative add up to at most a quarter of the range of doubles,
+   !> found without forming a sum beyond it.
+   pure logical function sum_within_range(values)
+      real(wp), intent(in) :: values(:)
+      real(wp), parameter :: limit = 0.25_wp * huge(1.0_wp)
+      real(wp) :: total
+      integer :: i
+      sum_within_range = .false.
+      total = 0.0_wp
+      do i = 1, size(values)
+         if (values(i) > limit - total) return
+         total = total + values(i)
+      end do
+      sum_within_range = .true.
+   end function sum_within_range
+
    !> Whether the extent of a system (its gaps, with the walls' gaps, all finite and
    !> not negative) stays a factor 4 short of the range of doubles, found without
    !> forming a sum beyond it: the positions are partial sums of the gaps, and the
    !> engine forms differences of positions and the distance between the walls.
    pure logical function extent_within_range(chain)
       type(chain_type), intent(in) :: chain
-      real(wp), parameter :: limit = 0.25_wp * huge(1.0_wp)
-      real(wp) :: total
-      integer :: i
-      extent_within_range = .false.
-      total = 0.0_wp
-      if (chain%left_wall) total = chain%left_gap
-      if (chain%right_wall) then
-         if (chain%right_gap > limit - total) return
-         total = total + chain%right_gap
+      real(wp) :: walls(2)
+      walls = 0.0_wp
+      if (chain%left_wall) walls(1) = chain%left_gap
+      if (chain%right_wall) walls(2) = chain%right_gap
+      if (size(chain%mass) > 1) then
+         extent_within_range = sum_within_range([walls, chain%gap])
+      else
+         extent_within_range = sum_within_range(walls)
       end if
-      do i = 1, size(chain%mass) - 1
-         if (chain%gap(i) > limit - total) return
-         total = total + chain%gap(i)
-      end do
-      extent_within_range = total <= limit
    end function extent_within_range
 
    !> The status of a contact law (the library's one validator)
