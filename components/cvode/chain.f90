@@ -13,8 +13,8 @@
 !> Tolerances: CVODE's relative tolerance is options%rtol; the absolute tolerances are
 !> rtol times the natural scales of the region (the smallest maximum compression of
 !> its contacts at its largest relative speed, or the static compression under
-!> gravity; that speed; the kinetic energy of that speed). BDF's error weights are at
-!> `bdf_tolerance` times those: the local errors of the steps add up, and BDF (orders
+!> gravity; that speed; the kinetic energy of that speed). The error weights are at
+!> a fraction of rtol (`weights_rtol`): the local errors of the steps add up, and BDF (orders
 !> up to 5, larger error constants) takes two to three times Adams' steps for the same
 !> tolerance, so that a body oscillating for many periods inside a cluster left it far
 !> beyond the velocities' bound (bench/chain/attack/repro_bdf_accuracy.py).
@@ -39,7 +39,8 @@ module hcimpact_cvode_chain
       & advance_grow_left, advance_grow_right, advance_dissolved, advance_captured, &
       & advance_failed
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
-      & region_jacobian, region_scales, slot_state, dissipation_index, force_rate, &
+      & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
+      & force_rate, &
       & slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
@@ -60,14 +61,6 @@ module hcimpact_cvode_chain
 
    public :: chain_simulate, cvode_chain_integrator
 
-   !> BDF's error weights are those of rtol times this (module header). A light body
-   !> pressed against a wall by a heavy one, oscillating about 35 periods between them
-   !> (seed 34 of bench/chain/attack/run_random.py: 6300 BDF steps at rtol 1e-10,
-   !> about 180 a period), ended with velocity errors of 3000, 8900 and 14000 rtol at
-   !> rtol 1e-8, 1e-10 and 1e-12; at 0.05 of them, 300, 300 and 650, for 1.6 times the
-   !> steps (at 0.1: 400, 540, 2100 for 1.4 times). The errors grow with the number of
-   !> steps, as rtol^(-1/6) at order 5: a smaller rtol needs a smaller factor.
-   real(wp), parameter :: bdf_tolerance = 0.05_wp
 
    !> A contact of the region in progress
    type :: open_contact
@@ -252,9 +245,8 @@ contains
          self%atol(3 * k) = engine%options%rtol * e_ref
       end do
       self%atol(n_state) = engine%options%rtol * e_ref
-      self%region%rtol = engine%options%rtol
-      if (engine%options%integrator /= integrator_adams) &
-         & self%region%rtol = bdf_tolerance * engine%options%rtol
+      self%region%rtol = weights_rtol(engine%options%rtol, &
+         & engine%options%integrator == integrator_adams)
 
       ! the contacts in progress: handed over by the closed forms or an earlier region;
       ! and every slot's state now, the start of the first step's interpolants

@@ -33,7 +33,7 @@ module hcimpact_cvode_chain_system
    private
 
    public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
-   public :: error_weights, newton_factor, factor_newton_matrix, solve_newton
+   public :: error_weights, weights_rtol, newton_factor, factor_newton_matrix, solve_newton
    public :: slot_state, dissipation_index, force_rate, slot_force_rate, upper_band, &
       & lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
@@ -88,6 +88,20 @@ module hcimpact_cvode_chain_system
       !> The diagonal of the energy rows, in the state's order
       real(wp), allocatable :: ee(:)
    end type newton_factor
+
+   !> BDF's error weights are those of rtol times this (`weights_rtol`). A light body
+   !> pressed against a wall by a heavy one, oscillating about 35 periods between them
+   !> (seed 34 of bench/chain/attack/run_random.py: 6300 BDF steps at rtol 1e-10,
+   !> about 180 a period), ended with velocity errors of 3000, 8900 and 14000 rtol at
+   !> rtol 1e-8, 1e-10 and 1e-12; at 0.05 of them, 300, 300 and 650, for 1.6 times the
+   !> steps (at 0.1: 400, 540, 2100 for 1.4 times). The errors grow with the number of
+   !> steps, as rtol^(-1/6) at order 5: a smaller rtol needs a smaller factor.
+   real(wp), parameter :: bdf_tolerance = 0.05_wp
+   !> Adams' error weights likewise (orders up to 12, fewer steps): a light body between
+   !> a heavy one and a wall (seeds 42 and 22 of run_random.py) ended with 6900, 4200
+   !> and 13900 rtol at rtol 1e-8, 1e-10 and 1e-12 (seed 22: 7700 at 1e-10); at 0.1 of
+   !> them 416, 1397 and 924 (872) for 1.23 times the steps
+   real(wp), parameter :: adams_tolerance = 0.1_wp
 
 contains
 
@@ -235,6 +249,18 @@ contains
          w(k) = root_n / max(rtol * scale(3), floor * abs(y(k)), least)
       end do
    end subroutine error_weights
+
+   !> The relative tolerance of the error weights for a user's rtol: a fraction of it
+   !> (`bdf_tolerance`, `adams_tolerance`), as the local errors of the steps add up
+   !> over a body that oscillates for many periods inside a cluster.
+   pure real(wp) function weights_rtol(rtol, adams)
+      !> The user's relative tolerance
+      real(wp), intent(in) :: rtol
+      !> Adams (else BDF)
+      logical, intent(in) :: adams
+      weights_rtol = bdf_tolerance * rtol
+      if (adams) weights_rtol = adams_tolerance * rtol
+   end function weights_rtol
 
    !> The natural scales of a region in the state y: the deformation x_ref (m), the
    !> smallest maximum compression of its contacts at its largest relative speed, or

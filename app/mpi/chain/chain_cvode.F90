@@ -11,9 +11,9 @@
 !> are those of the serial chain's Jacobian (3 above, 4 below the diagonal, in the
 !> order u, v, e per bead): the band factorisation is exact for the block's motion.
 !>
-!> Error weights as in the serial chain (hcimpact_cvode_chain): a displacement's error
-!> against rtol x_ref, a velocity's against rtol (|v| + v_ref), an energy's against
-!> rtol e_ref, every weight times the square root of the global number of values, so
+!> Error weights as in the serial chain (hcimpact_cvode_chain), with r the fraction of
+!> rtol that `weights_rtol` gives BDF: a displacement's error against r x_ref, a
+!> velocity's against r (|v| + v_ref), an energy's against r e_ref, every weight times the square root of the global number of values, so
 !> that CVODE's root mean square is the 2-norm over the whole chain.
 !>
 !> CVODE runs in its one-step mode up to the stop time t_end, with this program's own
@@ -49,7 +49,7 @@ module hcimpact_mpi_chain_cvode
    use hcimpact_cvode_sundials, only : N_Vector, SUNLinearSolver, FN_VGetArrayPointer, &
       & FN_VDestroy, FSUNLinSolFree, context_create, context_free, capture_errors
    use hcimpact_cvode_solver, only : cvode_flag_name
-   use hcimpact_cvode_chain_system, only : upper_band, lower_band, error_weights
+   use hcimpact_cvode_chain_system, only : upper_band, lower_band, error_weights, weights_rtol
    use hcimpact_mpi_chain_block, only : chain_block, exchange_halo, block_rhs
    use hcimpact_mpi_chain_contacts, only : contact_tracker, tracker_start, tracker_step, &
       & max_order
@@ -346,8 +346,8 @@ contains
       call c_f_pointer(user_data, run)
       yv => FN_VGetArrayPointer(y)
       wv => FN_VGetArrayPointer(ewt)
-      call error_weights(yv(1:run%block%n_local), run%rtol, run%scale, run%root_n, &
-         & wv(1:run%block%n_local))
+      call error_weights(yv(1:run%block%n_local), weights_rtol(run%rtol, .false.), &
+         & run%scale, run%root_n, wv(1:run%block%n_local))
       ierr = 0
    end function chain_error_weights
 
