@@ -232,7 +232,7 @@ contains
             & engine%time, " s the contacts of bodies ", self%first, " to ", self%last, &
             & " have peak forces down to ", weakest_force, " N, below the normal range " &
             & // "of doubles, which the integration cannot resolve (method auto computes " &
-            & // "isolated contacts of any scale by the closed forms)"
+            & // "an isolated contact by the closed forms where its duration is a double)"
          call halting_resume(halting)
          return
       end if

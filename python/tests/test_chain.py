@@ -214,7 +214,11 @@ def test_bad_input_checked_here(kwargs, text):
      "HCIMPACT_ERR_DOMAIN", "masses add up beyond"),
     # (found only at the end: bodies flying apart beyond 1.8e308 m by t_end)
     (dict(masses=[0.1, 0.1], velocities=[-1e10, 1e10], stiffness=PAIR, t_end=1e300),
-     "HCIMPACT_ERR_DOMAIN", "a position or a velocity leaves the range"),
+     "HCIMPACT_ERR_DOMAIN", "a position or a velocity (final or sampled) leaves"),
+    # (a sample at the apex beyond the range, the final state within it)
+    (dict(masses=[1.0, 1.0], velocities=[1e150, 1e150], gaps=[1.0], stiffness=PAIR,
+          gravity=-1e-150, t_end=2e300, sample_times=[1e300]),
+     "HCIMPACT_ERR_DOMAIN", "(final or sampled) leaves the range"),
 ])
 def test_bad_input_from_the_library(kwargs, name, text):
     with pytest.raises(hcimpact.InputError) as info:

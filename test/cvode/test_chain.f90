@@ -1040,6 +1040,20 @@ contains
             if (allocated(error)) return
          end do
       end do
+      ! a slow mode: two balls on a soft floor (c = 1e5 against 1e12 between them) at
+      ! 5 s are still 1.5e4 rtol x_s from their equilibrium (runs at rtol 1e-12 and
+      ! 1e-13 agree): not settled (a test of the speeds against the stiff pair's period
+      ! put them there, velocities 0)
+      chain = steel_row(2, 0.0_wp, 1.0_wp, 0.0_wp)
+      chain%law = contact_law(1.0e12_wp, 1.5_wp, 1.0_wp)
+      chain%left_wall = .true.
+      chain%left_law = contact_law(1.0e5_wp, 1.5_wp, 1.0_wp)
+      chain%left_gap = 0.0_wp
+      chain%gravity = -9.81_wp
+      call run(error, chain, opts(method_auto, 1.0e-10_wp, 5.0_wp), longer, "soft floor")
+      if (allocated(error)) return
+      call check(error, longer%rested .and. any(longer%velocities /= 0.0_wp), &
+         & "soft floor at 5 s: put at its equilibrium, not settled yet")
    end subroutine test_rest_stacks
 
    pure logical function ieee_is_nan_(x)
@@ -1536,7 +1550,7 @@ contains
       real(real128) :: g, t_c, t_q, v_ref, q_ref
       real(wp), parameter :: speeds(7) = [1.0e-250_wp, 1.0e-262_wp, 1.0e-280_wp, &
          & 1.0e-300_wp, 1.0e-307_wp, 1.0e-315_wp, tiny(1.0_wp) * epsilon(1.0_wp)]
-      type(chain_result) :: unit
+      type(chain_result) :: unit, inside
       real(wp) :: t_end, t0, v
       integer :: k, method, stat
       do method = method_auto, method_integrated, method_integrated - method_auto
@@ -1652,6 +1666,16 @@ contains
             & // format_real(result%contacts(1)%t_end) // ", compression " &
             & // format_real(result%contacts(1)%max_deformation))
          if (allocated(error)) return
+         ! inside the contact (at a fifth of it): the momentum kept (at 5e-324 m/s the
+         ! centre of mass's velocity rounds to 0, and both bodies stood still)
+         call run(error, chain, opts(method_auto, 1.0e-10_wp, 0.2_wp * &
+            & result%contacts(1)%t_end), inside, "inside the contact at " // format_real(v))
+         if (allocated(error)) return
+         call check(error, abs(sum(inside%velocities) - v) <= spacing(v) .and. &
+            & inside%momentum_error <= epsilon(1.0_wp), "inside the contact at " &
+            & // format_real(v) // " m/s: velocities " // format_real(inside%velocities(1)) &
+            & // ", " // format_real(inside%velocities(2)))
+         if (allocated(error)) return
          if (k == 1) cycle
          call chain_simulate(chain, result, stat, opts(method_integrated, 1.0e-10_wp))
          call check(error, stat == hcimpact_err_domain .and. index(result%message, &
@@ -1659,6 +1683,34 @@ contains
             & // " m/s: status " // int_text(stat) // " (" // trim(result%message) // ")")
          if (allocated(error)) return
       end do
+      ! exponent 1/2 (p = 4/3 > 1: V^p underflows, V^(p-1) does not) at 1e-250 m/s with
+      ! b V = 0.3: duration V^(1/3) and peak force V^(2/3) times those at 1 m/s with
+      ! b = 0.3 (both were 0); exponent 100 at 5e-324 m/s, a duration beyond the range:
+      ! refused (it ended at t = 0 with success)
+      chain%law = contact_law(1.0e9_wp, 0.5_wp, 0.3_wp)
+      chain%mass = [2.0_wp, 0.3_wp]
+      chain%velocity = [1.0_wp, 0.0_wp]
+      call run(error, chain, opts(method_auto, 1.0e-10_wp), unit, "n = 1/2 at 1 m/s")
+      if (allocated(error)) return
+      v = 1.0e-250_wp
+      chain%law%damping = 0.3_wp / v
+      chain%velocity = [v, 0.0_wp]
+      call run(error, chain, opts(method_auto, 1.0e-10_wp), result, "n = 1/2 at 1e-250 m/s")
+      if (allocated(error)) return
+      call check(error, abs(result%contacts(1)%t_end / (unit%contacts(1)%t_end &
+         & * real(real(v, real128)**(1.0_real128 / 3), wp)) - 1.0_wp) <= 1.0e-12_wp .and. &
+         & abs(result%contacts(1)%peak_force / (unit%contacts(1)%peak_force &
+         & * real(real(v, real128)**(2.0_real128 / 3), wp)) - 1.0_wp) <= 1.0e-12_wp, &
+         & "n = 1/2 at 1e-250 m/s: duration " // format_real(result%contacts(1)%t_end) &
+         & // ", peak force " // format_real(result%contacts(1)%peak_force))
+      if (allocated(error)) return
+      chain%law = contact_law(1.0e9_wp, 100.0_wp, 0.0_wp)
+      chain%mass = 1.0_wp
+      chain%velocity = [tiny(1.0_wp) * epsilon(1.0_wp), 0.0_wp]
+      call chain_simulate(chain, result, stat, opts(method_auto, 1.0e-10_wp))
+      call check(error, stat == hcimpact_err_domain, "n = 100 at 5e-324 m/s: status " &
+         & // int_text(stat) // " (" // trim(result%message) // ")")
+      if (allocated(error)) return
    end subroutine test_extreme_scales
 
    !> Bodies of 2.2e-319 kg (subnormal) to 1e-200 kg, touching, one struck at 1 m/s:

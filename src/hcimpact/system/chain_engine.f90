@@ -506,7 +506,7 @@ contains
       integer, intent(in) :: i
       real(wp), intent(in) :: t
       real(wp), intent(out) :: u, v
-      real(wp) :: tau, x, xd, f, mass_l, mass_r, total, ucm, vcm
+      real(wp) :: tau, x, xd, f, mass_l, mass_r, total, ucm
       integer :: s
       s = engine%body(i)%busy
       if (s < 0) then
@@ -530,17 +530,42 @@ contains
          total = mass_l + mass_r
          ucm = engine%exact(s)%ucm0 + (engine%exact(s)%vcm0 + 0.5_wp * (engine%gravity * tau)) &
             & * tau
-         vcm = engine%exact(s)%vcm0 + engine%gravity * tau
          ! u_L - u_R = x + gap0
          if (i == s) then
             u = ucm + (mass_r / total) * (x + engine%chain%gap(s))
-            v = vcm + (mass_r / total) * xd
          else
             u = ucm - (mass_l / total) * (x + engine%chain%gap(s))
-            v = vcm - (mass_l / total) * xd
          end if
+         v = pair_velocity(engine, s, i == s, xd, tau)
       end if
    end subroutine body_state_at
+
+   !> The velocity of the left (or right) body of the exact pair contact s, its
+   !> deformation rate being xd at tau after its start: that of the centre of mass
+   !> plus (minus) m_R / M (m_L / M) times xd. Below the normal range the centre of
+   !> mass's velocity loses the speed (half of 5e-324 m/s rounds to 0, and both bodies
+   !> stopped): there the body's own velocity at the start plus the share of the change
+   !> of xd, sums of subnormals that are exact.
+   pure real(wp) function pair_velocity(engine, s, left, xd, tau) result(v)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      logical, intent(in) :: left
+      real(wp), intent(in) :: xd, tau
+      real(wp) :: share
+      associate (c => engine%exact(s), m => engine%chain%mass)
+         if (left) then
+            share = m(s + 1) / (m(s) + m(s + 1))
+         else
+            share = -(m(s) / (m(s) + m(s + 1)))
+         end if
+         if (abs(c%vcm0) < 4.0_wp * tiny(1.0_wp)) then
+            v = merge(c%vl0, c%vr0, left) + share * (xd - c%contact%velocity) &
+               & + engine%gravity * tau
+         else
+            v = (c%vcm0 + engine%gravity * tau) + share * xd
+         end if
+      end associate
+   end function pair_velocity
 
    !> Deformation, its rate and the force of the exact contact of slot s at the time t
    !> (from the time law; after its end x = 0, x' = -k V, F = 0)
@@ -960,7 +985,9 @@ contains
       integer, intent(out) :: stat
       type(contact_type) :: unit_speed
       type(outcome_type) :: o
-      real(wp) :: v, p
+      real(wp) :: v, p, n
+      ! (less a margin for the products with the unit impact's outcome)
+      real(wp), parameter :: log_huge = 700.0_wp
       c%law_contact = c%contact
       c%scale_x = 1.0_wp
       c%scale_v = 1.0_wp
@@ -977,12 +1004,20 @@ contains
          stat = hcimpact_err_domain
          return
       end if
-      p = 2.0_wp / (c%contact%exponent + 1.0_wp)
+      ! (the exponents p, p - 1 and n p each rounded once; each scale formed directly,
+      ! as V^p underflows for n < 1 where the time scale does not; a duration beyond
+      ! the range of doubles is refused)
+      n = c%contact%exponent
+      p = 2.0_wp / (n + 1.0_wp)
+      if ((1.0_wp - n) / (n + 1.0_wp) * log(v) + log(o%contact_time) > log_huge) then
+         stat = hcimpact_err_domain
+         return
+      end if
       c%law_contact = unit_speed
       c%scale_v = v
       c%scale_x = v**p
-      c%scale_t = c%scale_x / v
-      c%scale_f = c%scale_x**c%contact%exponent
+      c%scale_t = v**((1.0_wp - n) / (n + 1.0_wp))
+      c%scale_f = v**(2.0_wp * n / (n + 1.0_wp))
       c%outcome = o
       c%outcome%rebound_velocity = o%rebound_velocity * c%scale_v
       c%outcome%max_compression = o%max_compression * c%scale_x
@@ -1070,7 +1105,7 @@ contains
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: s
       integer :: left, right
-      real(wp) :: t_end, u, v, tau, ucm, vcm, total, xd
+      real(wp) :: t_end, u, tau, ucm, total, xd
       type(contact_record) :: r
 
       t_end = engine%exact(s)%t_end
@@ -1085,22 +1120,12 @@ contains
          total = engine%chain%mass(left) + engine%chain%mass(right)
          ucm = engine%exact(s)%ucm0 + (engine%exact(s)%vcm0 + 0.5_wp * (engine%gravity * tau)) &
             & * tau
-         vcm = engine%exact(s)%vcm0 + engine%gravity * tau
          u = ucm + (engine%chain%mass(right) / total) * engine%chain%gap(s)
-         v = vcm + (engine%chain%mass(right) / total) * xd
-         ! (subnormal speeds: vcm, half of 5e-324 m/s, rounds to 0 and both bodies
-         ! stopped; from each body's velocity at the start and the change of x' the
-         ! sums of subnormals are exact)
-         if (abs(engine%exact(s)%vcm0) < 4.0_wp * tiny(1.0_wp)) v = engine%exact(s)%vl0 &
-            & + (engine%chain%mass(right) / total) * (xd - engine%exact(s)%contact%velocity) &
-            & + engine%gravity * tau
-         engine%body(left) = body_state(t0=t_end, u0=u, v0=v)
+         engine%body(left) = body_state(t0=t_end, u0=u, v0=pair_velocity(engine, s, &
+            & .true., xd, tau))
          u = ucm - (engine%chain%mass(left) / total) * engine%chain%gap(s)
-         v = vcm - (engine%chain%mass(left) / total) * xd
-         if (abs(engine%exact(s)%vcm0) < 4.0_wp * tiny(1.0_wp)) v = engine%exact(s)%vr0 &
-            & - (engine%chain%mass(left) / total) * (xd - engine%exact(s)%contact%velocity) &
-            & + engine%gravity * tau
-         engine%body(right) = body_state(t0=t_end, u0=u, v0=v)
+         engine%body(right) = body_state(t0=t_end, u0=u, v0=pair_velocity(engine, s, &
+            & .false., xd, tau))
       end if
       r%pair = s
       r%t_start = engine%exact(s)%t_start
@@ -1537,34 +1562,97 @@ contains
    end function region_deformation
 
    !> Whether the region of `it`, at rest for good (captured) and the whole system, has
-   !> settled at engine%time: every body within 100 rtol x_s of its static equilibrium
-   !> and slower than 100 rtol sqrt(|g| x_s), x_s the least static compression of its
-   !> contacts (for one body, an oscillation of that amplitude and speed). Its energy
-   !> above the equilibrium only decreases from then on, and the integration itself
-   !> holds the state no closer (its noise floor is about 10 rtol x_s: a ball resting
-   !> on a floor at rtol 1e-10, 1e-9 relative from 10 s on).
+   !> settled at engine%time: its energy E above the static equilibrium (kinetic, and
+   !> per contact c/(n+1) (x^(n+1) - x_s^(n+1)) - c x_s^n (x - x_s), formed from the
+   !> deviation x - x_s without cancellation) bounds every compression's deviation by
+   !> sqrt(2 E / k) near the equilibrium, k = n c x_s^(n-1) its stiffness there, and
+   !> the sum of these bounds over the contacts, a bound of every body's deviation, is
+   !> below 100 rtol x_min (x_min the least static compression) or 1000 eps of the
+   !> largest displacement, what the integration resolves. E only decreases from then
+   !> on (the contacts dissipate, gravity and the walls do no work over a cycle), so the
+   !> bodies stay that close. A slow mode (a stack on a soft floor) enters through its
+   !> soft contact's k; a test of speeds against the stiffest contact's period alone
+   !> settled such a stack 150 times farther out.
    logical function settled(engine, it)
       type(chain_engine), intent(in) :: engine
       class(cluster_integrator), intent(inout) :: it
-      real(wp), allocatable :: u(:), v(:), u_rest(:)
-      real(wp) :: x_s, delta
+      real(wp), allocatable :: u(:), v(:), u_rest(:), x_rest(:)
+      real(wp) :: energy, bound, delta, tolerance, x_min
+      type(contact_law) :: law
+      integer :: i, s, n
       settled = .false.
       if (.not. whole_at_rest(it, engine%n)) return
-      allocate(u(engine%n), v(engine%n), u_rest(engine%n))
+      n = engine%n
+      allocate(u(n), v(n), u_rest(n), x_rest(0:n))
       call it%state_at(engine, engine%time, u, v)
-      call rest_state(engine, 1, engine%n, u_rest, x_s)
-      delta = 100.0_wp * engine%options%rtol * x_s
-      settled = all(abs(u - u_rest) <= delta) .and. &
-         & all(abs(v) <= delta * sqrt(abs(engine%gravity) / x_s))
+      call rest_state(engine, 1, n, u_rest, x_rest)
+      energy = sum(kinetic_energy(engine%chain%mass, v))
+      x_min = huge(1.0_wp)
+      do s = 0, n
+         if (.not. slot_exists(engine, s)) cycle
+         law = slot_law(engine, s)
+         ! the deviation of the slot's compression from its rest
+         ! (a wall at the free end, open at rest: delta is its compression itself)
+         if (s == 0) then
+            delta = -(u(1) - u_rest(1))
+            if (.not. x_rest(s) > 0.0_wp) delta = -(engine%chain%left_gap + u(1))
+         else if (s == n) then
+            delta = u(n) - u_rest(n)
+            if (.not. x_rest(s) > 0.0_wp) delta = u(n) - engine%chain%right_gap
+         else
+            delta = (u(s) - u_rest(s)) - (u(s + 1) - u_rest(s + 1))
+         end if
+         energy = energy + bregman(law, x_rest(s), delta)
+         if (x_rest(s) > 0.0_wp) x_min = min(x_min, x_rest(s))
+      end do
+      if (.not. x_min < huge(1.0_wp)) return
+      bound = 0.0_wp
+      do s = 0, n
+         if (.not. slot_exists(engine, s)) cycle
+         if (.not. x_rest(s) > 0.0_wp) cycle
+         law = slot_law(engine, s)
+         bound = bound + sqrt(2.0_wp * energy / (law%exponent * law%stiffness &
+            & * x_rest(s)**(law%exponent - 1.0_wp)))
+      end do
+      tolerance = 100.0_wp * engine%options%rtol * x_min
+      do i = 1, n
+         tolerance = max(tolerance, 1000.0_wp * epsilon(1.0_wp) * abs(u(i)))
+      end do
+      settled = bound <= tolerance
    end function settled
 
+   !> The energy of a contact law at the compression x_s + delta above its tangent at
+   !> x_s >= 0 (J): c/(n+1) (x^(n+1) - x_s^(n+1)) - c x_s^n delta, >= 0. With w =
+   !> delta / x_s, x_s^(n+1) c ((1+w)^(n+1) - 1 - (n+1) w) / (n+1); for |w| <= 1e-5 its
+   !> series n w^2/2 (1 + (n-1) w/3), whose first neglected term is below 1e-10 of it.
+   !> A slot open at rest (x_s = 0): the potential of the compression delta.
+   pure real(wp) function bregman(law, x_s, delta) result(e)
+      type(contact_law), intent(in) :: law
+      real(wp), intent(in) :: x_s, delta
+      real(wp) :: w, n
+      n = law%exponent
+      if (.not. x_s > 0.0_wp) then
+         e = power_law_potential(law%stiffness, n, max(delta, 0.0_wp))
+         return
+      end if
+      w = delta / x_s
+      if (abs(w) <= 1.0e-5_wp) then
+         e = 0.5_wp * n * w**2 * (1.0_wp + (n - 1.0_wp) * w / 3.0_wp)
+      else
+         e = (max(1.0_wp + w, 0.0_wp)**(n + 1.0_wp) - 1.0_wp - (n + 1.0_wp) * w) &
+            & / (n + 1.0_wp)
+      end if
+      e = max(e, 0.0_wp) * (law%stiffness * x_s**(n + 1.0_wp))
+   end function bregman
+
    !> The static equilibrium of the region of bodies a .. b resting on its wall:
-   !> displacements u, velocities 0; and the least compression of its contacts (m).
-   subroutine rest_state(engine, a, b, u, least_compression)
+   !> displacements u, velocities 0; and the compressions of its slots a - 1 .. b at
+   !> rest (m; 0 for the slot at its free end).
+   subroutine rest_state(engine, a, b, u, compression)
       type(chain_engine), intent(in) :: engine
       integer, intent(in) :: a, b
       real(wp), intent(out) :: u(:)
-      real(wp), intent(out), optional :: least_compression
+      real(wp), intent(out), optional :: compression(a - 1:)
       integer :: k, s
       real(wp) :: weight, xs, total
       type(contact_law) :: law
@@ -1582,9 +1670,9 @@ contains
          end if
          law = slot_law(engine, s)
          xs = (weight * abs(engine%gravity) / law%stiffness)**(1.0_wp / law%exponent)
-         if (present(least_compression)) then
-            if (k == 0) least_compression = xs
-            least_compression = min(least_compression, xs)
+         if (present(compression)) then
+            if (k == 0) compression = 0.0_wp
+            compression(s) = xs
          end if
          if (from_left) then
             if (s == 0) then
@@ -1801,11 +1889,15 @@ contains
          engine%message = "the energies of the system leave the range of doubles (kinetic, " &
             & // "elastic or gravitational energy, or their balance, beyond 1.8e308 J)"
       end if
+      ! (samples after t_end are NaN, not infinite)
       if (.not. (all(ieee_is_finite(result%positions)) .and. &
-         & all(ieee_is_finite(result%velocities)))) then
+         & all(ieee_is_finite(result%velocities))) .or. &
+         & any(abs(result%sample_positions) > huge(1.0_wp)) .or. &
+         & any(abs(result%sample_velocities) > huge(1.0_wp))) then
          stat = hcimpact_err_domain
-         write(engine%message, '(a, es10.3, a)') "at t = ", engine%time, " s a position or " &
-            & // "a velocity leaves the range of doubles (beyond 1.8e308 m or m/s)"
+         write(engine%message, '(a, es10.3, a)') "by t = ", engine%time, " s a position or " &
+            & // "a velocity (final or sampled) leaves the range of doubles (beyond 1.8e308 " &
+            & // "m or m/s)"
       end if
    end subroutine fill_result
 
