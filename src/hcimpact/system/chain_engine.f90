@@ -1889,11 +1889,14 @@ contains
          engine%message = "the energies of the system leave the range of doubles (kinetic, " &
             & // "elastic or gravitational energy, or their balance, beyond 1.8e308 J)"
       end if
-      ! (samples after t_end are NaN, not infinite)
+      ! (samples after t_end are NaN, not infinite; ieee_is_nan, not a comparison: a NaN
+      ! compared traps in the Debug build)
       if (.not. (all(ieee_is_finite(result%positions)) .and. &
          & all(ieee_is_finite(result%velocities))) .or. &
-         & any(abs(result%sample_positions) > huge(1.0_wp)) .or. &
-         & any(abs(result%sample_velocities) > huge(1.0_wp))) then
+         & any(.not. (ieee_is_finite(result%sample_positions) .or. &
+         & ieee_is_nan(result%sample_positions))) .or. &
+         & any(.not. (ieee_is_finite(result%sample_velocities) .or. &
+         & ieee_is_nan(result%sample_velocities)))) then
          stat = hcimpact_err_domain
          write(engine%message, '(a, es10.3, a)') "by t = ", engine%time, " s a position or " &
             & // "a velocity (final or sampled) leaves the range of doubles (beyond 1.8e308 " &
