@@ -1,7 +1,6 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> Systems of bodies on a line with the core alone: `chain_exact` computes every contact
-!> by the closed forms of one impact and refuses clusters (hcimpact_err_unavailable),
-!> which need the CVODE component (hcimpact_cvode_chain: `chain_simulate`). The types
+!> by the closed forms of one impact and refuses clusters, which need the CVODE component (hcimpact_cvode_chain: `chain_simulate`). The types
 !> and conventions are those of hcimpact_chain_types; the engine is
 !> hcimpact_chain_engine; doc/chains.md.
 module hcimpact_chain
@@ -19,10 +18,12 @@ module hcimpact_chain
 
 contains
 
-   !> A system of bodies on a line by the closed forms alone (options%method is taken
-   !> as method_exact): exact while every contact is isolated; a cluster of
-   !> overlapping contacts is hcimpact_err_unavailable (its message says which), as is
-   !> a wall contact under gravity. The other statuses: those of chain_simulate.
+   !> A system of bodies on a line by the closed forms alone: exact while every contact
+   !> is isolated. A cluster of overlapping contacts (or a wall contact under gravity
+   !> that gravity changes) is hcimpact_err_unavailable with options%method auto (the
+   !> default: it needs the CVODE component; the message says which contacts) and
+   !> hcimpact_err_domain with method exact (as in chain_simulate); method integrated is
+   !> hcimpact_err_unavailable. The other statuses: those of chain_simulate.
    subroutine chain_exact(chain, result, stat, options)
       !> The system
       type(chain_type), intent(in) :: chain
@@ -30,11 +31,10 @@ contains
       type(chain_result), intent(out) :: result
       !> Status: hcimpact_ok or an error code of hcimpact_status
       integer, intent(out) :: stat
-      !> How (the method is exact whatever it says)
+      !> How (without CVODE: method auto or exact)
       type(chain_options), intent(in), optional :: options
       type(chain_options) :: opts
       if (present(options)) opts = options
-      opts%method = method_exact
       call run_engine(chain, opts, result, stat)
    end subroutine chain_exact
 
