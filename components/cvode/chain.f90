@@ -25,7 +25,7 @@ module hcimpact_cvode_chain
    use, intrinsic :: iso_c_binding, only : c_int, c_long, c_double, c_ptr, c_int64_t, &
       & c_null_ptr, c_loc, c_funloc, c_f_pointer, c_associated
    use, intrinsic :: iso_fortran_env, only : int64
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp, nan
    use hcimpact_cvode_report, only : report_detail
    use hcimpact_cvode_halting, only : halting_suspend, halting_resume, callback_enter, &
@@ -35,7 +35,8 @@ module hcimpact_cvode_chain
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
       & contact_record, by_integration, integrator_adams, method_integrated
    use hcimpact_chain_engine, only : chain_engine, cluster_integrator, run_engine, &
-      & slot_gap0, slot_law, slot_exists, engine_record, capture_margin, advance_reached, &
+      & slot_gap0, slot_law, slot_exists, body_state_at, engine_record, capture_margin, &
+      & advance_reached, &
       & advance_grow_left, advance_grow_right, advance_dissolved, advance_captured, &
       & advance_failed
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
@@ -112,6 +113,10 @@ module hcimpact_cvode_chain
       logical :: touching(2) = .false.
       !> The size of the last step, or before the first the initial step (s)
       real(wp) :: h_last = 0.0_wp
+      !> The region's frame (`engine_frame`): its start (s), every body's displacement
+      !> then (m), and the frame's velocity then (m/s) and acceleration (m/s^2)
+      real(wp) :: t0 = 0.0_wp, v_frame = 0.0_wp, a_frame = 0.0_wp
+      real(wp), allocatable :: u_ref(:)
    contains
       procedure :: begin => region_begin
       procedure :: advance => region_advance
@@ -156,7 +161,9 @@ contains
       integer, intent(out) :: stat
       integer :: m, k, i, j, s, n_state, smu
       integer(c_int) :: ierr
-      real(wp) :: x, w, v_ref, x_ref, e_ref, h0, weakest_force
+      real(wp) :: x, w, v_ref, x_ref, e_ref, h0, weakest_force, u_out, v_out
+      real(wp), allocatable :: v_start(:)
+      integer :: side
       type(contact_force_type) :: e
       character(len=40) :: where
       !> Per slot: a pair touching at rest, opened now
@@ -177,6 +184,15 @@ contains
       allocate(self%region%mass(m), self%region%kind(0:m), self%region%law(0:m), &
          & self%region%gap0(0:m))
       self%region%mass = engine%chain%mass(self%first:self%last)
+      ! the frame: the states at the start, every displacement from its value then
+      allocate(self%u_ref(m), v_start(m))
+      do k = 1, m
+         call body_state_at(engine, self%first + k - 1, engine%time, self%u_ref(k), &
+            & v_start(k))
+      end do
+      self%t0 = engine%time
+      self%v_frame = 0.0_wp
+      self%a_frame = 0.0_wp
       do j = 0, m
          s = self%first - 1 + j
          self%region%kind(j) = slot_none
@@ -190,36 +206,49 @@ contains
                self%region%kind(j) = slot_left_wall
             else
                self%region%kind(j) = slot_boundary_left
-               self%region%out_t0(1) = engine%body(s)%t0
-               self%region%out_u0(1) = engine%body(s)%u0
-               self%region%out_v0(1) = engine%body(s)%v0
             end if
          else if (j == m) then
             if (s == engine%n) then
                self%region%kind(j) = slot_right_wall
             else
                self%region%kind(j) = slot_boundary_right
-               self%region%out_t0(2) = engine%body(s + 1)%t0
-               self%region%out_u0(2) = engine%body(s + 1)%u0
-               self%region%out_v0(2) = engine%body(s + 1)%v0
             end if
          else
             self%region%kind(j) = slot_pair
          end if
       end do
+      ! without a wall, the frame falls freely, and where all bodies move the same way
+      ! it moves with the slowest of them (`engine_frame`)
+      if (self%region%kind(0) /= slot_left_wall .and. self%region%kind(m) /= slot_right_wall) then
+         if (minval(v_start) > 0.0_wp) self%v_frame = minval(v_start)
+         if (maxval(v_start) < 0.0_wp) self%v_frame = maxval(v_start)
+         self%a_frame = engine%gravity
+         self%region%gravity = 0.0_wp
+      end if
+      ! the gaps at zero displacements in the frame, and the bodies outside: their
+      ! free flight from now, relative to their neighbour's reference and the frame
+      do j = 0, m
+         select case (self%region%kind(j))
+         case (slot_pair)
+            self%region%gap0(j) = self%region%gap0(j) + (self%u_ref(j + 1) - self%u_ref(j))
+         case (slot_left_wall)
+            self%region%gap0(j) = self%region%gap0(j) + self%u_ref(1)
+         case (slot_right_wall)
+            self%region%gap0(j) = self%region%gap0(j) - self%u_ref(m)
+         case (slot_boundary_left, slot_boundary_right)
+            side = merge(1, 2, j == 0)
+            k = merge(1, m, j == 0)
+            call body_state_at(engine, merge(self%first - 1, self%last + 1, j == 0), &
+               & engine%time, u_out, v_out)
+            self%region%out_t0(side) = engine%time
+            self%region%out_u0(side) = u_out - self%u_ref(k)
+            self%region%out_v0(side) = v_out - self%v_frame
+         end select
+      end do
       n_state = region_size(m)
       allocate(self%y(n_state), self%atol(n_state))
-      do k = 1, m
-         i = self%first + k - 1
-         ! the engine's states are at engine%time (t0 = engine%time)
-         self%y(3 * k - 2) = engine%body(i)%u0 + (engine%body(i)%v0 + 0.5_wp * &
-            & (engine%gravity * (engine%time - engine%body(i)%t0))) &
-            & * (engine%time - engine%body(i)%t0)
-         self%y(3 * k - 1) = engine%body(i)%v0 + engine%gravity &
-            & * (engine%time - engine%body(i)%t0)
-      end do
-      self%y(3::3) = 0.0_wp
-      self%y(n_state) = 0.0_wp
+      self%y = 0.0_wp
+      self%y(2:3 * m:3) = v_start - self%v_frame
 
       ! scales: the largest relative speed, the smallest maximum compression at it
       call region_scales(self%region, self%y, self%region%scale, weakest_force)
@@ -263,6 +292,14 @@ contains
             & x == 0.0_wp .and. w == 0.0_wp
          if (self%region%kind(j) == slot_boundary_left .or. self%region%kind(j) == &
             & slot_boundary_right) cycle
+         ! a touching pair's memory from a region closed at this instant (grown)
+         if (.not. ieee_is_nan(engine%exact(s)%touching_at)) then
+            if (engine%exact(s)%touching_at == engine%time .and. x >= -self%atol(1)) then
+               self%contact(j)%touching_since = engine%exact(s)%touching_since
+               self%contact(j)%touching_approach = engine%exact(s)%touching_approach
+            end if
+         end if
+         engine%exact(s)%touching_at = nan
          if (engine%exact(s)%handed) then
             self%contact(j) = open_contact(open=.true., t_start=engine%exact(s)%t_start, &
                & approach=engine%exact(s)%contact%velocity, e_base=0.0_wp, &
@@ -429,8 +466,8 @@ contains
             end if
             ! at rest on a wall under gravity, for good (reported once per region)
             if (engine%gravity /= 0.0_wp .and. .not. self%captured) then
-               u = self%y(1:3 * m:3)
-               v = self%y(2:3 * m:3)
+               allocate(u(m), v(m))
+               call engine_frame(self, self%time, self%y, u, v)
                if (capture_margin(engine, self%first, self%last, u, v) < 0.0_wp) then
                   self%captured = .true.
                   what = advance_captured
@@ -983,22 +1020,48 @@ contains
       ! self%y holds the state at the end of the last step until its contacts are
       ! followed, then at self%time
       if ((self%stepped .and. t == self%tn) .or. (.not. self%stepped .and. t == self%time)) then
-         u = self%y(1:3 * m:3)
-         v = self%y(2:3 * m:3)
+         call engine_frame(self, t, self%y, u, v)
          return
       end if
       call halting_suspend(halting)
       allocate(dky(region_size(m)))
       call interpolate(self, t, dky, ok)
       if (ok) then
-         u = dky(1:3 * m:3)
-         v = dky(2:3 * m:3)
+         call engine_frame(self, t, dky, u, v)
       else
-         u = self%y(1:3 * m:3)
-         v = self%y(2:3 * m:3)
+         call engine_frame(self, merge(self%tn, self%time, self%stepped), self%y, u, v)
       end if
       call halting_resume(halting)
    end subroutine region_state_at
+
+   !> The displacements u (m) and velocities v (m/s) of the region's bodies in the
+   !> engine's frame from a state y of the region at the time t. The region's state is
+   !> in a frame of its own: every displacement from its value at the region's start
+   !> (the deformations keep the digits of their own size, not those of how far the
+   !> bodies have gone: a ball dropped 1 m rests within 1e-16 m of 1 m, and at rtol
+   !> 1e-12 CVODE's steps shrank against the rounding of its displacement), and
+   !> without a wall, relative to a frame that falls freely (the relative motion is
+   !> that without gravity: three touching balls falling freely, one struck at 1e-6
+   !> m/s, had relative velocities off by 1.5e-5, rtol applying to the fall's g t; at
+   !> 1e-50 m/s CVODE failed at t = 0) and, where all bodies move the same way, with
+   !> the slowest of them then (its velocities are the relative ones, below the
+   !> largest difference of two). Where some body is at rest or the velocities differ
+   !> in sign, the frame does not move: a body at rest added to a region leaves its
+   !> integration as it was, to the bit (a struck chain of touching beads is
+   !> integrated alike whatever its length).
+   subroutine engine_frame(self, t, y, u, v)
+      type(cvode_chain_integrator), intent(in) :: self
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: u(:), v(:)
+      real(wp) :: tau, shift, speed
+      integer :: m
+      m = self%region%m
+      tau = t - self%t0
+      shift = (self%v_frame + 0.5_wp * (self%a_frame * tau)) * tau
+      speed = self%v_frame + self%a_frame * tau
+      u = self%u_ref + (shift + y(1:3 * m:3))
+      v = speed + y(2:3 * m:3)
+   end subroutine engine_frame
 
    !> Follow the contacts up to engine%time (within [self%time, self%next]), write the
    !> region's states then back into the engine and free CVODE; a contact still in
@@ -1008,6 +1071,7 @@ contains
       type(chain_engine), intent(inout) :: engine
       integer :: k, i, j, s, m
       real(wp) :: t
+      real(wp), allocatable :: u(:), v(:)
       logical :: ended, halting(3)
       if (.not. associated(self%region)) return
       m = self%region%m
@@ -1019,17 +1083,25 @@ contains
          if (t > self%time) call follow_contacts(self, engine, t, ended)
          self%stepped = .false.
       end if
+      allocate(u(m), v(m))
+      call engine_frame(self, self%time, self%y, u, v)
       do k = 1, m
          i = self%first + k - 1
          engine%body(i)%t0 = engine%time
-         engine%body(i)%u0 = self%y(3 * k - 2)
-         engine%body(i)%v0 = self%y(3 * k - 1)
+         engine%body(i)%u0 = u(k)
+         engine%body(i)%v0 = v(k)
       end do
       call hand_touching(self, engine)
       do j = 0, m
          if (.not. allocated(self%contact)) exit
-         if (.not. self%contact(j)%open) cycle
          s = self%first - 1 + j
+         ! a touching pair's memory (close_contact), for a region begun at this instant
+         if (.not. (self%contact(j)%open .or. ieee_is_nan(self%contact(j)%touching_since))) then
+            engine%exact(s)%touching_since = self%contact(j)%touching_since
+            engine%exact(s)%touching_approach = self%contact(j)%touching_approach
+            engine%exact(s)%touching_at = engine%time
+         end if
+         if (.not. self%contact(j)%open) cycle
          engine%exact(s)%handed = .true.
          engine%exact(s)%active = .false.
          engine%exact(s)%t_start = self%contact(j)%t_start
@@ -1067,7 +1139,12 @@ contains
          j = merge(0, self%region%m, side == 1)
          inner = merge(1, self%region%m - 1, side == 1)  ! (a slot 0 .. m: m >= 1)
          t_start = engine%time
-         if (self%contact(inner)%open) t_start = min(t_start, self%contact(inner)%t_start)
+         if (self%contact(inner)%open) then
+            t_start = min(t_start, self%contact(inner)%t_start)
+         else if (.not. ieee_is_nan(self%contact(inner)%touching_since)) then
+            ! (apart by rounding only: close_contact)
+            t_start = min(t_start, self%contact(inner)%touching_since)
+         end if
          s = self%first - 1 + j
          engine%exact(s)%handed = .true.
          engine%exact(s)%active = .false.
@@ -1107,6 +1184,7 @@ contains
       nullify(self%lin_sol, self%jac_mat, self%atol_vec, self%y_vec)
       call context_free(self%ctx)
       if (associated(self%y)) deallocate(self%y)
+      if (allocated(self%u_ref)) deallocate(self%u_ref)
       if (associated(self%atol)) deallocate(self%atol)
       if (allocated(self%contact)) deallocate(self%contact)
       if (allocated(self%history)) deallocate(self%history)

@@ -84,6 +84,7 @@ contains
          & new_unittest("bad-input", test_bad_input), &
          & new_unittest("energy-range", test_energy_range), &
          & new_unittest("extreme-scales", test_extreme_scales), &
+         & new_unittest("free-fall-frame", test_free_fall_frame), &
          & new_unittest("tiny-masses", test_tiny_masses), &
          & new_unittest("dilute-stays-exact", test_dilute_exact), &
          & new_unittest("clusters-form-dissolve", test_clusters), &
@@ -1040,6 +1041,28 @@ contains
             if (allocated(error)) return
          end do
       end do
+      ! a ball dropped 1 m at rtol 1e-12 to t_end = 1e300: it failed on max_steps after
+      ! minutes (the region's displacement from the start, 1 m, rounded to 1e-16 m,
+      ! above the tolerance: CVODE's steps shrank against that noise); the region's
+      ! own frame resolves the deformation to its own size (xs: the static compression)
+      chain = steel_row(1, 0.0_wp, 1.0_wp, 0.0_wp)
+      chain%left_wall = .true.
+      chain%left_law = contact_law(steel_wall, 1.5_wp, 1.0_wp)
+      chain%left_gap = 1.0_wp
+      chain%gravity = -9.81_wp
+      call run(error, chain, opts(method_auto, 1.0e-12_wp), result, "dropped 1 m")
+      if (allocated(error)) return
+      o = opts(method_auto, 1.0e-12_wp, 1.0e300_wp)
+      o%max_steps = 10000000_int64
+      call run(error, chain, o, longer, "dropped 1 m, to 1e300 s")
+      if (allocated(error)) return
+      xs = (steel_mass * 9.81_wp / steel_wall)**(1.0_wp / 1.5_wp)
+      call check(error, longer%rested .and. longer%time == 1.0e300_wp .and. &
+         & longer%velocities(1) == 0.0_wp .and. abs(longer%positions(1) - &
+         & result%positions(1)) <= max(1.0e-12_wp * xs, 4.0_wp * spacing(chain%left_gap)), &
+         & "dropped 1 m, to 1e300 s: position " &
+         & // format_real(longer%positions(1)) // " against " // format_real(result%positions(1)))
+      if (allocated(error)) return
       ! a slow mode: two balls on a soft floor (c = 1e5 against 1e12 between them) at
       ! 5 s are still 1.5e4 rtol x_s from their equilibrium (runs at rtol 1e-12 and
       ! 1e-13 agree): not settled (a test of the speeds against the stiff pair's period
@@ -1712,6 +1735,61 @@ contains
          & // int_text(stat) // " (" // trim(result%message) // ")")
       if (allocated(error)) return
    end subroutine test_extreme_scales
+
+   !> Three touching balls struck at one end (three_b0, three_b01) falling freely
+   !> (gravity without a wall) at V = 1, 1e-6 and 1e-50 m/s, and at V = 1e-6 m/s
+   !> with a common speed of 100 m/s: the relative motion is the reference's scaled
+   !> by V (speeds by V, times by V^((1-n)/(n+1)), deformations by V^(2/(n+1)),
+   !> forces by V^(2n/(n+1)), energies by V^2, with damping b/V), its contacts within
+   !> the reference checks' bounds, and the final velocities V v_ref + g t + U where
+   !> doubles hold them to rtol of V. Before the region's own frame: off by 1.5e5
+   !> rtol at 1e-6 m/s (rtol applied to g t), CVODE failed at t = 0 at 1e-50 m/s.
+   subroutine test_free_fall_frame(error)
+      type(error_type), allocatable, intent(out) :: error
+      character(len=*), parameter :: names(2) = [character(len=9) :: "three_b0", "three_b01"]
+      real(wp), parameter :: rtol = 1.0e-10_wp, g = -9.81_wp
+      real(wp), parameter :: speeds(4) = [1.0_wp, 1.0e-6_wp, 1.0e-50_wp, 1.0e-6_wp]
+      real(wp), parameter :: common(4) = [0.0_wp, 0.0_wp, 0.0_wp, 100.0_wp]
+      type(reference_case) :: ref, scaled
+      type(chain_result) :: result
+      real(wp) :: v, n, worst, worst_peak
+      integer :: c, i
+      character(len=80) :: what
+
+      do c = 1, size(names)
+         call read_case(error, trim(names(c)), ref)
+         if (allocated(error)) return
+         n = ref%chain%law(1)%exponent
+         do i = 1, size(speeds)
+            v = speeds(i)
+            scaled = ref
+            scaled%chain%velocity = v * ref%chain%velocity + common(i)
+            scaled%chain%law%damping = ref%chain%law%damping / v
+            scaled%chain%gravity = g
+            scaled%contact(1:2, :) = ref%contact(1:2, :) * v**((1.0_wp - n) / (n + 1.0_wp))
+            scaled%contact(3:4, :) = ref%contact(3:4, :) * v
+            scaled%contact(5, :) = ref%contact(5, :) * v**(2.0_wp * n / (n + 1.0_wp))
+            scaled%contact(6, :) = ref%contact(6, :) * v**(2.0_wp / (n + 1.0_wp))
+            scaled%contact(7, :) = ref%contact(7, :) * v**2
+            write(what, '(a, a, es8.1, a, es8.1, a)') trim(names(c)), " falling, V ", v, &
+               & " m/s, common ", common(i), " m/s"
+            call run(error, scaled%chain, opts(method_auto, rtol), result, trim(what))
+            if (allocated(error)) return
+            scaled%velocity = v * ref%velocity + (g * result%time + common(i))
+            ! (the final velocities only where doubles hold them to rtol of V; the
+            ! contacts, relative speeds, always)
+            scaled%max_contacts = 0
+            if (spacing(maxval(abs(scaled%velocity))) > 0.1_wp * rtol * v) &
+               & scaled%max_contacts = size(ref%pair)
+            ! (the reference's scale of speeds: V)
+            scaled%chain%velocity = v * ref%chain%velocity
+            call compare_case(error, scaled, result, rtol, trim(what), worst, worst_peak)
+            if (allocated(error)) return
+            print '(2x, a, a, es9.2, a, l1)', trim(what), ": largest error ", worst, &
+               & " rtol; velocities checked ", scaled%max_contacts == 0
+         end do
+      end do
+   end subroutine test_free_fall_frame
 
    !> Bodies of 2.2e-319 kg (subnormal) to 1e-200 kg, touching, one struck at 1 m/s:
    !> integrated, the two velocities after the contact are those of the closed forms

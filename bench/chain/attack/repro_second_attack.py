@@ -181,12 +181,18 @@ def _():
     # succeeds: velocities - g t = (-0.0710, 0.0764, 0.9945) V). At 1e-6 and 1e-10 m/s it
     # succeeds but the relative velocities are off by 1.5e-5 and 2e-3 (rtol 1e-10 of
     # absolute velocities of g t ~ 1 m/s: no Galilean shift of the region's state).
+    # Fixed the same evening (the region's own frame, test free-fall-frame): the contacts'
+    # separation speeds over V are those without gravity at every V (the final velocities
+    # in the engine's frame cannot hold V = 1e-50 m/s next to g t).
     import hcimpact
+    r0 = hcimpact.chain([1.0, 1.0, 1.0], [1.0, 0, 0], gaps=[0, 0], stiffness=1e9)
+    print("g = 0, V = 1: separation speeds", r0.contacts["separation_speed"])
     for V in (1e-6, 1e-10, 1e-50):
         try:
             r = hcimpact.chain([1.0, 1.0, 1.0], [V, 0, 0], gaps=[0, 0], stiffness=1e9,
                                gravity=-9.81)
-            print(V, "(velocities - g t) / V =", (r.velocities - (-9.81) * r.time) / V)
+            print(V, "(velocities - g t) / V =", (r.velocities - (-9.81) * r.time) / V,
+                  "separation speeds / V", r.contacts["separation_speed"] / V)
         except hcimpact.HcimpactError as e:
             print(V, "GOT", str(e)[:160])
     """

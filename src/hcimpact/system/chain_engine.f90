@@ -103,6 +103,11 @@ module hcimpact_chain_engine
       !> computed of its record so far (dissipated energy, peak force, deformation)
       logical :: handed = .false.
       real(wp) :: so_far_dissipated = 0.0_wp, so_far_peak = 0.0_wp, so_far_deformation = 0.0_wp
+      !> Left by a region closed at the time touching_at (NaN: none) for a region begun
+      !> at that instant: a touching pair that stopped touching by rounding only, and
+      !> the start and approach speed of its contact (a contact that opens again began
+      !> then; the integrator's own rule, hcimpact_cvode_chain)
+      real(wp) :: touching_since = nan, touching_approach = nan, touching_at = nan
    end type exact_contact
 
    !> An integrator of a region of bodies (the CVODE component implements it); one
