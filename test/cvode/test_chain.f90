@@ -85,6 +85,7 @@ contains
          & new_unittest("energy-range", test_energy_range), &
          & new_unittest("extreme-scales", test_extreme_scales), &
          & new_unittest("free-fall-frame", test_free_fall_frame), &
+         & new_unittest("region-split", test_region_split), &
          & new_unittest("tiny-masses", test_tiny_masses), &
          & new_unittest("dilute-stays-exact", test_dilute_exact), &
          & new_unittest("clusters-form-dissolve", test_clusters), &
@@ -2371,6 +2372,50 @@ contains
          if (allocated(error)) return
       end do
    end subroutine test_touching_grows
+
+   !> A struck chain of 100 touching beads to 1 ms, BDF and Adams: behind the wave the
+   !> striker and the first beads part and fly back, and the region lets them go (a
+   !> split is logged, and a region that no longer holds body 1 goes on); the answer is
+   !> the whole chain's integrated as one region, within the reference checks' bound
+   subroutine test_region_split(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: rtol = 1.0e-8_wp, t_end = 1.0e-3_wp
+      type(chain_result) :: auto, whole
+      type(chain_options) :: o
+      real(wp) :: ev, ex
+      integer :: integrator, k
+      logical :: split, later
+      character(len=40) :: what
+      do integrator = 1, 2
+         write(what, '(a, i0)') "100 beads, integrator ", integrator
+         o = opts(method_auto, rtol, t_end)
+         o%integrator = integrator
+         call run(error, steel_row(100, 1.0_wp, 0.0_wp, 0.0_wp), o, auto, trim(what))
+         if (allocated(error)) return
+         o%method = method_integrated
+         call run(error, steel_row(100, 1.0_wp, 0.0_wp, 0.0_wp), o, whole, trim(what) // &
+            & ", integrated")
+         if (allocated(error)) return
+         split = .false.
+         later = .false.
+         do k = 1, size(auto%switches)
+            if (index(auto%switches(k)%reason, " splits: ") > 0) split = .true.
+            if (split .and. auto%switches(k)%first > 1) later = .true.
+         end do
+         call check(error, split .and. later, trim(what) // ": the region never split")
+         if (allocated(error)) return
+         ev = maxval(abs(auto%velocities - whole%velocities)) / rtol
+         ex = maxval(abs(auto%positions - whole%positions)) / (rtol * maxval(abs(whole%positions)))
+         print '(2x, a, a, 2es10.2, a, i0, a, i0)', trim(what), ": velocity, position " // &
+            & "error against the whole integrated / rtol:", ev, ex, "; steps ", &
+            & auto%counters%steps, " against ", whole%counters%steps
+         call check(error, ev <= k_velocity .and. ex <= k_velocity .and. &
+            & auto%energy_error <= k_energy * rtol, trim(what) // ": against the whole " // &
+            & "chain integrated: velocity " // format_real(ev) // ", position " // &
+            & format_real(ex) // " rtol, energy error " // format_real(auto%energy_error))
+         if (allocated(error)) return
+      end do
+   end subroutine test_region_split
 
    !> A struck chain of 16 touching steel balls, elastic and dissipative, to the end
    !> (every contact over, the beads behind the wave drifting back): the final
