@@ -1790,7 +1790,57 @@ contains
                & " rtol; velocities checked ", scaled%max_contacts == 0
          end do
       end do
+      call falling_touching_chain(error)
    end subroutine test_free_fall_frame
+
+   !> A ball at 0.1 m/s reaches a chain of five touching balls after a gap of 1 to
+   !> 3.7 m, everything falling freely (or rising) at g = -100 to 9.81 m/s^2: every
+   !> contact starts when the gap closes, at gap / 0.1 s to the ulp, those of the
+   !> touching pairs with approach speed 0, five contacts in all, their separation
+   !> speeds those without gravity (before snap_touching: starts up to 3e-4 s late,
+   !> approach speeds of 6e-9 m/s; bench/chain/attack/repro_frame_attack.py)
+   subroutine falling_touching_chain(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: rtol = 1.0e-10_wp
+      real(wp), parameter :: gravities(4) = [-100.0_wp, -9.81_wp, -1.0_wp, 9.81_wp]
+      real(wp), parameter :: gaps(3) = [1.0_wp, 2.0_wp, 3.7_wp]
+      type(chain_type) :: chain
+      type(chain_result) :: result, still
+      integer :: i, k, c
+      character(len=48) :: what
+      chain = steel_row(6, 0.1_wp, 0.1_wp, 0.0_wp)
+      chain%mass = 1.0_wp
+      chain%law = contact_law(1.0e9_wp, 1.5_wp, 0.1_wp)
+      do k = 1, size(gaps)
+         chain%gap(1) = gaps(k)
+         chain%gravity = 0.0_wp
+         call run(error, chain, opts(method_auto, rtol, gaps(k) / 0.1_wp + 0.02_wp), still, &
+            & "touching chain, g = 0")
+         if (allocated(error)) return
+         do i = 1, size(gravities)
+            chain%gravity = gravities(i)
+            write(what, '(a, f6.2, a, f4.1, a)') "touching chain falling, g ", gravities(i), &
+               & ", gap ", gaps(k), " m"
+            call run(error, chain, opts(method_auto, rtol, gaps(k) / 0.1_wp + 0.02_wp), &
+               & result, trim(what))
+            if (allocated(error)) return
+            call check(error, result%n_contacts == 5 .and. still%n_contacts == 5, trim(what) // &
+               & ": " // int_text(int(result%n_contacts)) // " contacts")
+            if (allocated(error)) return
+            do c = 1, 5
+               call check(error, abs(result%contacts(c)%t_start - gaps(k) / 0.1_wp) <= &
+                  & spacing(gaps(k) / 0.1_wp) .and. (result%contacts(c)%pair == 1 .or. &
+                  & result%contacts(c)%approach_speed == 0.0_wp) .and. &
+                  & abs(result%contacts(c)%separation_speed - still%contacts(c)%separation_speed) &
+                  & <= k_velocity * rtol * 0.1_wp, trim(what) // ": contact " // int_text(c) &
+                  & // " of pair " // int_text(result%contacts(c)%pair) // " from " // &
+                  & format_real(result%contacts(c)%t_start) // " s, approach " // &
+                  & format_real(result%contacts(c)%approach_speed) // " m/s")
+               if (allocated(error)) return
+            end do
+         end do
+      end do
+   end subroutine falling_touching_chain
 
    !> Bodies of 2.2e-319 kg (subnormal) to 1e-200 kg, touching, one struck at 1 m/s:
    !> integrated, the two velocities after the contact are those of the closed forms

@@ -7,18 +7,9 @@ Run from this directory after `. ./env.sh`:  python3 repro_second_attack.py [NAM
 Each case runs in its own process with a timeout (60 s unless said); a case prints
 what it expects and what it got. `python3 repro_second_attack.py --list` names them.
 """
-import subprocess
-import sys
-import textwrap
+from repro_cases import Cases
 
-CASES = {}
-
-
-def case(name, timeout=60):
-    def wrap(src):
-        CASES[name] = (textwrap.dedent(src.__doc__), timeout)
-        return src
-    return wrap
+case = Cases()
 
 
 @case("settle_below_resolution", timeout=70)
@@ -198,21 +189,5 @@ def _():
     """
 
 
-def main():
-    names = sys.argv[1:] or list(CASES)
-    if names == ["--list"]:
-        print("\n".join(CASES))
-        return
-    for name in names:
-        src, timeout = CASES[name]
-        print(f"== {name}", flush=True)
-        try:
-            out = subprocess.run([sys.executable, "-c", src], capture_output=True, text=True,
-                                 timeout=timeout)
-            print(out.stdout + out.stderr[-2000:], end="", flush=True)
-        except subprocess.TimeoutExpired:
-            print(f"TIMEOUT after {timeout} s", flush=True)
-
-
 if __name__ == "__main__":
-    main()
+    case.main()
