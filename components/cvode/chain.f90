@@ -490,8 +490,13 @@ contains
                end if
             end if
             ! bodies apart from their neighbours: the closed forms take them back
-            ! (not with the integrated method, which integrates every contact)
-            if (engine%options%method /= method_integrated) then
+            ! (not with the integrated method, which integrates every contact; nor
+            ! on the wall gravity points to, where what leaves falls back: a ball of
+            ! 10 g dropped 0.1 mm onto a stack of three on a floor split off and merged
+            ! again at every bounce, 323 to 369 regions to 0.3 s at rtol 1e-8 to
+            ! 1e-12, each beginning CVODE at order 1, against 24 to 49 without, in 1.5
+            ! to 2.7 times the time)
+            if (engine%options%method /= method_integrated .and. .not. falls_back(self)) then
                if (split_parts(self)) then
                   what = advance_split
                   self%due = what
@@ -556,6 +561,15 @@ contains
       end block run
       call halting_resume(halting)
    end subroutine region_advance
+
+   !> Whether the region holds the wall that gravity points to (a body that leaves it
+   !> falls back).
+   pure logical function falls_back(self)
+      type(cvode_chain_integrator), intent(in) :: self
+      falls_back = (self%region%kind(0) == slot_left_wall .and. self%region%gravity < 0.0_wp) &
+         & .or. (self%region%kind(self%region%m) == slot_right_wall .and. &
+         & self%region%gravity > 0.0_wp)
+   end function falls_back
 
    !> After the contacts were followed to self%time: whether the region should split
    !> (self%parts, self%n_parts in the engine's numbering). A body is free where both

@@ -2426,10 +2426,12 @@ contains
    !> A struck chain of 100 touching beads to 1 ms, BDF and Adams: behind the wave the
    !> striker and the first beads part and fly back, and the region lets them go (a
    !> split is logged, and a region that no longer holds body 1 goes on); the answer is
-   !> the whole chain's integrated as one region, within the reference checks' bound
+   !> the whole chain's integrated as one region, within the reference checks' bound.
+   !> A ball bouncing on a stack on a floor is not split off (it falls back).
    subroutine test_region_split(error)
       type(error_type), allocatable, intent(out) :: error
       real(wp), parameter :: rtol = 1.0e-8_wp, t_end = 1.0e-3_wp
+      type(chain_type) :: chain
       type(chain_result) :: auto, whole
       type(chain_options) :: o
       real(wp) :: ev, ex
@@ -2465,6 +2467,19 @@ contains
             & format_real(ex) // " rtol, energy error " // format_real(auto%energy_error))
          if (allocated(error)) return
       end do
+      ! a ball of 10 g bouncing on a stack of three on a floor: what leaves falls back,
+      ! no split (it split and merged again at every bounce)
+      chain = steel_row(4, 0.0_wp, 0.0_wp, 0.0_wp)
+      chain%mass(4) = 0.01_wp
+      chain%gap(3) = 1.0e-4_wp
+      chain%left_wall = .true.
+      chain%left_law = contact_law(steel_wall, 1.5_wp, 0.0_wp)
+      chain%gravity = -9.81_wp
+      call run(error, chain, opts(method_auto, rtol, 0.05_wp), auto, "ball on a stack")
+      if (allocated(error)) return
+      call check(error, .not. any([(index(auto%switches(k)%reason, " splits: ") > 0, &
+         & k = 1, size(auto%switches))]) .and. auto%energy_error <= k_energy * rtol, &
+         & "ball on a stack: split, or energy error " // format_real(auto%energy_error))
    end subroutine test_region_split
 
    !> A struck chain of 16 touching steel balls, elastic and dissipative, to the end
