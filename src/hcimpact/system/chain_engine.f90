@@ -1421,6 +1421,11 @@ contains
       b = engine%regions(k)%integrator%last
       parts = engine%regions(k)%integrator%parts(:, 1:engine%regions(k)%integrator%n_parts)
       call close_region(engine, k, h)
+      if (size(parts, 2) == 0) then
+         write(why, '(a, i0, a, i0, a)') "the cluster of bodies ", a, " to ", b, &
+            & " splits into bodies apart from their neighbours: closed forms again"
+         call log_switch(engine, 0, 0, why)
+      end if
       do p = 1, size(parts, 2)
          write(why, '(a, i0, a, i0, a, i0, a, i0, a)') "the cluster of bodies ", a, " to ", &
             & b, " splits: bodies ", parts(1, p), " to ", parts(2, p), &
