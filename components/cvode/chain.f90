@@ -36,13 +36,11 @@ module hcimpact_cvode_chain
       & contact_record, by_integration, integrator_adams, method_integrated
    use hcimpact_chain_engine, only : chain_engine, cluster_integrator, run_engine, &
       & slot_gap0, slot_law, slot_exists, body_state_at, engine_record, capture_margin, &
-      & advance_reached, &
-      & advance_grow_left, advance_grow_right, advance_dissolved, advance_captured, &
-      & advance_failed, advance_split
+      & advance_reached, advance_grow_left, advance_grow_right, advance_dissolved, &
+      & advance_captured, advance_failed, advance_split
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
-      & force_rate, &
-      & slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
+      & force_rate, slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
@@ -61,7 +59,6 @@ module hcimpact_cvode_chain
    private
 
    public :: chain_simulate, cvode_chain_integrator
-
 
    !> A contact of the region in progress
    type :: open_contact
@@ -586,21 +583,29 @@ contains
    !> touching balls falling freely, struck at 1e-50 m/s, are 5e12 m down, whose ulp
    !> is 1e-3 m, when the first leaves: the other two, 1e-40 m into each other, would
    !> begin again with that compression lost). From the slots' states at self%time
-   !> (self%history): O(m), against a step's O(m) of a larger constant.
+   !> (self%history): O(m), against a step's O(m) of a larger constant, and no work
+   !> array unless the free bodies are enough.
    logical function split_parts(self) result(split)
       type(cvode_chain_integrator), intent(inout) :: self
-      integer :: m, k, first, kept
-      logical :: pressed
+      integer :: m, k, first, kept, n_free
+      logical :: pressed, left_apart, right_apart
       logical, allocatable :: free(:)
       real(wp), allocatable :: u(:), v(:)
       split = .false.
       m = self%region%m
       if (m < 2) return
+      n_free = 0
+      left_apart = apart(0)
+      do k = 1, m
+         right_apart = apart(k)
+         if (left_apart .and. right_apart) n_free = n_free + 1
+         left_apart = right_apart
+      end do
+      if (n_free < max(1, m / 4)) return
       allocate(free(m))
       do k = 1, m
          free(k) = apart(k - 1) .and. apart(k)
       end do
-      if (count(free) < max(1, m / 4)) return
       if (allocated(self%parts)) then
          if (size(self%parts, 2) < m) deallocate(self%parts)
       end if
