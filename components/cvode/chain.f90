@@ -41,6 +41,7 @@ module hcimpact_cvode_chain
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
       & force_rate, slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
+      & region_frame, frame_motion, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
@@ -188,8 +189,6 @@ contains
             & v_start(k))
       end do
       self%t0 = engine%time
-      self%v_frame = 0.0_wp
-      self%a_frame = 0.0_wp
       do j = 0, m
          s = self%first - 1 + j
          self%region%kind(j) = slot_none
@@ -216,12 +215,8 @@ contains
       end do
       ! without a wall, the frame falls freely, and where all bodies move the same way
       ! it moves with the slowest of them (`engine_frame`)
-      if (self%region%kind(0) /= slot_left_wall .and. self%region%kind(m) /= slot_right_wall) then
-         if (minval(v_start) > 0.0_wp) self%v_frame = minval(v_start)
-         if (maxval(v_start) < 0.0_wp) self%v_frame = maxval(v_start)
-         self%a_frame = engine%gravity
-         self%region%gravity = 0.0_wp
-      end if
+      call region_frame(self%region, v_start, self%v_frame, self%a_frame)
+      self%region%gravity = self%region%gravity - self%a_frame
       ! the gaps at zero displacements in the frame, and the bodies outside: their
       ! free flight from now, relative to their neighbour's reference and the frame;
       ! and per slot the rounding of the engine's states it comes from (`snap_touching`)
@@ -1209,12 +1204,10 @@ contains
       type(cvode_chain_integrator), intent(in) :: self
       real(wp), intent(in) :: t, y(:)
       real(wp), intent(out) :: u(:), v(:)
-      real(wp) :: tau, shift, speed
+      real(wp) :: shift, speed
       integer :: m
       m = self%region%m
-      tau = t - self%t0
-      shift = (self%v_frame + 0.5_wp * (self%a_frame * tau)) * tau
-      speed = self%v_frame + self%a_frame * tau
+      call frame_motion(self%v_frame, self%a_frame, t - self%t0, shift, speed)
       u = self%u_ref + (shift + y(1:3 * m:3))
       v = speed + y(2:3 * m:3)
    end subroutine engine_frame

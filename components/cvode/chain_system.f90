@@ -33,6 +33,7 @@ module hcimpact_cvode_chain_system
    private
 
    public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
+   public :: region_frame, frame_motion
    public :: error_weights, weights_rtol, newton_factor, factor_newton_matrix, solve_newton
    public :: slot_state, dissipation_index, force_rate, slot_force_rate, upper_band, &
       & lower_band
@@ -261,6 +262,36 @@ contains
       weights_rtol = bdf_tolerance * rtol
       if (adams) weights_rtol = adams_tolerance * rtol
    end function weights_rtol
+
+   !> The frame a region is integrated in, from its bodies' velocities v at its start
+   !> (before region%gravity is made relative to the frame): without a wall it falls
+   !> freely (a_frame = region%gravity), and where all bodies move the same way it
+   !> moves with the slowest of them (v_frame, m/s); else it stands still. In it the
+   !> relative motion keeps the digits of its own size, not those of a common speed
+   !> or fall (doc/chains.md, "The region's frame"); where a body is at rest the frame
+   !> stands still, so that a body at rest added to a region leaves its integration
+   !> as it was.
+   pure subroutine region_frame(region, v, v_frame, a_frame)
+      type(chain_region), intent(in) :: region
+      real(wp), intent(in) :: v(:)
+      real(wp), intent(out) :: v_frame, a_frame
+      v_frame = 0.0_wp
+      a_frame = 0.0_wp
+      if (region%kind(0) == slot_left_wall .or. region%kind(region%m) == slot_right_wall) &
+         & return
+      if (minval(v) > 0.0_wp) v_frame = minval(v)
+      if (maxval(v) < 0.0_wp) v_frame = maxval(v)
+      a_frame = region%gravity
+   end subroutine region_frame
+
+   !> Where a frame that moved at v_frame with the constant acceleration a_frame is
+   !> after tau (shift, m) and its velocity then (speed, m/s)
+   elemental subroutine frame_motion(v_frame, a_frame, tau, shift, speed)
+      real(wp), intent(in) :: v_frame, a_frame, tau
+      real(wp), intent(out) :: shift, speed
+      shift = (v_frame + 0.5_wp * (a_frame * tau)) * tau
+      speed = v_frame + a_frame * tau
+   end subroutine frame_motion
 
    !> The natural scales of a region in the state y: the deformation x_ref (m), the
    !> smallest maximum compression of its contacts at its largest relative speed, or

@@ -20,6 +20,7 @@ library's formulas independently. Regions:
     extreme   every argument over the whole double range (results beyond it are
               written as inf, below the smallest subnormal as 0)
     edges     subnormal and largest arguments, n at its bounds, v = 0, b = 0
+    underflow the force or the potential next to half the smallest subnormal
 
 Writes contact_force.csv next to this script: rows `region,all,c,n,b,x,v,` then
 (hi, lo) of F, dF/dx, dF/dv, Pi, dissipation. Usage: python3 make_contact_force.py
@@ -137,6 +138,25 @@ def rows(rng):
             for x in (tiny, 2.2250738585072014e-308, 1e-3, 1.0, big):
                 for b, v in ((0.0, 0.0), (1.0, -0.5), (0.5, big), (big, 1.0), (tiny, -1.0)):
                     out.append(("edges", c, n, b, x, v))
+    # results next to half the smallest subnormal, 2^-1075: the force (or with
+    # target Pi the potential) at 2^-1090 .. 2^-1060, where the library decides 0
+    # from the binary exponents alone or takes the logarithms
+    for _ in range(240):
+        c = log_uniform(rng, -12, 12)
+        n = rng.choice([1.0, 1.5, rng.uniform(0.3, 4.0)])
+        b = rng.choice([0.0, log_uniform(rng, -4, 2)])
+        v = rng.choice([-1, 1]) * log_uniform(rng, -4, 1)
+        factor = abs(1 + mpf(b) * mpf(v))
+        if factor == 0:
+            factor = mpf(1)
+        target = mpf(2) ** rng.uniform(-1090, -1060)
+        if rng.random() < 0.5:
+            x = (target / (c * factor)) ** (1 / mpf(n))
+        else:
+            x = (target * (n + 1) / c) ** (1 / mpf(n + 1))
+        x = float(x)
+        if x > 0:
+            out.append(("underflow", c, n, b, x, v))
     return out
 
 

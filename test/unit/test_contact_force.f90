@@ -81,8 +81,8 @@ contains
       type(contact_force_type) :: e
       real(wp) :: got(5)
       integer :: i, j, stat, worst(5)
-      character(len=*), parameter :: regions(5) = [character(len=8) :: "typical", "clamp", &
-         & "small_x", "extreme", "edges"]
+      character(len=*), parameter :: regions(6) = [character(len=9) :: "typical", "clamp", &
+         & "small_x", "extreme", "edges", "underflow"]
       integer :: r
 
       call read_labelled_table(error, "contact_force.csv", 15, region, func, values)

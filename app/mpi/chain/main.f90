@@ -26,7 +26,8 @@ program hcimpact_mpi_chain
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result, max_message, &
       & contact_record
    use hcimpact_cvode, only : chain_simulate
-   use hcimpact_cvode_chain_system, only : chain_region, region_scales, region_size
+   use hcimpact_cvode_chain_system, only : chain_region, region_scales, region_size, &
+      & region_frame, frame_motion
    use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_scene, scene_system
    use hcimpact_mpi_chain_block, only : block_setup, block_partition, halo_doubles, &
       & part_region, region_energy
@@ -140,7 +141,7 @@ contains
          & y_whole(:)
       integer, allocatable :: counts(:), displs(:)
       real(wp) :: dissipated_local, dissipated, energy0, energy_error, t0, t1, seconds, q0, &
-         & energy_end, weakest_force
+         & energy_end, weakest_force, v_frame, a_frame, shift, speed
       integer(int64) :: exchanges, halo_bytes, unconverged
       type(contact_record), allocatable :: contacts(:)
       integer :: rank, n_ranks, stat, k, m, n, r, first, size_r, i
@@ -161,24 +162,32 @@ contains
       m = run%block%m
       first = run%block%first
       run%rtol = options%rtol
-      ! the scales of the whole chain (those of the serial chain's one region)
+      ! the whole chain as the serial chain's one region: its energy now, and in the
+      ! frame of that region (`region_frame`: falling freely without walls, moving
+      ! with the slowest bead where all move the same way) the scales of the error
+      ! weights; every rank integrates its block in that frame
       whole = part_region(chain, 1, n)
       allocate(y(region_size(n)))
       y = 0.0_wp
       y(2:3 * n - 1:3) = chain%velocity
+      energy0 = region_energy(whole, y)
+      call region_frame(whole, chain%velocity, v_frame, a_frame)
+      run%block%region%gravity = run%block%region%gravity - a_frame
+      whole%gravity = whole%gravity - a_frame
+      y(2:3 * n - 1:3) = chain%velocity - v_frame
       call region_scales(whole, y, run%scale, weakest_force)
+      whole%gravity = chain%gravity
       ! (as the serial chain's integration: forces below the normal range keep fewer
       ! bits than the tolerance needs)
       if (weakest_force < tiny(1.0_wp)) call fail_all(rank, exit_usage, "the contacts' " &
          & // "peak forces fall below the normal range of doubles, which the " &
          & // "integration cannot resolve")
-      energy0 = region_energy(whole, y)
       deallocate(y)
 
       allocate(y(run%block%n_local))
       y = 0.0_wp
       do k = 1, m
-         y(3 * k - 1) = chain%velocity(first + k - 1)
+         y(3 * k - 1) = chain%velocity(first + k - 1) - v_frame
       end do
 
       call MPI_Barrier(MPI_COMM_WORLD)
@@ -223,6 +232,10 @@ contains
             u(i:i + size_r - 1) = gathered(2 * (i - 1) + 1:2 * (i - 1) + size_r)
             v(i:i + size_r - 1) = gathered(2 * (i - 1) + size_r + 1:2 * (i - 1) + 2 * size_r)
          end do
+         ! out of the frame
+         call frame_motion(v_frame, a_frame, options%t_end, shift, speed)
+         u = u + shift
+         v = v + speed
          ! positions: q_1(0) = 0, q_(i+1)(0) = q_i(0) + gap(i), plus the displacement
          q0 = 0.0_wp
          positions(1) = u(1)

@@ -154,6 +154,14 @@ contains
          if (log_x > 0.0_wp) y = ieee_value(1.0_wp, ieee_positive_inf)
          return
       end if
+      ! below half the smallest subnormal whatever the fractions: 0, as the logarithms
+      ! would give, without them (the beads ahead of a wave, pressed by 1e-250 m, went
+      ! this way: 11 % of a struck chain's time)
+      if (log2_bound(x, p, factors, divisor) < real(minexponent(1.0_wp) &
+         & - digits(1.0_wp) - 2, wp)) then
+         y = 0.0_wp
+         return
+      end if
       l = p * dd_log(dd(x)) - dd_log(dd(divisor))
       do i = 1, size(factors)
          l = l + dd_log(dd(factors(i)))
@@ -161,6 +169,17 @@ contains
       r = dd_exp(l)
       y = r%hi
    end function log_product
+
+   !> An upper bound of log2(factors(1) * ... * factors(k) * x^p / divisor) from the
+   !> binary exponents alone (a double 2^e f has f in [1/2, 1), so log2 lies in
+   !> [e - 1, e)), for |p ln x| within log_product's bound (p e(x) is then finite)
+   pure real(wp) function log2_bound(x, p, factors, divisor) result(bound)
+      real(wp), intent(in) :: x, p
+      real(wp), intent(in) :: factors(:)
+      real(wp), intent(in) :: divisor
+      bound = p * real(exponent(x), wp) + max(0.0_wp, -p) &
+         & + real(sum(exponent(factors)) - exponent(divisor) + 1, wp)
+   end function log2_bound
 
    !> The product of positive finite doubles without overflow or underflow on the way:
    !> direct when the partial products stay normal, else from logarithms.
