@@ -163,7 +163,7 @@ contains
    subroutine usage()
       write(error_unit, '(a)') "usage: bench_chain struck|scaling|memory|dilute|row ... " // &
          & "(see the header of bench/chain/bench_chain.f90)"
-      error stop 2
+      stop 2, quiet=.true.
    end subroutine usage
 
    !> The value after the current option
@@ -284,7 +284,7 @@ contains
       open(newunit=unit, file=path, status="replace", action="write", iostat=ios)
       if (ios /= 0) then
          write(error_unit, '(a)') "bench_chain: cannot write " // path
-         error stop 1
+         stop 1, quiet=.true.
       end if
       write(unit, '(a, i0)', iostat=ios) "# n=", n
       write(unit, '(a, es24.16e3)', iostat=ios) "# mass=", bead_mass()
@@ -304,7 +304,7 @@ contains
       if (ios == 0) close(unit, iostat=ios)
       if (ios /= 0) then
          write(error_unit, '(a)') "bench_chain: write failed: " // path
-         error stop 1
+         stop 1, quiet=.true.
       end if
    end subroutine write_state
 
@@ -314,7 +314,10 @@ contains
       integer :: unit, r, k, kk, stat, calls, ios
       real(wp) :: seconds
       open(newunit=unit, file=trim(out_path), status="replace", action="write", iostat=ios)
-      if (ios /= 0) error stop "bench_chain: cannot write the scaling CSV"
+      if (ios /= 0) then
+         write(error_unit, '(a)') "bench_chain: cannot write the scaling CSV"
+         stop 1, quiet=.true.
+      end if
       write(unit, '(a)') "round,n,t_end,rtol,status,seconds,calls,steps,rhs_evals," // &
          & "jacobian_evals,front,energy_error,gap,clusters,switches,region"
       do r = 1, rounds
@@ -371,10 +374,16 @@ contains
       real(wp) :: seconds, round_seconds(rounds, n_methods)
       open(newunit=times_unit, file=trim(out_path), status="replace", action="write", &
          & iostat=ios)
-      if (ios /= 0) error stop "bench_chain: cannot write the dilute times"
+      if (ios /= 0) then
+         write(error_unit, '(a)') "bench_chain: cannot write the dilute times"
+         stop 1, quiet=.true.
+      end if
       open(newunit=acc_unit, file=trim(out_path2), status="replace", action="write", &
          & iostat=ios)
-      if (ios /= 0) error stop "bench_chain: cannot write the dilute accuracy"
+      if (ios /= 0) then
+         write(error_unit, '(a)') "bench_chain: cannot write the dilute accuracy"
+         stop 1, quiet=.true.
+      end if
       write(times_unit, '(a)') "case,round,method,seconds,calls,status"
       write(acc_unit, '(a)') "case,method,rtol,status,seconds,contacts," // &
          & "closed_form_contacts,integrated_contacts,clusters,steps,energy_error," // &
@@ -428,7 +437,10 @@ contains
       integer :: unit, ios, r, kk, k, j, stat, calls, methods
       real(wp) :: seconds, dv
       open(newunit=unit, file=trim(out_path), status="replace", action="write", iostat=ios)
-      if (ios /= 0) error stop "bench_chain: cannot write the row times"
+      if (ios /= 0) then
+         write(error_unit, '(a)') "bench_chain: cannot write the row times"
+         stop 1, quiet=.true.
+      end if
       write(unit, '(a)') "n,round,method,seconds,status,contacts,closed_form_contacts," // &
          & "integrated_contacts,clusters,steps,energy_error,dv_from_auto,t_end,rtol"
       allocate(rows(size(sizes)))
@@ -461,7 +473,10 @@ contains
          end do
       end do
       close(unit, iostat=ios)
-      if (ios /= 0) error stop "bench_chain: cannot close the row times"
+      if (ios /= 0) then
+         write(error_unit, '(a)') "bench_chain: cannot close the row times"
+         stop 1, quiet=.true.
+      end if
    end subroutine run_row
 
    !> One CSV row of the dilute row's runs (t_end and rtol: the program's)
@@ -476,7 +491,10 @@ contains
          & seconds, stat, result%n_contacts, result%counters%closed_form_contacts, &
          & result%counters%integrated_contacts, result%counters%clusters, &
          & result%counters%steps, result%energy_error, dv_auto, t_end, rtol
-      if (ios /= 0) error stop "bench_chain: cannot write the row times"
+      if (ios /= 0) then
+         write(error_unit, '(a)') "bench_chain: cannot write the row times"
+         stop 1, quiet=.true.
+      end if
       flush(unit)
    end subroutine write_row
 

@@ -74,7 +74,7 @@ contains
       open(newunit=unit, file=path, status="old", action="read", iostat=ios)
       if (ios /= 0) then
          write(error_unit, '(a)') "cannot open " // path
-         error stop 1
+         stop 1, quiet=.true.
       end if
       header_seen = .false.
       count = 0

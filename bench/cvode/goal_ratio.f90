@@ -57,7 +57,7 @@ program bench_cvode_goal_ratio
    if (command_argument_count() < 2) then
       write(error_unit, '(a)') "usage: bench_cvode_goal_ratio REFERENCE.csv OUT.csv " // &
          & "[--quick] [--rounds R]"
-      error stop 1
+      stop 1, quiet=.true.
    end if
    call get_command_argument(1, ref_path)
    call get_command_argument(2, out_path)
@@ -74,11 +74,11 @@ program bench_cvode_goal_ratio
          read(arg, *, iostat=ios) rounds
          if (ios /= 0 .or. rounds < 1) then
             write(error_unit, '(a)') "bench_cvode_goal_ratio: --rounds needs a positive integer"
-            error stop 1
+            stop 1, quiet=.true.
          end if
       else
          write(error_unit, '(a)') "bench_cvode_goal_ratio: unknown option " // trim(arg)
-         error stop 1
+         stop 1, quiet=.true.
       end if
       ia = ia + 1
    end do
@@ -298,7 +298,7 @@ contains
    subroutine fail(message)
       character(len=*), intent(in) :: message
       write(error_unit, '(a)') "bench_cvode_goal_ratio: " // message
-      error stop 1
+      stop 1, quiet=.true.
    end subroutine fail
 
 end program bench_cvode_goal_ratio

@@ -38,7 +38,7 @@ program bench_cvode_stability
 
    if (command_argument_count() < 1) then
       write(error_unit, '(a)') "usage: bench_cvode_stability OUT.csv [--quick]"
-      error stop 1
+      stop 1, quiet=.true.
    end if
    call get_command_argument(1, out_path)
    quick = .false.

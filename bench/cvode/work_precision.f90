@@ -35,7 +35,7 @@ program bench_cvode_work_precision
 
    if (command_argument_count() < 2) then
       write(error_unit, '(a)') "usage: bench_cvode_work_precision REFERENCE.csv OUT.csv [--quick]"
-      error stop 1
+      stop 1, quiet=.true.
    end if
    call get_command_argument(1, ref_path)
    call get_command_argument(2, out_path)
@@ -47,7 +47,7 @@ program bench_cvode_work_precision
          quick = .true.
       else
          write(error_unit, '(a)') "bench_cvode_work_precision: unknown option " // trim(arg)
-         error stop 1
+         stop 1, quiet=.true.
       end if
       ia = ia + 1
    end do

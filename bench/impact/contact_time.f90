@@ -99,7 +99,7 @@ contains
       open(newunit=unit, file=trim(path), status="old", action="read", iostat=ios)
       if (ios /= 0) then
          write(error_unit, '(a)') "cannot open " // trim(path)
-         error stop 1
+         stop 1, quiet=.true.
       end if
       nrows = 0
       do

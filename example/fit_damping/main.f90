@@ -30,7 +30,7 @@ program fit_damping_example
    call read_data(path, velocity, measured, stat)
    if (stat /= 0) then
       write(error_unit, '(a)') "fit_damping: cannot read " // path
-      error stop 1
+      stop 1, quiet=.true.
    end if
    write(output_unit, '("Data: ", a, " (", i0, " points, V = ", f5.3, " ... ", f5.3, &
       & " m/s)")') path, size(velocity), minval(velocity), maxval(velocity)
@@ -38,7 +38,7 @@ program fit_damping_example
    call fit_damping(velocity, measured, exact, stat)
    if (stat /= 0) then
       write(error_unit, '(a)') "fit_damping: " // status_message(stat)
-      error stop 1
+      stop 1, quiet=.true.
    end if
    b = exact%parameters(1)
    se = exact%standard_errors(1)
@@ -57,7 +57,7 @@ program fit_damping_example
    call fit_damping_linear(velocity, measured, linear, stat)
    if (stat /= 0) then
       write(error_unit, '(a)') "fit_damping_linear: " // status_message(stat)
-      error stop 1
+      stop 1, quiet=.true.
    end if
    write(output_unit, '(/, "Linear law e = 1 - (2b/3) V, for comparison:", /, "  b = ", &
       & f8.5, " +- ", f7.5, " s/m   (", f0.1, " % from the exact-law fit, ", f0.1, &
