@@ -41,7 +41,7 @@ module hcimpact_cvode_chain
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
       & force_rate, slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
-      & region_frame, frame_motion, &
+      & region_frame, frame_motion, first_step, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
@@ -391,7 +391,7 @@ contains
          ierr = FCVodeSetJacFn(self%mem, c_funloc(chain_jacobian_callback))
          if (ierr /= CV_SUCCESS) exit setup
          where = "CVodeSetInitStep"
-         h0 = 0.01_wp * sqrt(engine%options%rtol) * x_ref / v_ref
+         h0 = first_step(engine%options%rtol, self%region%scale)
          if (self%first_step > 0.0_wp) h0 = self%first_step
          self%h_last = h0
          ierr = FCVodeSetInitStep(self%mem, real(h0, c_double))

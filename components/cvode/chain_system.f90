@@ -33,7 +33,7 @@ module hcimpact_cvode_chain_system
    private
 
    public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
-   public :: region_frame, frame_motion
+   public :: region_frame, frame_motion, first_step
    public :: error_weights, weights_rtol, newton_factor, factor_newton_matrix, solve_newton
    public :: slot_state, dissipation_index, force_rate, slot_force_rate, upper_band, &
       & lower_band
@@ -292,6 +292,15 @@ contains
       shift = (v_frame + 0.5_wp * (a_frame * tau)) * tau
       speed = v_frame + a_frame * tau
    end subroutine frame_motion
+
+   !> CVODE's first step (s) in a region with the scales of `region_scales` (x_ref,
+   !> v_ref, e_ref): a hundredth of sqrt(rtol) times the time x_ref / v_ref. CVODE's
+   !> own estimate, from the end time, went to t = +Inf and NaN states for beads at
+   !> rest given t_end = 1e159.
+   pure real(wp) function first_step(rtol, scale)
+      real(wp), intent(in) :: rtol, scale(3)
+      first_step = 0.01_wp * sqrt(rtol) * scale(1) / scale(2)
+   end function first_step
 
    !> The natural scales of a region in the state y: the deformation x_ref (m), the
    !> smallest maximum compression of its contacts at its largest relative speed, or

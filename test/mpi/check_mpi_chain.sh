@@ -9,7 +9,8 @@
 # too (CONTACTS.csv of both runs, in pair order): the same pairs in the same order,
 # every start and end within TIME_TOL seconds, approach and separation speeds within
 # SPEED_TOL m/s, peak force, largest deformation and dissipated energy within
-# RELATIVE_TOL of the larger of the two; at least one contact.
+# RELATIVE_TOL of the larger of the two; at least one contact. With ENERGY_TOL in the
+# environment, the distributed run's energy_error (its summary) at most ENERGY_TOL.
 #
 # Usage: check_mpi_chain.sh MPIEXEC N PROGRAM SCENE OUTPUT_DIR POSITION_TOL VELOCITY_TOL
 #          [TIME_TOL SPEED_TOL RELATIVE_TOL]
@@ -59,6 +60,14 @@ paste -d, "$out/serial.csv" "$out/mpi.csv" | awk -F, -v qtol="$qtol" -v vtol="$v
     printf "%d beads, %s ranks: largest differences %.3g m, %.3g m/s\n", NR - 1, ranks, mq, mv
   }' ranks="$ranks"
 
+if [ -n "${ENERGY_TOL:-}" ]; then
+  energy="$(awk '$1 == "energy_error" { print $2 }' "$out/mpi.txt")"
+  if ! awk -v e="$energy" -v tol="$ENERGY_TOL" 'BEGIN { exit !(e != "" && e + 0 <= tol + 0) }'; then
+    echo "FAIL: energy_error '$energy' with $ranks ranks, above $ENERGY_TOL" >&2
+    exit 1
+  fi
+  echo "energy_error $energy with $ranks ranks (at most $ENERGY_TOL)"
+fi
 [ -n "$ttol" ] || exit 0
 serial_lines="$(wc -l < "$out/serial_contacts.csv")"
 mpi_lines="$(wc -l < "$out/mpi_contacts.csv")"

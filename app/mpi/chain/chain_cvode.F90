@@ -49,7 +49,8 @@ module hcimpact_mpi_chain_cvode
    use hcimpact_cvode_sundials, only : N_Vector, SUNLinearSolver, FN_VGetArrayPointer, &
       & FN_VDestroy, FSUNLinSolFree, context_create, context_free, capture_errors
    use hcimpact_cvode_solver, only : cvode_flag_name
-   use hcimpact_cvode_chain_system, only : upper_band, lower_band, error_weights, weights_rtol
+   use hcimpact_cvode_chain_system, only : upper_band, lower_band, error_weights, weights_rtol, &
+      & first_step
    use hcimpact_mpi_chain_block, only : chain_block, exchange_halo, block_rhs
    use hcimpact_mpi_chain_contacts, only : contact_tracker, tracker_start, tracker_step, &
       & max_order
@@ -57,7 +58,8 @@ module hcimpact_mpi_chain_cvode
       & FCVodeWFtolerances, FCVodeSetStopTime, FCVode, FCVodeFree, &
       & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumLinIters, &
       & FCVodeGetNumNonlinSolvIters, FCVodeGetNumPrecEvals, FCVBBDPrecInit, &
-      & FCVBBDPrecGetNumGfnEvals, FCVodeGetDky, FCVodeGetLastOrder, CV_BDF, CV_ONE_STEP, &
+      & FCVBBDPrecGetNumGfnEvals, FCVodeGetDky, FCVodeGetLastOrder, FCVodeSetInitStep, &
+      & CV_BDF, CV_ONE_STEP, &
       & CV_SUCCESS, CV_TSTOP_RETURN, CV_TOO_MUCH_WORK
    use fnvector_parallel_mod, only : FN_VNew_Parallel
    use mpi_f08, only : MPI_Allreduce, MPI_LOGICAL, MPI_LAND
@@ -192,6 +194,11 @@ contains
          dkyv => FN_VGetArrayPointer(dky_vec)
          where = "CVodeSetStopTime"
          ierr = FCVodeSetStopTime(mem, real(t_end, c_double))
+         if (ierr /= CV_SUCCESS) exit setup
+         ! the serial chain's first step (`first_step`), not CVODE's estimate from t_end
+         where = "CVodeSetInitStep"
+         ierr = FCVodeSetInitStep(mem, real(min(first_step(run%rtol, run%scale), t_end), &
+            & c_double))
          if (ierr /= CV_SUCCESS) exit setup
          ! a setup that failed on another rank only: none of them may enter CVode,
          ! whose steps every rank must take together

@@ -18,13 +18,15 @@
 !> line or scene (every rank checks the same scene, and all end alike).
 program hcimpact_mpi_chain
    use, intrinsic :: iso_fortran_env, only : int64, output_unit, error_unit
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use mpi_f08, only : MPI_Init, MPI_Finalize, MPI_Comm_rank, MPI_Comm_size, MPI_Gatherv, &
       & MPI_Reduce, MPI_Allreduce, MPI_Bcast, MPI_Barrier, MPI_Wtime, MPI_COMM_WORLD, &
       & MPI_DOUBLE_PRECISION, MPI_INTEGER8, MPI_LOGICAL, MPI_SUM, MPI_MAX, MPI_LAND
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result, max_message, &
-      & contact_record
+      & contact_record, energy_balance_error
+   use hcimpact_cvode_halting, only : halting_suspend, halting_resume
    use hcimpact_cvode, only : chain_simulate
    use hcimpact_cvode_chain_system, only : chain_region, region_scales, region_size, &
       & region_frame, frame_motion
@@ -141,11 +143,11 @@ contains
          & y_whole(:)
       integer, allocatable :: counts(:), displs(:)
       real(wp) :: dissipated_local, dissipated, energy0, energy_error, t0, t1, seconds, q0, &
-         & energy_end, weakest_force, v_frame, a_frame, shift, speed
+         & energy_end, weakest_force, v_frame, a_frame, shift, speed, e_grav
       integer(int64) :: exchanges, halo_bytes, unconverged
       type(contact_record), allocatable :: contacts(:)
       integer :: rank, n_ranks, stat, k, m, n, r, first, size_r, i
-      logical :: ok, all_ok
+      logical :: ok, all_ok, halting(3)
 
       call MPI_Init()
       call MPI_Comm_rank(MPI_COMM_WORLD, rank)
@@ -232,11 +234,14 @@ contains
             u(i:i + size_r - 1) = gathered(2 * (i - 1) + 1:2 * (i - 1) + size_r)
             v(i:i + size_r - 1) = gathered(2 * (i - 1) + size_r + 1:2 * (i - 1) + 2 * size_r)
          end do
-         ! out of the frame
+         ! out of the frame, then positions (q_1(0) = 0, q_(i+1)(0) = q_i(0) + gap(i),
+         ! plus the displacement) and the energies; a state or an energy beyond the
+         ! range of doubles is a failure, found with halting off (the Debug build traps
+         ! the overflow)
+         call halting_suspend(halting)
          call frame_motion(v_frame, a_frame, options%t_end, shift, speed)
          u = u + shift
          v = v + speed
-         ! positions: q_1(0) = 0, q_(i+1)(0) = q_i(0) + gap(i), plus the displacement
          q0 = 0.0_wp
          positions(1) = u(1)
          do i = 2, n
@@ -247,8 +252,26 @@ contains
          y_whole = 0.0_wp
          y_whole(1:3 * n - 2:3) = u
          y_whole(2:3 * n - 1:3) = v
-         energy_end = region_energy(whole, y_whole)
-         if (len_trim(contacts_path) > 0) &
+         energy_end = 0.0_wp
+         e_grav = 0.0_wp
+         if (all(ieee_is_finite(positions)) .and. all(ieee_is_finite(v))) then
+            energy_end = region_energy(whole, y_whole)
+            e_grav = -sum(chain%mass * chain%gravity * u)
+            ! as chain_simulate's energy_error (`energy_balance_error`)
+            energy_error = energy_balance_error(energy_end, dissipated, energy0, e_grav)
+            if (.not. (ieee_is_finite(energy_end) .and. ieee_is_finite(e_grav) .and. &
+               & ieee_is_finite(energy_error))) then
+               ok = .false.
+               message = "the energies of the chain leave the range of doubles (kinetic, " &
+                  & // "elastic or gravitational energy, or their balance, beyond 1.8e308 J)"
+            end if
+         else
+            ok = .false.
+            write(message, '(a, es10.3e3, a)') "by t = ", options%t_end, " s a position or a " &
+               & // "velocity leaves the range of doubles (beyond 1.8e308 m or m/s)"
+         end if
+         call halting_resume(halting)
+         if (ok .and. len_trim(contacts_path) > 0) &
             & call write_contacts(trim(contacts_path), contacts, ok, message)
          if (ok) then
             call write_state(state_path, positions, v, ok, message)
@@ -256,10 +279,6 @@ contains
                & call remove_file(trim(contacts_path))
          end if
          if (ok) then
-            ! relative to the initial energy, or to the energy scale when that is 0 (beads
-            ! at rest released under gravity)
-            energy_error = (energy_end + dissipated - energy0) &
-               & / merge(abs(energy0), run%scale(3), energy0 /= 0.0_wp)
             ! bytes of the halo exchanges: every rank sends halo_doubles doubles to each
             ! neighbour per exchange (exchanges is their sum over the ranks)
             halo_bytes = (exchanges / n_ranks) * 2_int64 * (n_ranks - 1) * halo_doubles * 8

@@ -54,7 +54,7 @@ module hcimpact_chain_engine
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, contact_record, &
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
-      & kinetic_energy
+      & kinetic_energy, energy_balance_error
    implicit none
    private
 
@@ -1843,7 +1843,7 @@ contains
       type(chain_result), intent(inout) :: result
       integer, intent(out) :: stat
       integer :: i, s, nsamples
-      real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, e_grav0, p0, p, scale, x, in_progress
+      real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, p0, p, scale, x, in_progress
       type(contact_law) :: law
 
       result%time = engine%time
@@ -1880,7 +1880,6 @@ contains
          p0 = p0 + engine%chain%mass(i) * engine%chain%velocity(i)
          scale = scale + engine%chain%mass(i) * abs(engine%chain%velocity(i))
       end do
-      e_grav0 = 0.0_wp
       result%initial_energy = e_kin0
       ! and what the contacts still in progress have dissipated so far (a region's,
       ! written back at the end, or a closed-form contact's)
@@ -1894,8 +1893,8 @@ contains
       end do
       result%dissipated = engine%dissipated + in_progress
       ! the energy put in by gravity counts in the scale of the error
-      result%energy_error = abs(e_kin + e_el + e_grav + result%dissipated - e_kin0 - e_grav0) &
-         & / max(e_kin0 + abs(e_grav), tiny(1.0_wp))
+      result%energy_error = energy_balance_error(e_kin + e_el + e_grav, result%dissipated, &
+         & e_kin0, e_grav)
       if (.not. (engine%chain%left_wall .or. engine%chain%right_wall) .and. &
          & engine%chain%gravity == 0.0_wp) then
          ! (not max(scale, tiny): momenta of subnormal size are errors of their size)

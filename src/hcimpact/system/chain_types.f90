@@ -26,7 +26,7 @@ module hcimpact_chain_types
 
    public :: contact_law, chain_type, chain_options, contact_record, chain_result
    public :: chain_counters, chain_switch
-   public :: check_chain, kinetic_energy
+   public :: check_chain, kinetic_energy, energy_balance_error
    public :: method_auto, method_exact, method_integrated
    public :: integrator_bdf, integrator_adams
    public :: by_closed_forms, by_integration, by_both
@@ -451,6 +451,18 @@ contains
       real(wp) :: energy
       energy = 0.5_wp * ((mass * abs(velocity)) * abs(velocity))
    end function kinetic_energy
+
+   !> The energy balance of a system as a relative error (`chain_result`%energy_error):
+   !> |E_end + dissipated - E_start| over the initial kinetic energy plus the
+   !> gravitational energy released, e_kin0 + |e_grav| (tiny when both are 0). A system
+   !> begins without elastic energy (no initial overlap) and with its gravitational
+   !> energy at 0 (counted from the initial positions), so E_start = e_kin0; e_end is
+   !> the kinetic, elastic and gravitational energy at the end, e_grav the last part.
+   elemental function energy_balance_error(e_end, dissipated, e_kin0, e_grav) result(error)
+      real(wp), intent(in) :: e_end, dissipated, e_kin0, e_grav
+      real(wp) :: error
+      error = abs(e_end + dissipated - e_kin0) / max(e_kin0 + abs(e_grav), tiny(1.0_wp))
+   end function energy_balance_error
 
    !> Whether the kinetic energy and the momentum sum(m |v|) of bodies are doubles,
    !> found without forming a value beyond the range (the Debug build traps an
