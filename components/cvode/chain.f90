@@ -261,7 +261,7 @@ contains
       ! integrated to 7e-8 relative with success, and at 1e-300 m/s ran to max_steps)
       if (weakest_force < tiny(1.0_wp)) then
          stat = hcimpact_err_domain
-         write(engine%message, '(a, es10.3, a, i0, a, i0, a, es10.3, a)') "at t = ", &
+         write(engine%message, '(a, es11.3e3, a, i0, a, i0, a, es11.3e3, a)') "at t = ", &
             & engine%time, " s the contacts of bodies ", self%first, " to ", self%last, &
             & " have peak forces down to ", weakest_force, " N, below the normal range " &
             & // "of doubles, which the integration cannot resolve (method auto computes " &
@@ -505,7 +505,7 @@ contains
          end if
          if (engine%counters%steps >= engine%options%max_steps) then
             stat = hcimpact_err_solver
-            write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", self%time, &
+            write(engine%message, '(a, es11.3e3, a, i0, a)') "CVODE at t = ", self%time, &
                & " s: more than options%max_steps = ", engine%options%max_steps, " steps"
             what = advance_failed
             exit run
@@ -515,7 +515,7 @@ contains
          ! of doubles, where CVODE would go on with an infinite time and NaN states
          if (self%time > huge(1.0_wp) * 1.0e-6_wp) then
             stat = hcimpact_err_solver
-            write(engine%message, '(a, es10.3, a)') "CVODE at t = ", self%time, &
+            write(engine%message, '(a, es11.3e3, a)') "CVODE at t = ", self%time, &
                & " s: the time is about to leave the range of doubles"
             what = advance_failed
             exit run
@@ -525,7 +525,7 @@ contains
             & self%y_vec, tret, CV_ONE_STEP)
          if (ierr < 0) then
             stat = hcimpact_err_solver
-            write(engine%message, '(a, es10.3, a)') "CVODE failed at t = ", tret(1), &
+            write(engine%message, '(a, es11.3e3, a)') "CVODE failed at t = ", tret(1), &
                & " s: " // cvode_flag_name(ierr) // report_detail(self%region%report)
             what = advance_failed
             exit run
@@ -538,7 +538,7 @@ contains
             self%stalled = self%stalled + 1
             if (self%stalled > max_stalled) then
                stat = hcimpact_err_solver
-               write(engine%message, '(a, es10.3, a, i0, a)') "CVODE at t = ", self%tn, &
+               write(engine%message, '(a, es11.3e3, a, i0, a)') "CVODE at t = ", self%tn, &
                   & " s: ", max_stalled, " steps in a row did not advance the time (steps " &
                   & // "below its resolution)"
                what = advance_failed
@@ -706,7 +706,7 @@ contains
       call region_rhs(self%region, self%time, self%y, dy, ok)
       if (.not. ok) then
          stat = hcimpact_err_solver
-         write(engine%message, '(a, es10.3, a)') "at t = ", self%time, &
+         write(engine%message, '(a, es11.3e3, a)') "at t = ", self%time, &
             & " s: a force of the region is not finite"
          return
       end if

@@ -267,7 +267,7 @@ contains
             end if
          else
             ok = .false.
-            write(message, '(a, es10.3e3, a)') "by t = ", options%t_end, " s a position or a " &
+            write(message, '(a, es11.3e3, a)') "by t = ", options%t_end, " s a position or a " &
                & // "velocity leaves the range of doubles (beyond 1.8e308 m or m/s)"
          end if
          call halting_resume(halting)

@@ -296,7 +296,7 @@ contains
          passes = passes + 1_int64
          if (passes > max_passes) then
             stat = hcimpact_err_no_convergence
-            write(engine%message, '(a, i0, a, es10.3, a)') "no progress after ", &
+            write(engine%message, '(a, i0, a, es11.3e3, a)') "no progress after ", &
                & max_passes, " passes of the event loop (at t = ", engine%time, " s)"
             exit main
          end if
@@ -372,7 +372,7 @@ contains
                   idle_dissolves = idle_dissolves + 1
                   if (idle_dissolves > max_idle_dissolves) then
                      stat = hcimpact_err_no_convergence
-                     write(engine%message, '(a, i0, a, es10.3, a)') "a cluster formed and " &
+                     write(engine%message, '(a, i0, a, es11.3e3, a)') "a cluster formed and " &
                         & // "dissolved ", max_idle_dissolves, " times at t = ", engine%time, &
                         & " s without the time advancing"
                      exit main
@@ -843,7 +843,7 @@ contains
       stat = hcimpact_ok
       if (engine%options%method == method_exact) then
          stat = hcimpact_err_domain
-         write(engine%message, '(a, es10.3, a)') "method exact: at t = ", engine%time, &
+         write(engine%message, '(a, es11.3e3, a)') "method exact: at t = ", engine%time, &
             & " s a cluster forms (" // trim(why) // "), contacts that overlap, which " &
             & // "the closed forms do not compute (method auto or integrated)"
       else if (.not. have_integrator) then
@@ -1944,7 +1944,7 @@ contains
          & any(.not. (ieee_is_finite(result%sample_velocities) .or. &
          & ieee_is_nan(result%sample_velocities)))) then
          stat = hcimpact_err_domain
-         write(engine%message, '(a, es10.3, a)') "by t = ", engine%time, " s a position or " &
+         write(engine%message, '(a, es11.3e3, a)') "by t = ", engine%time, " s a position or " &
             & // "a velocity (final or sampled) leaves the range of doubles (beyond 1.8e308 " &
             & // "m or m/s)"
       end if
