@@ -268,9 +268,9 @@ contains
    !> freely (a_frame = region%gravity), and where all bodies move the same way it
    !> moves with the slowest of them (v_frame, m/s); else it stands still. In it the
    !> relative motion keeps the digits of its own size, not those of a common speed
-   !> or fall (doc/chains.md, "The region's frame"); where a body is at rest the frame
-   !> stands still, so that a body at rest added to a region leaves its integration
-   !> as it was.
+   !> or fall (doc/chains.md, "The region's frame"). Where a body is at rest the frame
+   !> does not move with the bodies (it still falls without a wall), so that a body at
+   !> rest added to a region leaves its integration as it was.
    pure subroutine region_frame(region, v, v_frame, a_frame)
       type(chain_region), intent(in) :: region
       real(wp), intent(in) :: v(:)

@@ -62,7 +62,9 @@ paste -d, "$out/serial.csv" "$out/mpi.csv" | awk -F, -v qtol="$qtol" -v vtol="$v
 
 if [ -n "${ENERGY_TOL:-}" ]; then
   energy="$(awk '$1 == "energy_error" { print $2 }' "$out/mpi.txt")"
-  if ! awk -v e="$energy" -v tol="$ENERGY_TOL" 'BEGIN { exit !(e != "" && e + 0 <= tol + 0) }'; then
+  # (a number in the summary's form: awk reads NaN or Infinity as 0)
+  if ! awk -v e="$energy" -v tol="$ENERGY_TOL" \
+    'BEGIN { exit !(e ~ /^[-+]?[0-9]+\.[0-9]+E[-+][0-9]+$/ && e + 0 <= tol + 0) }'; then
     echo "FAIL: energy_error '$energy' with $ranks ranks, above $ENERGY_TOL" >&2
     exit 1
   fi

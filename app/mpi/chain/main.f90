@@ -36,7 +36,8 @@ program hcimpact_mpi_chain
    use hcimpact_mpi_chain_cvode, only : chain_integration, integrate_chain, &
       & chain_counters_mpi
    use hcimpact_mpi_chain_contacts, only : sort_by_pair, gather_contacts
-   use hcimpact_mpi_chain_output, only : write_state, write_contacts, remove_file, summary_line
+   use hcimpact_mpi_chain_output, only : write_state, write_contacts, remove_file, &
+      & summary_line
    implicit none
 
    integer, parameter :: exit_ok = 0, exit_failure = 1, exit_usage = 2
@@ -126,7 +127,12 @@ contains
       call summary_line(output_unit, "contacts", str_i(result%n_contacts), ok)
       call summary_line(output_unit, "energy_error", str_r(result%energy_error), ok)
       call summary_line(output_unit, "seconds", str_r(seconds), ok)
-      if (.not. ok) call fail_alone(exit_failure, "the standard output: writing failed")
+      if (.not. ok) then
+         ! a failed run leaves no file that looks complete
+         call remove_file(trim(state_path))
+         if (len_trim(contacts_path) > 0) call remove_file(trim(contacts_path))
+         call fail_alone(exit_failure, "the standard output: writing failed")
+      end if
       stop exit_ok, quiet=.true.
    end subroutine run_serial
 
@@ -305,7 +311,12 @@ contains
                & str_i(unconverged), ok)
             call summary_line(output_unit, "energy_error", str_r(energy_error), ok)
             call summary_line(output_unit, "seconds", str_r(seconds), ok)
-            if (.not. ok) message = "the standard output: writing failed"
+            if (.not. ok) then
+               ! a failed run leaves no file that looks complete
+               message = "the standard output: writing failed"
+               call remove_file(trim(state_path))
+               if (len_trim(contacts_path) > 0) call remove_file(trim(contacts_path))
+            end if
          end if
       end if
       call MPI_Bcast(ok, 1, MPI_LOGICAL, 0, MPI_COMM_WORLD)
@@ -340,7 +351,7 @@ contains
    pure function str_r(value) result(text)
       real(wp), intent(in) :: value
       character(len=24) :: text
-      write(text, '(es12.5)') value
+      write(text, '(es13.5e3)') value
    end function str_r
 
 end program hcimpact_mpi_chain

@@ -154,13 +154,18 @@ contains
          if (log_x > 0.0_wp) y = ieee_value(1.0_wp, ieee_positive_inf)
          return
       end if
-      ! below half the smallest subnormal whatever the fractions: 0, as the logarithms
-      ! would give, without them (the beads ahead of a wave, pressed by 1e-250 m, went
-      ! this way: 11 % of a struck chain's time)
-      if (log2_bound(x, p, factors, divisor) < real(minexponent(1.0_wp) &
-         & - digits(1.0_wp) - 2, wp)) then
-         y = 0.0_wp
-         return
+      ! below a quarter of the smallest subnormal whatever the fractions: 0, as the
+      ! logarithms would give, without them (the beads ahead of a wave, pressed by
+      ! 1e-250 m, went this way: 11 % of a struck chain's time). Not with a subnormal
+      ! divisor, nor a subnormal x with p < 0, whose binary exponents the standard
+      ! leaves to the compiler (gfortran's are those of the value; one clamped to
+      ! minexponent would make the bound too low)
+      if (divisor >= tiny(1.0_wp) .and. (p >= 0.0_wp .or. x >= tiny(1.0_wp))) then
+         if (log2_bound(x, p, factors, divisor) < real(minexponent(1.0_wp) &
+            & - digits(1.0_wp) - 2, wp)) then
+            y = 0.0_wp
+            return
+         end if
       end if
       l = p * dd_log(dd(x)) - dd_log(dd(divisor))
       do i = 1, size(factors)
