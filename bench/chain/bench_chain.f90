@@ -40,7 +40,7 @@ program bench_chain
    use hcimpact_chain_types, only : method_auto, method_exact, method_integrated, &
       & integrator_bdf, integrator_adams
    use hcimpact_cvode, only : chain_simulate
-   use bench_cvode_common, only : cpu_seconds, median
+   use bench_cvode_common, only : cpu_seconds, median, fail_run
    use bench_chain_cases, only : struck_chain, dilute_case, n_dilute, dilute_names, &
       & dilute_t_end, bead_mass, bead_stiffness, striker_speed, dilute_row
    implicit none
@@ -282,10 +282,7 @@ contains
       real(wp), intent(in) :: tolerance, seconds
       integer :: unit, i, ios
       open(newunit=unit, file=path, status="replace", action="write", iostat=ios)
-      if (ios /= 0) then
-         write(error_unit, '(a)') "bench_chain: cannot write " // path
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("bench_chain: cannot write " // path)
       write(unit, '(a, i0)', iostat=ios) "# n=", n
       write(unit, '(a, es24.16e3)', iostat=ios) "# mass=", bead_mass()
       write(unit, '(a, es24.16e3)', iostat=ios) "# stiffness=", bead_stiffness()
@@ -302,10 +299,7 @@ contains
          if (ios /= 0) exit
       end do
       if (ios == 0) close(unit, iostat=ios)
-      if (ios /= 0) then
-         write(error_unit, '(a)') "bench_chain: write failed: " // path
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("bench_chain: write failed: " // path)
    end subroutine write_state
 
    subroutine run_scaling()
@@ -314,10 +308,7 @@ contains
       integer :: unit, r, k, kk, stat, calls, ios
       real(wp) :: seconds
       open(newunit=unit, file=trim(out_path), status="replace", action="write", iostat=ios)
-      if (ios /= 0) then
-         write(error_unit, '(a)') "bench_chain: cannot write the scaling CSV"
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("bench_chain: cannot write the scaling CSV")
       write(unit, '(a)') "round,n,t_end,rtol,status,seconds,calls,steps,rhs_evals," // &
          & "jacobian_evals,front,energy_error,gap,clusters,switches,region"
       do r = 1, rounds
@@ -374,16 +365,10 @@ contains
       real(wp) :: seconds, round_seconds(rounds, n_methods)
       open(newunit=times_unit, file=trim(out_path), status="replace", action="write", &
          & iostat=ios)
-      if (ios /= 0) then
-         write(error_unit, '(a)') "bench_chain: cannot write the dilute times"
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("bench_chain: cannot write the dilute times")
       open(newunit=acc_unit, file=trim(out_path2), status="replace", action="write", &
          & iostat=ios)
-      if (ios /= 0) then
-         write(error_unit, '(a)') "bench_chain: cannot write the dilute accuracy"
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("bench_chain: cannot write the dilute accuracy")
       write(times_unit, '(a)') "case,round,method,seconds,calls,status"
       write(acc_unit, '(a)') "case,method,rtol,status,seconds,contacts," // &
          & "closed_form_contacts,integrated_contacts,clusters,steps,energy_error," // &
@@ -437,10 +422,7 @@ contains
       integer :: unit, ios, r, kk, k, j, stat, calls, methods
       real(wp) :: seconds, dv
       open(newunit=unit, file=trim(out_path), status="replace", action="write", iostat=ios)
-      if (ios /= 0) then
-         write(error_unit, '(a)') "bench_chain: cannot write the row times"
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("bench_chain: cannot write the row times")
       write(unit, '(a)') "n,round,method,seconds,status,contacts,closed_form_contacts," // &
          & "integrated_contacts,clusters,steps,energy_error,dv_from_auto,t_end,rtol"
       allocate(rows(size(sizes)))
@@ -473,10 +455,7 @@ contains
          end do
       end do
       close(unit, iostat=ios)
-      if (ios /= 0) then
-         write(error_unit, '(a)') "bench_chain: cannot close the row times"
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("bench_chain: cannot close the row times")
    end subroutine run_row
 
    !> One CSV row of the dilute row's runs (t_end and rtol: the program's)
@@ -491,10 +470,7 @@ contains
          & seconds, stat, result%n_contacts, result%counters%closed_form_contacts, &
          & result%counters%integrated_contacts, result%counters%clusters, &
          & result%counters%steps, result%energy_error, dv_auto, t_end, rtol
-      if (ios /= 0) then
-         write(error_unit, '(a)') "bench_chain: cannot write the row times"
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("bench_chain: cannot write the row times")
       flush(unit)
    end subroutine write_row
 

@@ -9,7 +9,7 @@ module bench_cvode_common
    private
 
    public :: cpu_seconds, reference_case, read_reference, rel_error, ulp_error, n_outputs
-   public :: output_names, outcome_values, median
+   public :: output_names, outcome_values, median, fail_run
 
    !> Outputs compared: contact time, restitution, maximum compression, peak force
    integer, parameter :: n_outputs = 4
@@ -39,6 +39,14 @@ module bench_cvode_common
    integer(c_int), parameter :: thread_cputime = 3_c_int
 
 contains
+
+   !> End a failed run: the message on standard error, exit status 1 (quietly: no
+   !> backtrace after the message)
+   subroutine fail_run(message)
+      character(len=*), intent(in) :: message
+      write(error_unit, '(a)') message
+      stop 1, quiet=.true.
+   end subroutine fail_run
 
    !> CPU time of the calling thread, in seconds.
    function cpu_seconds() result(t)
@@ -72,10 +80,7 @@ contains
 
       allocate(cases(0))
       open(newunit=unit, file=path, status="old", action="read", iostat=ios)
-      if (ios /= 0) then
-         write(error_unit, '(a)') "cannot open " // path
-         stop 1, quiet=.true.
-      end if
+      if (ios /= 0) call fail_run("cannot open " // path)
       header_seen = .false.
       count = 0
       do

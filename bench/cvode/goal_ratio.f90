@@ -40,7 +40,8 @@ program bench_cvode_goal_ratio
    use hcimpact, only : wp, outcome_type, impact
    use hcimpact_cvode, only : cvode_options, simulation_type, simulate_power, cvode_bdf, &
       & cvode_adams
-   use bench_cvode_common, only : cpu_seconds, reference_case, read_reference, median
+   use bench_cvode_common, only : cpu_seconds, reference_case, read_reference, median, &
+      & fail_run
    implicit none
 
    !> CVODE's tolerance of the goal
@@ -55,9 +56,8 @@ program bench_cvode_goal_ratio
    logical :: quick
 
    if (command_argument_count() < 2) then
-      write(error_unit, '(a)') "usage: bench_cvode_goal_ratio REFERENCE.csv OUT.csv " // &
-         & "[--quick] [--rounds R]"
-      stop 1, quiet=.true.
+      call fail_run("usage: bench_cvode_goal_ratio REFERENCE.csv OUT.csv " // &
+         & "[--quick] [--rounds R]")
    end if
    call get_command_argument(1, ref_path)
    call get_command_argument(2, out_path)
@@ -73,12 +73,10 @@ program bench_cvode_goal_ratio
          call get_command_argument(ia, arg)
          read(arg, *, iostat=ios) rounds
          if (ios /= 0 .or. rounds < 1) then
-            write(error_unit, '(a)') "bench_cvode_goal_ratio: --rounds needs a positive integer"
-            stop 1, quiet=.true.
+            call fail_run("bench_cvode_goal_ratio: --rounds needs a positive integer")
          end if
       else
-         write(error_unit, '(a)') "bench_cvode_goal_ratio: unknown option " // trim(arg)
-         stop 1, quiet=.true.
+         call fail_run("bench_cvode_goal_ratio: unknown option " // trim(arg))
       end if
       ia = ia + 1
    end do
@@ -297,8 +295,7 @@ contains
 
    subroutine fail(message)
       character(len=*), intent(in) :: message
-      write(error_unit, '(a)') "bench_cvode_goal_ratio: " // message
-      stop 1, quiet=.true.
+      call fail_run("bench_cvode_goal_ratio: " // message)
    end subroutine fail
 
 end program bench_cvode_goal_ratio

@@ -19,7 +19,7 @@ program bench_cvode_stability
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
    use hcimpact_cvode, only : cvode_options, simulation_type, simulate_power, cvode_bdf, &
       & cvode_adams
-   use bench_cvode_common, only : cpu_seconds, n_outputs, outcome_values
+   use bench_cvode_common, only : cpu_seconds, n_outputs, outcome_values, fail_run
    implicit none
 
    real(wp), parameter :: betas(10) = [0.0_wp, 1.0e-300_wp, 1.0e-16_wp, 1.0e-8_wp, &
@@ -37,8 +37,7 @@ program bench_cvode_stability
    character(len=:), allocatable :: message
 
    if (command_argument_count() < 1) then
-      write(error_unit, '(a)') "usage: bench_cvode_stability OUT.csv [--quick]"
-      stop 1, quiet=.true.
+      call fail_run("usage: bench_cvode_stability OUT.csv [--quick]")
    end if
    call get_command_argument(1, out_path)
    quick = .false.

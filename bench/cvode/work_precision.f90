@@ -19,7 +19,7 @@ program bench_cvode_work_precision
    use hcimpact_cvode, only : cvode_options, simulation_type, simulate_power, cvode_bdf, &
       & cvode_adams
    use bench_cvode_common, only : cpu_seconds, reference_case, read_reference, rel_error, &
-      & ulp_error, n_outputs, outcome_values, median
+      & ulp_error, n_outputs, outcome_values, median, fail_run
    implicit none
 
    integer, parameter :: n_rtol = 11
@@ -34,8 +34,7 @@ program bench_cvode_work_precision
    logical :: quick
 
    if (command_argument_count() < 2) then
-      write(error_unit, '(a)') "usage: bench_cvode_work_precision REFERENCE.csv OUT.csv [--quick]"
-      stop 1, quiet=.true.
+      call fail_run("usage: bench_cvode_work_precision REFERENCE.csv OUT.csv [--quick]")
    end if
    call get_command_argument(1, ref_path)
    call get_command_argument(2, out_path)
@@ -46,8 +45,7 @@ program bench_cvode_work_precision
       if (trim(arg) == "--quick") then
          quick = .true.
       else
-         write(error_unit, '(a)') "bench_cvode_work_precision: unknown option " // trim(arg)
-         stop 1, quiet=.true.
+         call fail_run("bench_cvode_work_precision: unknown option " // trim(arg))
       end if
       ia = ia + 1
    end do

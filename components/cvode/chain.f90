@@ -1190,16 +1190,10 @@ contains
    !> in a frame of its own: every displacement from its value at the region's start
    !> (the deformations keep the digits of their own size, not those of how far the
    !> bodies have gone: a ball dropped 1 m rests within 1e-16 m of 1 m, and at rtol
-   !> 1e-12 CVODE's steps shrank against the rounding of its displacement), and
-   !> without a wall, relative to a frame that falls freely (the relative motion is
-   !> that without gravity: three touching balls falling freely, one struck at 1e-6
-   !> m/s, had relative velocities off by 1.5e-5, rtol applying to the fall's g t; at
-   !> 1e-50 m/s CVODE failed at t = 0) and, where all bodies move the same way, with
-   !> the slowest of them then (its velocities are the relative ones, below the
-   !> largest difference of two). Where some body is at rest or the velocities differ
-   !> in sign, the frame does not move: a body at rest added to a region leaves its
-   !> integration as it was, to the bit (a struck chain of touching beads is
-   !> integrated alike whatever its length).
+   !> 1e-12 CVODE's steps shrank against the rounding of its displacement), relative
+   !> to the frame of `region_frame` (three touching balls falling freely, one struck
+   !> at 1e-6 m/s, had relative velocities off by 1.5e-5 without it, rtol applying to
+   !> the fall's g t; at 1e-50 m/s CVODE failed at t = 0).
    subroutine engine_frame(self, t, y, u, v)
       type(cvode_chain_integrator), intent(in) :: self
       real(wp), intent(in) :: t, y(:)

@@ -31,21 +31,12 @@ program simulate
 
    write(*, '(a)') "Steel ball on a steel plate, V = 1 m/s (MODEL.md), CVODE at rtol = 1e-8"
    call impact(ball, closed, stat)
-   if (stat /= hcimpact_ok) then
-      write(error_unit, '(a)') "closed forms failed: " // status_message(stat)
-      stop 1, quiet=.true.
-   end if
+   if (stat /= hcimpact_ok) call fail("closed forms failed: " // status_message(stat))
    call simulate_power(ball, bdf, stat, cvode_options(method=cvode_bdf, rtol=rtol, &
       & record_trajectory=.true.))
-   if (stat /= hcimpact_ok) then
-      write(error_unit, '(a)') "CVODE (BDF) failed: " // bdf%message
-      stop 1, quiet=.true.
-   end if
+   if (stat /= hcimpact_ok) call fail("CVODE (BDF) failed: " // bdf%message)
    call simulate_power(ball, adams, stat, cvode_options(method=cvode_adams, rtol=rtol))
-   if (stat /= hcimpact_ok) then
-      write(error_unit, '(a)') "CVODE (Adams) failed: " // adams%message
-      stop 1, quiet=.true.
-   end if
+   if (stat /= hcimpact_ok) call fail("CVODE (Adams) failed: " // adams%message)
 
    exact = values(closed)
    ode(:, 1) = values(bdf%outcome)
@@ -76,19 +67,13 @@ program simulate
    do i = 1, size(bdf%time), 8
       write(*, '(4es16.7)') bdf%time(i), bdf%compression(i), bdf%velocity(i), bdf%force(i)
    end do
-   if (worst > 100.0_wp * rtol) then
-      write(error_unit, '(a)') "CVODE is further than 100 rtol from the closed forms"
-      stop 1, quiet=.true.
-   end if
+   if (worst > 100.0_wp * rtol) call fail("CVODE is further than 100 rtol from the closed forms")
 
    write(*, '(/, a)') "The same ball, a law that stiffens like x^3 beyond 10 um, and its weight:"
    call simulate_law(stiffening_law(stiffness=1.7135e10_wp, knee=1.0e-5_wp), &
       & ball%mass, ball%damping, ball%velocity, law_run, stat, &
       & cvode_options(rtol=rtol), external=weight(force=0.1_wp * 9.81_wp))
-   if (stat /= hcimpact_ok) then
-      write(error_unit, '(a)') "CVODE (user law) failed: " // law_run%message
-      stop 1, quiet=.true.
-   end if
+   if (stat /= hcimpact_ok) call fail("CVODE (user law) failed: " // law_run%message)
    write(*, '(a, es16.8)') "restitution          ", law_run%outcome%restitution
    write(*, '(a, es16.8, a)') "max. compression     ", law_run%outcome%max_compression, " m"
    write(*, '(a, es16.8, a)') "peak force           ", law_run%outcome%peak_force, " N"
@@ -105,5 +90,12 @@ contains
       v = [o%restitution, o%max_compression, o%peak_force, o%compression_at_peak_force, &
          & o%time_at_peak_force, o%compression_time, o%contact_time, o%rebound_velocity]
    end function values
+
+   !> The message on standard error, exit status 1
+   subroutine fail(message)
+      character(len=*), intent(in) :: message
+      write(error_unit, '(a)') message
+      stop 1, quiet=.true.
+   end subroutine fail
 
 end program simulate

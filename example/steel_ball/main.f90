@@ -54,10 +54,7 @@ program steel_ball
    do i = 1, 6
       call impact(contact_type(mass=mass, stiffness=stiffness, exponent=exponent, &
          & damping=damping, velocity=table(1, i)), outcome, stat)
-      if (stat /= hcimpact_ok) then
-         write(error_unit, '(a)') "impact failed: " // status_message(stat)
-         stop 1, quiet=.true.
-      end if
+      if (stat /= hcimpact_ok) call fail("impact failed: " // status_message(stat))
       values = [outcome%restitution, outcome%max_compression, outcome%peak_force, &
          & outcome%contact_time, outcome%compression_time]
       write(*, '(/, a, f4.1, a)') "V = ", table(1, i), " m/s"
@@ -71,10 +68,7 @@ program steel_ball
 
    call impact(contact_type(mass=mass, stiffness=stiffness, exponent=exponent, &
       & damping=0.0_wp, velocity=1.0_wp), outcome, stat)
-   if (stat /= hcimpact_ok) then
-      write(error_unit, '(a)') "impact failed: " // status_message(stat)
-      stop 1, quiet=.true.
-   end if
+   if (stat /= hcimpact_ok) call fail("impact failed: " // status_message(stat))
    write(*, '(/, a)') "The same ball without damping (b = 0), V = 1 m/s"
    values(1:3) = [outcome%max_compression, outcome%contact_time, outcome%peak_force]
    do j = 1, 3
@@ -92,8 +86,15 @@ program steel_ball
    write(*, '(4x, a, f10.7, a, f10.7, a)') "ball ", w1, " m/s, plate ", w2, " m/s after impact"
 
    write(*, '(/, a, f5.2, a)') "Largest difference from MODEL.md: ", worst, " ulp"
-   if (worst > 2.0_wp) then
-      write(error_unit, '(a)') "more than 2 ulp from MODEL.md"
+   if (worst > 2.0_wp) call fail("more than 2 ulp from MODEL.md")
+
+contains
+
+   !> The message on standard error, exit status 1
+   subroutine fail(message)
+      character(len=*), intent(in) :: message
+      write(error_unit, '(a)') message
       stop 1, quiet=.true.
-   end if
+   end subroutine fail
+
 end program steel_ball
