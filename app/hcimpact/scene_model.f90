@@ -23,6 +23,9 @@ module hcimpact_scene_model
       & out_system_sweep, out_impact_sweep
    public :: figure_outputs, system_outputs, default_scene_lines, max_speeds
    public :: scene_line_length, max_scene_lines, max_bodies
+   public :: sweep_list, n_sweep_lists, sweep_names, sweep_units, sweep_striker_speed, &
+      & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
+      & sweep_gravity
    public :: unset_bits, is_unset
 
 
@@ -35,6 +38,20 @@ module hcimpact_scene_model
 
    !> Most bodies of a system in a scene file (the library takes any number)
    integer, parameter :: max_bodies = 100000
+
+   !> The parameters a sweep of systems (&system_sweep) varies, in the order in which
+   !> they combine (the first varies slowest) and in which their columns stand: body 1's
+   !> speed, the mass of one body, and for every pair the gap, the stiffness c, the
+   !> exponent n, the damping b (or b from a restitution), then gravity
+   integer, parameter :: n_sweep_lists = 8
+   integer, parameter :: sweep_striker_speed = 1, sweep_mass = 2, sweep_gap = 3, &
+      & sweep_stiffness = 4, sweep_exponent = 5, sweep_b = 6, sweep_restitution = 7, &
+      & sweep_gravity = 8
+   !> Their names in &system_sweep and their units
+   character(len=*), parameter :: sweep_names(n_sweep_lists) = [character(len=13) :: &
+      & "striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution", "gravity"]
+   character(len=*), parameter :: sweep_units(n_sweep_lists) = [character(len=5) :: "m/s", &
+      & "kg", "m", "N/m^n", "-", "s/m", "-", "m/s^2"]
 
    !> Most approach speeds a scene may list
    integer, parameter :: max_speeds = 1000
@@ -140,6 +157,11 @@ module hcimpact_scene_model
       character(len=:), allocatable :: law_origin, damping_origin
    end type wall_type
 
+   !> The values one parameter of a system takes in its sweep
+   type :: sweep_list
+      real(wp), allocatable :: values(:)
+   end type sweep_list
+
    !> A system of bodies on a line (the &bodies group; doc/scenes.md)
    type :: system_type
       !> Number of bodies
@@ -163,11 +185,17 @@ module hcimpact_scene_model
       real(wp) :: t_end = -1.0_wp, rtol = 1.0e-10_wp
       !> hcimpact_chain_types' method and integrator codes
       integer :: method = method_auto, integrator = integrator_bdf
-      !> The variations of the output system_sweep (&system_sweep): the speeds of body 1
-      !> (m/s), the gaps of every pair (m) and the damping of every pair (s/m), each
-      !> empty when not varied; their product, or the lists side by side
-      real(wp), allocatable :: vary_speed(:), vary_gap(:), vary_damping(:)
+      !> The variations of the output system_sweep (&system_sweep): one list per
+      !> parameter of `sweep_names` (empty when not varied); their product, or the lists
+      !> side by side
+      type(sweep_list) :: vary(n_sweep_lists)
       logical :: vary_product = .true.
+      !> The body whose mass the list `mass` varies
+      integer :: vary_mass_body = 1
+      !> The damping b (s/m) of each value of the list `restitution`, b = beta(e)/V at
+      !> the speed `vary_at_speed` (m/s)
+      real(wp), allocatable :: vary_restitution_b(:)
+      real(wp) :: vary_at_speed = nan
    end type system_type
 
    !> A validated scene

@@ -29,7 +29,9 @@ module hcimpact_scene_reader
       & add_outputs, output_choices, out_summary, out_sweep, out_histories, out_phase, &
       & out_loops, out_legacy, out_cvode, max_speeds, default_scene_lines, &
       & scene_line_length, max_scene_lines, unset_bits, is_unset, max_bodies, system_outputs, &
-      & out_contacts, out_final, out_impact_sweep
+      & out_contacts, out_final, out_impact_sweep, n_sweep_lists, sweep_names, sweep_units, &
+      & sweep_striker_speed, sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, &
+      & sweep_restitution, sweep_gravity
    use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
       & body_radius => radius, body_density => density, body_young => young, &
       & body_poisson => poisson, body_velocity => velocity, body_gap => gap, &
@@ -40,7 +42,9 @@ module hcimpact_scene_reader
    use hcimpact_scene_variations, only : read_variations, max_variations, &
       & variations_text_length, vary_speed => striker_speed, vary_gap => gap, &
       & vary_b => b, vary_combine => combine, vary_mass => mass, &
-      & vary_stiffness => stiffness, vary_exponent => exponent, vary_impact_speed => speed
+      & vary_stiffness => stiffness, vary_exponent => exponent, vary_impact_speed => speed, &
+      & vary_restitution => restitution, vary_gravity => gravity, vary_at_speed => at_speed, &
+      & vary_mass_body => mass_body, unset_body
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
       & max_chain_rtol, &
       & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
@@ -82,7 +86,8 @@ module hcimpact_scene_reader
       & // "restitution, at_speed, gravity, t_end, rtol, method, integrator", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
-      & "striker_speed, gap, b, combine", &
+      & "striker_speed, mass, mass_body, gap, stiffness, exponent, b, restitution, " &
+      & // "at_speed, gravity, combine", &
       & "those of hcimpact_mpi_chain (doc/mpi.md)", &
       & "mass, stiffness, exponent, b, speed, combine"]
    !> Names that take a list of values
@@ -99,6 +104,9 @@ module hcimpact_scene_reader
    !> Marks an integer the file did not set (a file that writes this value is caught by
    !> looking for the name in the text, `given`)
    integer, parameter :: unset_int = -huge(1)
+
+   !> The bounds of a sweep's list (`check_sweep_list`): any finite value, >= 0, > 0
+   integer, parameter :: any_finite = 0, not_negative = 1, positive = 2
    !> Length of the text variables; a text that fills one may have been cut, and is
    !> refused
    integer, parameter :: text_length = 256
@@ -1400,7 +1408,6 @@ contains
       type(scene_type), intent(inout) :: sc
       character(len=:), allocatable, intent(out) :: error
       real(wp) :: bb, e, v
-      integer :: stat
 
       if (.not. src%groups(g_damping)%present) then
          error = src%name // ": no &damping group: give &damping b = 0.1 / (s/m; 0 for Hertz's" &
@@ -1453,25 +1460,37 @@ contains
             & // " m/s: must be positive"
          return
       end if
-      ! b = beta(e)/V must be a double (the library's damping_for_restitution raises
-      ! the overflow exception, which the Debug build traps, before it says so)
-      if (.not. quotient_of(restitution_inverse(e), v) <= huge(1.0_wp)) then
-         error = at(src, g_damping, "at_speed") // "the damping for restitution = " &
-            & // real_str(e, 10) // " at " // real_str(v, 6) // " m/s, b = beta(e)/V, exceeds" &
-            & // " the largest double (1.8e308): a larger at_speed or restitution"
-         return
-      end if
-      call damping_for_restitution(e, v, sc%damping, stat, min_velocity=tiny(1.0_wp))
-      if (stat /= hcimpact_ok) then
-         error = at(src, g_damping, "restitution") // "no damping for this restitution: " &
-            & // status_message(stat)
-         return
-      end if
+      call restitution_damping(src, g_damping, e, v, sc%damping, error)
+      if (allocated(error)) return
       sc%target_restitution = e
       sc%reference_speed = v
       sc%damping_origin = "the exact damping for the restitution e = " // real_str(e, 6) &
          & // " at V = " // real_str(v, 6) // " m/s: b = beta(e)/V"
    end subroutine load_damping
+
+   !> The damping b that gives the restitution e at the speed v (b = beta(e)/V, the
+   !> library's damping_for_restitution), e in (0, 1] and v > 0 checked by the caller;
+   !> an error where b would exceed the largest double or the library finds none.
+   subroutine restitution_damping(src, gid, e, v, b, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      real(wp), intent(in) :: e, v
+      real(wp), intent(out) :: b
+      character(len=:), allocatable, intent(out) :: error
+      integer :: stat
+      b = nan
+      ! b = beta(e)/V must be a double (the library's damping_for_restitution raises
+      ! the overflow exception, which the Debug build traps, before it says so)
+      if (.not. quotient_of(restitution_inverse(e), v) <= huge(1.0_wp)) then
+         error = at(src, gid, "at_speed") // "the damping for restitution = " &
+            & // real_str(e, 10) // " at " // real_str(v, 6) // " m/s, b = beta(e)/V, exceeds" &
+            & // " the largest double (1.8e308): a larger at_speed or restitution"
+         return
+      end if
+      call damping_for_restitution(e, v, b, stat, min_velocity=tiny(1.0_wp))
+      if (stat /= hcimpact_ok) error = at(src, gid, "restitution") // "no damping for this" &
+         & // " restitution: " // status_message(stat)
+   end subroutine restitution_damping
 
    !> &sampling, and the checks that involve several groups.
    subroutine load_sampling(src, sc, error)
@@ -1994,7 +2013,7 @@ contains
       real(wp), intent(out) :: target, speed
       character(len=:), allocatable, intent(out) :: error
       real(wp), allocatable :: e(:), v(:)
-      integer :: j, stat
+      integer :: j
       target = nan
       speed = nan
       call per_pair(src, gid, "b", b_values, pairs, nan, .true., damping, error)
@@ -2023,19 +2042,8 @@ contains
          return
       end if
       do j = 1, pairs
-         ! b = beta(e)/V must be a double (the library raises overflow before it says so)
-         if (.not. quotient_of(restitution_inverse(e(j)), v(j)) <= huge(1.0_wp)) then
-            error = at(src, gid, "at_speed") // "the damping for restitution " &
-               & // real_str(e(j), 10) // " at " // real_str(v(j), 6) // " m/s exceeds the" &
-               & // " largest double: a larger at_speed or restitution"
-            return
-         end if
-         call damping_for_restitution(e(j), v(j), damping(j), stat, min_velocity=tiny(1.0_wp))
-         if (stat /= hcimpact_ok) then
-            error = at(src, gid, "restitution") // "no damping for this restitution: " &
-               & // status_message(stat)
-            return
-         end if
+         call restitution_damping(src, gid, e(j), v(j), damping(j), error)
+         if (allocated(error)) return
       end do
       if (all(e == e(1)) .and. all(v == v(1))) then
          target = e(1)
@@ -2073,54 +2081,170 @@ contains
          & // join(words, ", ")
    end subroutine choose
 
-   !> &system_sweep: the variations of the output system_sweep (none: the system alone).
-   !> Speeds finite, gaps and damping finite and >= 0, "product" (default) or "list" (the
-   !> lists given of one length), at most `max_system_items` variations. A variation the
-   !> library refuses (check_chain) gets its status in its row, as one that fails.
+   !> &system_sweep: the variations of the output system_sweep (none: the system alone),
+   !> one list per parameter of `sweep_names`, each value checked (`check_sweep_list`):
+   !> striker_speed and gravity finite, masses, stiffnesses and exponents positive, gaps
+   !> and b >= 0, restitutions in (0, 1] at the speed at_speed (> 0; default the speed
+   !> of &bodies' restitution) and turned into b here, b or restitution but not both;
+   !> "product" (default) or "list" (the lists given of one length). A variation the
+   !> library refuses (check_chain: an exponent out of its domain) gets its status in
+   !> its row, as one that fails.
    subroutine load_variations(src, sys, error)
       type(scene_source), intent(in) :: src
       type(system_type), intent(inout) :: sys
       character(len=:), allocatable, intent(out) :: error
-      integer :: n_speed, n_gap, n_b
-      allocate(sys%vary_speed(0), sys%vary_gap(0), sys%vary_damping(0))
+      integer :: n(n_sweep_lists), k, i
+      do k = 1, n_sweep_lists
+         allocate(sys%vary(k)%values(0))
+      end do
+      allocate(sys%vary_restitution_b(0))
       sys%vary_product = .true.
       call read_group(src, g_system_sweep, error)
       if (allocated(error)) return
       if (.not. src%groups(g_system_sweep)%present) return
-      call count_list(src, g_system_sweep, "striker_speed", vary_speed, n_speed, error)
-      if (.not. allocated(error)) call count_list(src, g_system_sweep, "gap", vary_gap, n_gap, &
-         & error)
-      if (.not. allocated(error)) call count_list(src, g_system_sweep, "b", vary_b, n_b, error)
-      if (allocated(error)) return
-      ! finite first: an ordered comparison with NaN would trap in the Debug build
-      if (.not. all(ieee_is_finite(vary_speed(1:n_speed)))) then
-         error = at(src, g_system_sweep, "striker_speed") // "every striker_speed must be" &
-            & // " a finite number" // finite_hint
-      else if (.not. all(ieee_is_finite(vary_gap(1:n_gap)))) then
-         error = at(src, g_system_sweep, "gap") // "every gap must be a finite number" &
-            & // finite_hint
-      else if (.not. all(ieee_is_finite(vary_b(1:n_b)))) then
-         error = at(src, g_system_sweep, "b") // "every b must be a finite number" // finite_hint
-      else if (any(vary_gap(1:n_gap) < 0.0_wp)) then
-         error = at(src, g_system_sweep, "gap") // "a gap is negative: gaps are >= 0 (m)"
-      else if (any(vary_b(1:n_b) < 0.0_wp)) then
-         error = at(src, g_system_sweep, "b") // "a damping b is negative: b >= 0 (s/m)"
-      else if (n_speed + n_gap + n_b == 0) then
-         error = at(src, g_system_sweep, "") // "&system_sweep varies nothing: give" &
-            & // " striker_speed, gap or b (lists of values)"
-      else if (n_gap > 0 .and. sys%n < 2) then
-         error = at(src, g_system_sweep, "gap") // "one body has no gap to vary"
-      else if (n_b > 0 .and. sys%n < 2) then
-         error = at(src, g_system_sweep, "b") // "one body has no pair to damp"
+      do k = 1, n_sweep_lists
+         call count_list(src, g_system_sweep, trim(sweep_names(k)), list_of(k), n(k), error)
+         if (allocated(error)) return
+         call check_sweep_list(src, g_system_sweep, trim(sweep_names(k)), &
+            & trim(sweep_units(k)), list_of(k), n(k), lowest_of(k), error)
+         if (allocated(error)) return
+         ! every pair's value: a system of one body has none
+         if (n(k) > 0 .and. sys%n < 2 .and. k >= sweep_gap .and. k <= sweep_restitution) then
+            error = at(src, g_system_sweep, trim(sweep_names(k))) // "one body has no pair:" &
+               & // " " // trim(sweep_names(k)) // " cannot be varied"
+            return
+         end if
+      end do
+      if (sum(n) == 0) then
+         error = at(src, g_system_sweep, "") // "&system_sweep varies nothing: give " &
+            & // join(sweep_names, ", ") // " (lists of values)"
+         return
       end if
+      if (n(sweep_b) > 0 .and. n(sweep_restitution) > 0) then
+         error = at(src, g_system_sweep, "restitution") // "vary b or restitution, not both" &
+            & // " (each sets every pair's damping)"
+         return
+      end if
+      if (any(vary_restitution(1:n(sweep_restitution)) > 1.0_wp)) then
+         error = at(src, g_system_sweep, "restitution") // "a coefficient of restitution lies" &
+            & // " in (0, 1]"
+         return
+      end if
+      sys%vary_mass_body = 1
+      if (vary_mass_body /= unset_body .or. given(src, g_system_sweep, "mass_body")) then
+         if (n(sweep_mass) == 0) then
+            error = at(src, g_system_sweep, "mass_body") // "mass_body names the body whose" &
+               & // " mass the list mass varies: give mass too"
+            return
+         end if
+         if (vary_mass_body < 1 .or. vary_mass_body > sys%n) then
+            error = at(src, g_system_sweep, "mass_body") // "mass_body = " &
+               & // str(vary_mass_body) // ": the bodies are 1 to " // str(sys%n)
+            return
+         end if
+         sys%vary_mass_body = vary_mass_body
+      end if
+      if (.not. is_unset(vary_at_speed) .and. n(sweep_restitution) == 0) then
+         error = at(src, g_system_sweep, "at_speed") // "at_speed is the speed of the" &
+            & // " restitutions: give restitution too"
+         return
+      end if
+      if (n(sweep_restitution) > 0) then
+         sys%vary_at_speed = sys%reference_speed
+         if (.not. is_unset(vary_at_speed)) sys%vary_at_speed = vary_at_speed
+         if (ieee_is_nan(sys%vary_at_speed)) then
+            error = at(src, g_system_sweep, "restitution") // "restitution needs the speed at" &
+               & // " which it holds: give at_speed (m/s)"
+            return
+         end if
+         if (.not. (ieee_is_finite(sys%vary_at_speed) .and. sys%vary_at_speed > 0.0_wp)) then
+            error = at(src, g_system_sweep, "at_speed") // "at_speed = " &
+               & // real_str(sys%vary_at_speed, 6) // " m/s: must be positive and finite"
+            return
+         end if
+         deallocate(sys%vary_restitution_b)
+         allocate(sys%vary_restitution_b(n(sweep_restitution)))
+         do i = 1, n(sweep_restitution)
+            call restitution_damping(src, g_system_sweep, vary_restitution(i), &
+               & sys%vary_at_speed, sys%vary_restitution_b(i), error)
+            if (allocated(error)) return
+         end do
+      end if
+      call combine_lists(src, g_system_sweep, sweep_names, n, sys%vary_product, error)
       if (allocated(error)) return
-      call combine_lists(src, g_system_sweep, ["striker_speed", "gap          ", &
-         & "b            "], [n_speed, n_gap, n_b], sys%vary_product, error)
-      if (allocated(error)) return
-      sys%vary_speed = vary_speed(1:n_speed)
-      sys%vary_gap = vary_gap(1:n_gap)
-      sys%vary_damping = vary_b(1:n_b)
+      do k = 1, n_sweep_lists
+         sys%vary(k)%values = list_of(k)
+         sys%vary(k)%values = sys%vary(k)%values(1:n(k))
+      end do
+
+   contains
+
+      !> The namelist list of parameter k
+      function list_of(k) result(values)
+         integer, intent(in) :: k
+         real(wp) :: values(max_variations)
+         select case (k)
+         case (sweep_striker_speed)
+            values = vary_speed
+         case (sweep_mass)
+            values = vary_mass
+         case (sweep_gap)
+            values = vary_gap
+         case (sweep_stiffness)
+            values = vary_stiffness
+         case (sweep_exponent)
+            values = vary_exponent
+         case (sweep_b)
+            values = vary_b
+         case (sweep_restitution)
+            values = vary_restitution
+         case default
+            values = vary_gravity
+         end select
+      end function list_of
+
+      !> The bound of parameter k's values (`check_sweep_list`)
+      pure integer function lowest_of(k)
+         integer, intent(in) :: k
+         select case (k)
+         case (sweep_striker_speed, sweep_gravity)
+            lowest_of = any_finite
+         case (sweep_gap, sweep_b)
+            lowest_of = not_negative
+         case default
+            lowest_of = positive
+         end select
+      end function lowest_of
    end subroutine load_variations
+
+   !> Check the first n values of the sweep list `name` (unit `unit`) of group gid:
+   !> finite, and `lowest` any_finite, not_negative (>= 0) or positive (> 0).
+   subroutine check_sweep_list(src, gid, name, unit, values, n, lowest, error)
+      type(scene_source), intent(in) :: src
+      integer, intent(in) :: gid
+      character(len=*), intent(in) :: name, unit
+      real(wp), intent(in) :: values(:)
+      integer, intent(in) :: n, lowest
+      character(len=:), allocatable, intent(out) :: error
+      character(len=:), allocatable :: unit_text
+      integer :: i
+      unit_text = " " // unit
+      if (unit == "-") unit_text = ""
+      do i = 1, n
+         ! finite first: an ordered comparison with NaN would trap in the Debug build
+         if (.not. ieee_is_finite(values(i))) then
+            error = at(src, gid, name) // name // " " // str(i) // " is not a finite number" &
+               & // finite_hint
+         else if (lowest == positive .and. .not. values(i) > 0.0_wp) then
+            error = at(src, gid, name) // name // " " // str(i) // " = " &
+               & // real_str(values(i), 6) // unit_text // ": must be positive"
+         else if (lowest == not_negative .and. values(i) < 0.0_wp) then
+            error = at(src, gid, name) // name // " " // str(i) // " = " &
+               & // real_str(values(i), 6) // unit_text // ": must be >= 0"
+         end if
+         if (allocated(error)) return
+      end do
+   end subroutine check_sweep_list
 
    !> How the lists `names` of the sweep group `gid` (`lengths` values given; 0: not
    !> varied) combine: `combine` "product" (default: every combination) or "list" (side
@@ -2155,7 +2279,8 @@ contains
          if (any(lengths /= maxval(lengths) .and. lengths /= 0)) then
             given_lengths = ""
             do k = 1, size(names)
-               if (k > 1) given_lengths = given_lengths // ", "
+               if (lengths(k) == 0) cycle
+               if (len(given_lengths) > 0) given_lengths = given_lengths // ", "
                given_lengths = given_lengths // trim(names(k)) // " " // str(lengths(k))
             end do
             error = at(src, gid, "combine") // "combine = ""list"" takes the lists" &
@@ -2182,8 +2307,7 @@ contains
          & "exponent", "b", "speed"]
       character(len=*), parameter :: units(5) = [character(len=6) :: "kg", "N/m^n", "", &
          & "s/m", "m/s"]
-      integer :: n(5), k, i
-      real(wp) :: lowest
+      integer :: n(5), k
       allocate(sc%vary_mass(0), sc%vary_stiffness(0), sc%vary_exponent(0), &
          & sc%vary_damping(0), sc%vary_speed(0))
       sc%vary_product = .true.
@@ -2200,26 +2324,10 @@ contains
       do k = 1, size(names)
          call count_list(src, g_impact_sweep, trim(names(k)), list_of(k), n(k), error)
          if (allocated(error)) return
-         do i = 1, n(k)
-            associate (value => list_of(k))
-               if (.not. ieee_is_finite(value(i))) then
-                  error = at(src, g_impact_sweep, trim(names(k))) // trim(names(k)) // " " &
-                     & // str(i) // " is not a finite number" // finite_hint
-                  return
-               end if
-               ! every value positive but b, which may be 0 (no damping: Hertz)
-               lowest = 0.0_wp
-               if (names(k) == "b") lowest = -tiny(1.0_wp)
-               if (.not. value(i) > lowest) then
-                  error = at(src, g_impact_sweep, trim(names(k))) // trim(names(k)) // " " &
-                     & // str(i) // " = " // real_str(value(i), 6) // " " // trim(units(k)) &
-                     & // ": must be positive"
-                  if (names(k) == "b") error = at(src, g_impact_sweep, "b") // "b " &
-                     & // str(i) // " = " // real_str(value(i), 6) // " s/m: b >= 0"
-                  return
-               end if
-            end associate
-         end do
+         ! every value positive but b, which may be 0 (no damping: Hertz)
+         call check_sweep_list(src, g_impact_sweep, trim(names(k)), trim(units(k)), &
+            & list_of(k), n(k), merge(not_negative, positive, names(k) == "b"), error)
+         if (allocated(error)) return
       end do
       if (sum(n) == 0) then
          error = at(src, g_impact_sweep, "") // "&impact_sweep varies nothing: give mass," &

@@ -9,7 +9,9 @@
 module hcimpact_scene_system_items
    use hcimpact_kinds, only : wp
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result
-   use hcimpact_scene_model, only : system_type, nan
+   use hcimpact_scene_model, only : system_type, nan, n_sweep_lists, sweep_striker_speed, &
+      & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
+      & sweep_gravity
    use hcimpact_scene_ode, only : ode_chain
    use hcimpact_scene_variations, only : variation_index, variation_count
    implicit none
@@ -31,42 +33,60 @@ contains
    !> How many variations the system's sweep has (1: the system alone).
    pure integer function system_item_count(sys) result(items)
       type(system_type), intent(in) :: sys
-      items = variation_count([size(sys%vary_speed), size(sys%vary_gap), &
-         & size(sys%vary_damping)], sys%vary_product)
+      items = variation_count(list_lengths(sys), sys%vary_product)
    end function system_item_count
 
-   !> The speed of body 1, the gap and the damping of variation k (NaN where the sweep
-   !> does not vary it). In a product the first list varies slowest.
-   pure subroutine item_variation(sys, k, speed, gap, damping)
+   !> The lengths of the sweep's lists (0: not varied)
+   pure function list_lengths(sys) result(lengths)
+      type(system_type), intent(in) :: sys
+      integer :: lengths(n_sweep_lists)
+      integer :: k
+      do k = 1, n_sweep_lists
+         lengths(k) = size(sys%vary(k)%values)
+      end do
+   end function list_lengths
+
+   !> The value of each parameter of `sweep_names` in variation k (NaN where the sweep
+   !> does not vary it), and which value of its list that is. In a product the first
+   !> list varies slowest.
+   pure subroutine item_variation(sys, k, values, which)
       type(system_type), intent(in) :: sys
       integer, intent(in) :: k
-      real(wp), intent(out) :: speed, gap, damping
-      integer :: which(3)
-      which = variation_index([size(sys%vary_speed), size(sys%vary_gap), &
-         & size(sys%vary_damping)], sys%vary_product, k)
-      speed = nan
-      gap = nan
-      damping = nan
-      if (size(sys%vary_speed) > 0) speed = sys%vary_speed(which(1))
-      if (size(sys%vary_gap) > 0) gap = sys%vary_gap(which(2))
-      if (size(sys%vary_damping) > 0) damping = sys%vary_damping(which(3))
+      real(wp), intent(out) :: values(n_sweep_lists)
+      integer, intent(out), optional :: which(n_sweep_lists)
+      integer :: index(n_sweep_lists), j
+      index = variation_index(list_lengths(sys), sys%vary_product, k)
+      values = nan
+      do j = 1, n_sweep_lists
+         if (size(sys%vary(j)%values) > 0) values(j) = sys%vary(j)%values(index(j))
+      end do
+      if (present(which)) which = index
    end subroutine item_variation
 
-   !> The columns of every variation: the system with body 1's speed, every pair's gap
-   !> and every pair's damping replaced where varied.
+   !> The columns of every variation: the system with what the sweep varies replaced
+   !> (body 1's speed, body vary_mass_body's mass, every pair's gap, stiffness,
+   !> exponent and damping, b itself or from a restitution, gravity; the walls kept).
    pure function system_item_inputs(sys) result(inputs)
       type(system_type), intent(in) :: sys
       real(wp), allocatable :: inputs(:, :)
       type(system_type) :: varied
-      real(wp) :: speed, gap, damping
-      integer :: k
+      real(wp) :: values(n_sweep_lists)
+      integer :: k, which(n_sweep_lists)
+      logical :: given(n_sweep_lists)
+      given = list_lengths(sys) > 0
       allocate(inputs(input_length(sys%n), system_item_count(sys)))
       do k = 1, size(inputs, 2)
-         call item_variation(sys, k, speed, gap, damping)
+         call item_variation(sys, k, values, which)
          varied = sys
-         if (size(sys%vary_speed) > 0) varied%velocity(1) = speed
-         if (size(sys%vary_gap) > 0) varied%gap = gap
-         if (size(sys%vary_damping) > 0) varied%law%damping = damping
+         if (given(sweep_striker_speed)) varied%velocity(1) = values(sweep_striker_speed)
+         if (given(sweep_mass)) varied%mass(sys%vary_mass_body) = values(sweep_mass)
+         if (given(sweep_gap)) varied%gap = values(sweep_gap)
+         if (given(sweep_stiffness)) varied%law%stiffness = values(sweep_stiffness)
+         if (given(sweep_exponent)) varied%law%exponent = values(sweep_exponent)
+         if (given(sweep_b)) varied%law%damping = values(sweep_b)
+         if (given(sweep_restitution)) varied%law%damping = &
+            & sys%vary_restitution_b(which(sweep_restitution))
+         if (given(sweep_gravity)) varied%gravity = values(sweep_gravity)
          inputs(:, k) = packed_system(varied)
       end do
    end function system_item_inputs

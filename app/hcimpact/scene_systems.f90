@@ -1,7 +1,7 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> The output `system_sweep` of a system of bodies (doc/scenes.md): one whole run of
-!> the system for every variation `&system_sweep` asks for (the speed of body 1, the
-!> gap and the damping of every pair; their product or the lists side by side), the
+!> the system for every variation `&system_sweep` asks for (the lists of
+!> hcimpact_scene_model's `sweep_names`; their product or the lists side by side), the
 !> runs handed out by hcimpact_scene_sweep (MPI ranks, or OpenMP threads, or one after
 !> the other), one row per variation in system_sweep.csv, in the variations' order,
 !> and a short table on the console. A run that fails has its status in its row (and
@@ -11,7 +11,8 @@ module hcimpact_scene_systems
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_unavailable, status_message
    use hcimpact_chain_types, only : by_closed_forms, by_integration, method_exact
    use hcimpact_scene_ode, only : ode_available, ode_missing
-   use hcimpact_scene_model, only : scene_type
+   use hcimpact_scene_model, only : scene_type, n_sweep_lists, sweep_names, sweep_units, &
+      & sweep_mass
    use hcimpact_scene_output, only : results_type, csv_type, csv_open, csv_row, csv_close, &
       & checkpoint_path
    use hcimpact_scene_system_items, only : system_item_count, system_item_inputs, &
@@ -122,19 +123,19 @@ contains
       character(len=:), allocatable, intent(out) :: error
       character(len=32), allocatable :: columns(:)
       type(csv_type) :: csv
-      real(wp) :: speed, gap, damping
+      real(wp) :: values(n_sweep_lists)
       integer :: n, k, i
       n = sc%system%n
-      columns = [character(len=32) :: "method", "variation [-]", "striker_speed [m/s]", &
-         & "gap [m]", "b [s/m]", "status [-]", "time [s]", "contacts [-]", &
-         & "closed_form_contacts [-]", "integrated_contacts [-]", "clusters [-]", &
-         & "cvode_steps [-]", "energy_error [-]", "dissipated [J]"]
+      columns = [character(len=32) :: "method", "variation [-]", (trim(sweep_names(i)) &
+         & // " [" // trim(sweep_units(i)) // "]", i = 1, n_sweep_lists), "status [-]", &
+         & "time [s]", "contacts [-]", "closed_form_contacts [-]", "integrated_contacts [-]", &
+         & "clusters [-]", "cvode_steps [-]", "energy_error [-]", "dissipated [J]"]
       columns = [character(len=32) :: columns, ("velocity_" // str(i) // " [m/s]", i = 1, n)]
       call csv_open(res, "system_sweep.csv", columns, csv, error)
       if (allocated(error)) return
       do k = 1, size(outputs, 2)
-         call item_variation(sc%system, k, speed, gap, damping)
-         call csv_row(csv, [real(k, wp), speed, gap, damping, outputs(result_status, k), &
+         call item_variation(sc%system, k, values)
+         call csv_row(csv, [real(k, wp), values, outputs(result_status, k), &
             & outputs(result_time, k), outputs(result_contacts:result_clusters, k), &
             & outputs(result_steps, k), outputs(result_energy_error, k), &
             & outputs(result_dissipated, k), outputs(result_velocities:, k)], &
@@ -143,34 +144,64 @@ contains
       call csv_close(csv, error)
    end subroutine write_rows
 
-   !> The console: the first rows (variation, its parameters, status, contacts, the
-   !> energy balance, the last body's final velocity).
+   !> The console: the first rows (variation, the values of the lists it varies,
+   !> status, contacts, the energy balance, the last body's final velocity).
    subroutine print_table(sc, outputs)
       type(scene_type), intent(in) :: sc
       real(wp), intent(in) :: outputs(:, :)
+      ! short headings of the parameters (sweep_names' order)
+      character(len=*), parameter :: headings(n_sweep_lists) = [character(len=12) :: &
+         & "v1 (m/s)", "m (kg)", "gap (m)", "c (N/m^n)", "n", "b (s/m)", "e", "g (m/s^2)"]
       character(len=200) :: line
-      real(wp) :: speed, gap, damping
-      integer :: k, n, shown
+      character(len=:), allocatable :: head
+      real(wp) :: values(n_sweep_lists)
+      logical :: varied(n_sweep_lists)
+      integer :: k, n, shown, j
       n = sc%system%n
+      do j = 1, n_sweep_lists
+         varied(j) = size(sc%system%vary(j)%values) > 0
+      end do
       call emit("")
       call emit(sc%title // ": system_sweep")
-      write(line, '(a9, 3a13, a7, a10, a13, a16, a14)') "variation", "v1 (m/s)", "gap (m)", &
-         & "b (s/m)", "status", "contacts", "energy err", "v" // str(n) // " end (m/s)", "method"
-      call emit(trim(line))
+      head = "variation"
+      do j = 1, n_sweep_lists
+         if (.not. varied(j)) cycle
+         if (j == sweep_mass) then
+            head = head // pad13("m" // str(sc%system%vary_mass_body) // " (kg)")
+         else
+            head = head // pad13(trim(headings(j)))
+         end if
+      end do
+      write(line, '(a7, a10, a13, a16, a14)') "status", "contacts", "energy err", &
+         & "v" // str(n) // " end (m/s)", "method"
+      call emit(head // trim(line))
       shown = min(size(outputs, 2), table_rows)
       do k = 1, shown
-         call item_variation(sc%system, k, speed, gap, damping)
-         write(line, '(i9, 3a13, i7, a10, a13, a16, a14)') k, real_str(speed, 6), &
-            & real_str(gap, 6), real_str(damping, 6), nint(outputs(result_status, k)), &
+         call item_variation(sc%system, k, values)
+         write(line, '(i9)') k
+         head = trim(line)
+         do j = 1, n_sweep_lists
+            if (varied(j)) head = head // pad13(real_str(values(j), 6))
+         end do
+         write(line, '(i7, a10, a13, a16, a14)') nint(outputs(result_status, k)), &
             & real_str(outputs(result_contacts, k), 10), &
             & real_str(outputs(result_energy_error, k), 3), &
             & real_str(outputs(result_velocities + n - 1, k), 8), &
             & method_word(outputs(result_method, k))
-         call emit(trim(line))
+         call emit(head // trim(line))
       end do
       if (size(outputs, 2) > shown) call emit("  ... " // str(size(outputs, 2) - shown) &
          & // " more in system_sweep.csv")
       call emit("")
+   contains
+      !> A text (its first 12 characters) at the right of a field of 13
+      pure function pad13(text) result(field)
+         character(len=*), intent(in) :: text
+         character(len=13) :: field
+         integer :: l
+         l = min(len_trim(adjustl(text)), 12)
+         field = repeat(" ", 13 - l) // adjustl(text)
+      end function pad13
    end subroutine print_table
 
 end module hcimpact_scene_systems

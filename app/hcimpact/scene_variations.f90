@@ -18,7 +18,8 @@ module hcimpact_scene_variations
 
    public :: read_variations, max_variations, variations_text_length, variation_index, &
       & variation_count
-   public :: striker_speed, gap, b, combine, mass, stiffness, exponent, speed
+   public :: striker_speed, gap, b, combine, mass, stiffness, exponent, speed, restitution, &
+      & gravity, at_speed, mass_body, unset_body
 
    !> Most values of one list
    integer, parameter :: max_variations = 1000
@@ -27,18 +28,27 @@ module hcimpact_scene_variations
    !> The mark of a real not given (hcimpact_scene_model's unset_bits)
    real(wp), parameter :: unset = transfer(unset_bits, 1.0_wp)
 
-   !> The speeds of body 1 (m/s), the gaps of every pair (m), the damping of every
-   !> pair (s/m)
-   real(wp) :: striker_speed(max_variations), gap(max_variations), b(max_variations)
+   !> The mark of an integer not given (a file that writes it is caught by the reader)
+   integer, parameter :: unset_body = -huge(1)
+
+   !> A system's sweep: the speeds of body 1 (m/s), the gaps of every pair (m), the
+   !> damping of every pair (s/m), the restitutions of every pair at the speed at_speed
+   !> (m/s), gravity (m/s^2), and (with stiffness and exponent below, every pair's) the
+   !> masses of body mass_body (kg, `mass` below)
+   real(wp) :: striker_speed(max_variations), gap(max_variations), b(max_variations), &
+      & restitution(max_variations), gravity(max_variations), at_speed
+   integer :: mass_body
    !> "product" (every combination) or "list" (the lists side by side)
    character(len=variations_text_length) :: combine
 
    !> The effective masses (kg), stiffnesses (N/m^n), exponents and approach speeds
-   !> (m/s) of one impact (its damping is `b`)
+   !> (m/s) of one impact (its damping is `b`); of a system, the masses of one body and
+   !> every pair's stiffness and exponent
    real(wp) :: mass(max_variations), stiffness(max_variations), exponent(max_variations), &
       & speed(max_variations)
 
-   namelist /system_sweep/ striker_speed, gap, b, combine
+   namelist /system_sweep/ striker_speed, mass, mass_body, gap, stiffness, exponent, b, &
+      & restitution, at_speed, gravity, combine
    namelist /impact_sweep/ mass, stiffness, exponent, b, speed, combine
 
 contains
@@ -59,6 +69,10 @@ contains
       stiffness = unset
       exponent = unset
       speed = unset
+      restitution = unset
+      gravity = unset
+      at_speed = unset
+      mass_body = unset_body
       combine = ""
       call ieee_get_halting_mode(ieee_usual, halting)
       call ieee_set_halting_mode(ieee_usual, .false.)

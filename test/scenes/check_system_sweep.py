@@ -1,0 +1,156 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Every row of a sweep of systems (the output system_sweep) is the run of the system
+with that row's values put into &bodies by hand.
+
+    python3 check_system_sweep.py HCIMPACT OUT_DIR
+
+For each sweep below the script writes a scene with a &system_sweep group, runs it,
+and checks system_sweep.csv: its rows come in the order of the lists' product (the
+first list varying slowest) or side by side (combine = "list"), every parameter column
+holds the row's value (nan where the sweep does not vary it), and every row's final
+velocities and status are, to the last bit, those of a scene of its own in which the
+row's values stand in &bodies (body 1's velocity, one body's mass, every pair's gap,
+stiffness, exponent and b, or the restitution at its speed, gravity), run for the
+output `final`. The varied scene goes through the sweep's code (the lists, the
+substitution, the restitution's damping); the scene of its own through the reader of
+&bodies alone.
+"""
+import csv
+import itertools
+import math
+import os
+import subprocess
+import sys
+
+NAMES = ["striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution",
+         "gravity"]
+UNITS = ["m/s", "kg", "m", "N/m^n", "-", "s/m", "-", "m/s^2"]
+
+# three balls falling onto a wall (the left one nearest), a cluster and isolated
+# contacts alike
+BASE = {"mass": [0.2, 0.1, 0.05], "velocity": [-1.0, -1.5, -2.0], "gap": 1e-3,
+        "stiffness": 1e8, "exponent": 1.5, "b": 0.05, "gravity": -9.81,
+        "t_end": 0.01}
+WALL = "&left_wall stiffness = 1e9, b = 0.1, gap = 2e-3 /\n"
+
+SWEEPS = [
+    # name, lists (in NAMES' order), extra text of the group, combine, mass_body
+    ("product", {"striker_speed": [-0.5, -3.0], "mass": [0.3, 0.02], "gap": [0.0, 5e-4],
+                 "stiffness": [1e7, 3e8], "exponent": [1.5, 1.25], "b": [0.0, 0.3],
+                 "gravity": [-9.81, -1.62]}, "product", 3),
+    ("restitution", {"striker_speed": [-0.5, -1.0, -2.0], "restitution": [0.95, 0.6, 0.3]},
+     "list", None),
+    ("mass-first", {"mass": [0.5, 1e-3], "gravity": [0.0, -30.0]}, "product", None),
+]
+AT_SPEED = 0.7
+
+
+def fmt(x):
+    return repr(float(x))
+
+
+def scene_text(title, bodies, sweep=None, combine=None, mass_body=None, outputs="final"):
+    text = f'&scene title = "{title}", outputs = "{outputs}" /\n&bodies\n'
+    text += "  mass = " + ", ".join(fmt(m) for m in bodies["mass"]) + "\n"
+    text += "  velocity = " + ", ".join(fmt(v) for v in bodies["velocity"]) + "\n"
+    text += f"  gap = {fmt(bodies['gap'])}, stiffness = {fmt(bodies['stiffness'])}\n"
+    text += f"  exponent = {fmt(bodies['exponent'])}\n"
+    if "restitution" in bodies:
+        text += f"  restitution = {fmt(bodies['restitution'])}, at_speed = {fmt(AT_SPEED)}\n"
+    else:
+        text += f"  b = {fmt(bodies['b'])}\n"
+    text += f"  gravity = {fmt(bodies['gravity'])}, t_end = {fmt(bodies['t_end'])}\n/\n"
+    text += WALL
+    if sweep:
+        text += "&system_sweep\n"
+        for name, values in sweep.items():
+            text += f"  {name} = " + ", ".join(fmt(v) for v in values) + "\n"
+        if "restitution" in sweep:
+            text += f"  at_speed = {fmt(AT_SPEED)}\n"
+        if mass_body is not None:
+            text += f"  mass_body = {mass_body}\n"
+        text += f'  combine = "{combine}"\n/\n'
+    return text
+
+
+def run(program, path, out):
+    proc = subprocess.run([program, path, "-o", out, "-q"], capture_output=True, text=True)
+    return proc.returncode, proc.stdout + proc.stderr
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def expected_rows(sweep, combine):
+    names = [n for n in NAMES if n in sweep]
+    if combine == "product":
+        combos = itertools.product(*(sweep[n] for n in names))
+    else:
+        combos = zip(*(sweep[n] for n in names))
+    return [dict(zip(names, c)) for c in combos]
+
+
+def same_number(text, value):
+    if value is None:
+        return text == "nan"
+    return float(text) == value
+
+
+def main():
+    program, out_dir = sys.argv[1], sys.argv[2]
+    os.makedirs(out_dir, exist_ok=True)
+    failures = 0
+    rows_checked = 0
+    for name, sweep, combine, mass_body in SWEEPS:
+        path = os.path.join(out_dir, f"{name}.nml")
+        with open(path, "w") as f:
+            f.write(scene_text(name, BASE, sweep, combine, mass_body, "system_sweep"))
+        rc, log = run(program, path, os.path.join(out_dir, name))
+        if rc != 0:
+            print(f"{name}: the sweep failed ({rc}):\n{log}")
+            return 1
+        rows = read_csv(os.path.join(out_dir, name, "system_sweep.csv"))
+        wanted = expected_rows(sweep, combine)
+        if len(rows) != len(wanted):
+            print(f"{name}: {len(rows)} rows, expected {len(wanted)}")
+            return 1
+        for k, (row, values) in enumerate(zip(rows, wanted), start=1):
+            problems = []
+            if int(float(row["variation [-]"])) != k:
+                problems.append(f"variation {row['variation [-]']}")
+            for n, unit in zip(NAMES, UNITS):
+                if not same_number(row[f"{n} [{unit}]"], values.get(n)):
+                    problems.append(f"{n} = {row[f'{n} [{unit}]']}, expected {values.get(n)}")
+            bodies = dict(BASE, mass=list(BASE["mass"]), velocity=list(BASE["velocity"]))
+            for n, v in values.items():
+                if n == "striker_speed":
+                    bodies["velocity"][0] = v
+                elif n == "mass":
+                    bodies["mass"][(mass_body or 1) - 1] = v
+                else:
+                    bodies[n] = v
+            one = os.path.join(out_dir, f"{name}-{k}")
+            with open(one + ".nml", "w") as f:
+                f.write(scene_text(f"{name} {k}", bodies))
+            rc, log = run(program, one + ".nml", one)
+            status = int(float(row["status [-]"]))
+            if rc != 0 or status != 0:
+                problems.append(f"status {status} in the sweep, exit {rc} alone: {log}")
+            else:
+                final = read_csv(os.path.join(one, "final.csv"))
+                for i, body in enumerate(final, start=1):
+                    got = row[f"velocity_{i} [m/s]"]
+                    if got != body["velocity [m/s]"]:
+                        problems.append(f"velocity_{i} = {got}, alone {body['velocity [m/s]']}")
+            rows_checked += 1
+            if problems:
+                failures += 1
+                print(f"{name} row {k} {values}: " + "; ".join(problems))
+    print(f"{rows_checked} rows checked, {failures} wrong")
+    return 1 if failures or rows_checked == 0 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
