@@ -127,8 +127,9 @@ typedef struct {
                                      initial| relative to the initial energy */
   double dissipated;            /**< energy dissipated in the contacts up to time (also
                                      by those still in progress) */
-  double momentum_error;        /**< relative change of the momentum (NaN with a
-                                     wall or gravity, which change it) */
+  double momentum_error;        /**< relative error of the momentum against the
+                                     initial one plus gravity's impulse M g t (NaN
+                                     with a wall, whose impulses are not counted) */
   int64_t n_contacts;           /**< every contact, also beyond contact_capacity */
   int64_t contacts_recorded;    /**< contacts written: min(n_contacts, capacity) */
   int64_t closed_form_contacts; /**< contacts computed by the closed forms */

@@ -74,7 +74,8 @@ module hcimpact_cvode_chain_capi_types
       real(c_double) :: energy_error
       !> Energy dissipated in J
       real(c_double) :: dissipated
-      !> Relative change of the momentum (NaN with a wall or gravity)
+      !> Relative error of the momentum against the initial one plus gravity's impulse
+      !> M g t (NaN with a wall)
       real(c_double) :: momentum_error
       !> Every contact, also those beyond the caller's capacity
       integer(c_int64_t) :: n_contacts

@@ -56,7 +56,8 @@ subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt,
    real(wp), intent(out) :: vf(*)
    !> RES(6): time reached, rest time (NaN unless the system came to rest on a wall),
    !> initial kinetic energy (J), relative energy error, energy dissipated (J),
-   !> relative momentum error (NaN with a wall or gravity)
+   !> relative momentum error (against the initial momentum plus gravity's impulse
+   !> M g t; NaN with a wall)
    real(wp), intent(out) :: res(6)
    !> ICNT(11): contacts (all), contacts recorded in CONT, method used (1 closed forms,
    !> 2 integration, 3 both), 1 if the system came to rest, contacts by the closed

@@ -87,7 +87,8 @@ class ChainResult:
     n_contacts: int
     #: relative error of kinetic + elastic + gravitational + dissipated energy
     energy_error: float
-    #: relative change of the momentum (NaN with a wall or gravity)
+    #: relative error of the momentum against the initial one plus gravity's impulse
+    #: M g t (NaN with a wall, whose impulses are not counted)
     momentum_error: float
     #: initial kinetic energy and the energy dissipated, J
     initial_energy: float

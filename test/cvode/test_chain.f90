@@ -68,6 +68,7 @@ contains
          & new_unittest("two-bodies-closed-forms", test_two_bodies_general), &
          & new_unittest("two-bodies-integrated", test_two_bodies_integrated), &
          & new_unittest("elastic-energy-momentum", test_elastic_balance), &
+         & new_unittest("momentum-under-gravity", test_momentum_gravity), &
          & new_unittest("three-balls", test_three_balls), &
          & new_unittest("newtons-cradle", test_cradle), &
          & new_unittest("two-balls-on-a-floor", test_drop_two), &
@@ -758,6 +759,70 @@ contains
       print '(2x, a, f8.1, a, f6.1, a)', "b = 0: largest energy error ", worst_e, &
          & " rtol, momentum ", worst_p, " eps"
    end subroutine test_elastic_balance
+
+   !> Without walls the momentum changes by gravity's impulse alone, M g t: the balance
+   !> against p0 + M g t closes to rounding for a struck chain falling freely
+   !> (integrated), a dilute row falling (closed forms), damped or not, short and long
+   !> falls (100 s, up to 3e6 m/s of common speed), gravity either way; it is NaN with
+   !> a wall.
+   subroutine test_momentum_gravity(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      integer :: sys, k, stat
+      real(wp), parameter :: gravities(2) = [-9.81_wp, 3.0e4_wp]
+      real(wp), parameter :: ends(2) = [1.0e-3_wp, 100.0_wp]
+      real(wp) :: worst
+      character(len=64) :: what
+
+      worst = 0.0_wp
+      do sys = 1, 3
+         select case (sys)
+         case (1)
+            chain = steel_row(8, 1.0_wp, 0.0_wp, 0.0_wp)
+         case (2)
+            chain = steel_row(8, 1.0_wp, 0.05_wp, 0.0_wp)
+         case (3)
+            chain = steel_row(6, 1.0_wp, 0.0_wp, 1.0e-3_wp)
+            chain%velocity = [1.0_wp, -0.5_wp, 0.3_wp, -1.0_wp, 0.2_wp, -0.7_wp]
+         end select
+         do k = 1, 4
+            chain%gravity = gravities(1 + mod(k - 1, 2))
+            write(what, '(a, i0, a, es9.2, a, es9.2)') "system ", sys, " g ", chain%gravity, &
+               & " t_end ", ends(1 + (k - 1) / 2)
+            call run(error, chain, opts(method_auto, 1.0e-10_wp, ends(1 + (k - 1) / 2)), &
+               & result, trim(what))
+            if (allocated(error)) return
+            worst = max(worst, result%momentum_error / epsilon(1.0_wp))
+            call check(error, result%momentum_error <= 64 * epsilon(1.0_wp), &
+               & trim(what) // ": momentum error " // format_real(result%momentum_error))
+            if (allocated(error)) return
+         end do
+      end do
+      print '(2x, a, f6.1, a)', "largest momentum error under gravity: ", worst, " eps"
+
+      ! a floor: the walls' impulses are not counted, no balance
+      chain = steel_row(2, 0.0_wp, 0.0_wp, 0.0_wp)
+      chain%gravity = -9.81_wp
+      chain%left_wall = .true.
+      chain%left_law = contact_law(steel_wall, 1.5_wp, 0.0_wp)
+      chain%left_gap = 1.0e-3_wp
+      call run(error, chain, opts(method_auto, 1.0e-8_wp, 0.05_wp), result, "on a floor")
+      if (allocated(error)) return
+      call check(error, ieee_is_nan(result%momentum_error), "on a floor: momentum error " &
+         & // format_real(result%momentum_error) // ", expected NaN")
+      if (allocated(error)) return
+
+      ! M g t beyond the range of doubles: its kinetic energy is too (the masses add
+      ! up to at most a quarter of the range), the run fails with its status, and the
+      ! balance is never formed from infinities (the Debug build traps on them)
+      chain = steel_row(2, 0.0_wp, 0.0_wp, 1.0_wp)
+      chain%mass = 1.0e300_wp
+      chain%gravity = -1.0e10_wp
+      call chain_simulate(chain, result, stat, opts(method_auto, 1.0e-8_wp, 1.0_wp))
+      call check(error, stat == hcimpact_err_domain, "M g t of 2e310: status " &
+         & // format_real(real(stat, wp)) // " " // trim(result%message))
+   end subroutine test_momentum_gravity
 
    ! ==================================================================================
    ! Touching balls, cradles, chains: against make_chain.py

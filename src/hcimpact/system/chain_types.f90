@@ -173,7 +173,9 @@ module hcimpact_chain_types
       real(wp) :: initial_energy = nan, energy_error = nan
       !> Dissipated energy in J (up to the time reached: contacts in progress included)
       real(wp) :: dissipated = nan
-      !> Relative change of the momentum (only without walls and gravity, else NaN)
+      !> Relative error of the momentum against the initial one plus gravity's impulse
+      !> M g t, over sum(m |v0|) + |M g t| (without walls, else NaN: the walls'
+      !> impulses are not counted)
       real(wp) :: momentum_error = nan
       !> by_closed_forms when no contact was integrated, by_integration when every
       !> contact was, 3 when both were used
