@@ -814,8 +814,9 @@ contains
       if (allocated(error)) return
 
       ! M g t beyond the range of doubles: its kinetic energy is too (the masses add
-      ! up to at most a quarter of the range), the run fails with its status, and the
-      ! balance is never formed from infinities (the Debug build traps on them)
+      ! up to at most a quarter of the range), the run fails with its status, and
+      ! neither the energies nor the balance overflow on the way (the Debug build
+      ! trapped in 1/2 m v^2 before 27 November)
       chain = steel_row(2, 0.0_wp, 0.0_wp, 1.0_wp)
       chain%mass = 1.0e300_wp
       chain%gravity = -1.0e10_wp

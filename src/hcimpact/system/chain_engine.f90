@@ -50,11 +50,11 @@ module hcimpact_chain_engine
    use hcimpact_impact_model, only : impact, time_law
    use hcimpact_force_element, only : contact_force_type, contact_force_pair, &
       & contact_force_wall
-   use hcimpact_power_force, only : power_law_potential, product_of
+   use hcimpact_power_force, only : power_law_potential, product_of, signed_product
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, contact_record, &
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
-      & kinetic_energy, energy_balance_error
+      & kinetic_energy, energy_balance_error, within_range
    implicit none
    private
 
@@ -69,6 +69,11 @@ module hcimpact_chain_engine
    integer, parameter :: advance_reached = 0, advance_grow_left = 1, &
       & advance_grow_right = 2, advance_dissolved = 3, advance_captured = 4, &
       & advance_failed = 5, advance_split = 6
+
+   !> The message of a result whose energies leave the range of doubles
+   character(len=*), parameter :: energies_beyond_range = "the energies of the system " &
+      & // "leave the range of doubles (kinetic, elastic or gravitational energy, or " &
+      & // "their balance, beyond 1.8e308 J)"
 
    !> Kinds of the event of a slot
    integer, parameter :: event_none = 0, event_start = 1, event_end = 2, event_cluster = 3
@@ -1834,6 +1839,27 @@ contains
       end do
    end subroutine take_samples
 
+   !> a + b, or +-Inf where it is beyond the range of doubles and NaN where it has no
+   !> value (infinities of both signs), without raising an exception on the way
+   elemental function sum_in_range(a, b) result(total)
+      real(wp), intent(in) :: a, b
+      real(wp) :: total
+      if (ieee_is_nan(a) .or. ieee_is_nan(b)) then
+         total = nan
+      else if (ieee_is_finite(a) .and. ieee_is_finite(b)) then
+         if ((a > 0.0_wp .eqv. b > 0.0_wp) .and. abs(a) > huge(1.0_wp) - abs(b)) then
+            total = sign(ieee_value(1.0_wp, ieee_positive_inf), a)
+         else
+            total = a + b
+         end if
+      else if (ieee_is_finite(a) .or. ieee_is_finite(b) .or. (a > 0.0_wp .eqv. b > 0.0_wp)) then
+         ! an infinity and a finite value, or two of one sign: exact, nothing raised
+         total = a + b
+      else
+         total = nan
+      end if
+   end function sum_in_range
+
    !> The impulse of gravity g on bodies of the masses `mass` over the time t >= 0,
    !> M g t, without overflow on the way (the Debug build traps on it): +-Inf where it
    !> is beyond the range of doubles.
@@ -1868,20 +1894,36 @@ contains
       integer, intent(out) :: stat
       integer :: i, s, nsamples
       real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, p0, p, scale, x, in_progress, impulse
+      real(wp), allocatable :: displacement(:)
       type(contact_law) :: law
 
       result%time = engine%time
-      allocate(result%positions(engine%n), result%velocities(engine%n))
+      allocate(result%positions(engine%n), result%velocities(engine%n), displacement(engine%n))
+      do i = 1, engine%n
+         call body_state_at(engine, i, engine%time, displacement(i), result%velocities(i))
+         result%positions(i) = engine%q_initial(i) + displacement(i)
+      end do
+      ! the final kinetic energy and momentum must be doubles, checked before they are
+      ! formed (an overflow on the way would trap in a caller's Debug build)
+      if (.not. (all(ieee_is_finite(result%velocities)) .and. within_range(engine%chain%mass, &
+         & result%velocities))) then
+         stat = hcimpact_err_domain
+         engine%message = energies_beyond_range
+         return
+      end if
       e_kin = 0.0_wp
       e_grav = 0.0_wp
       p = 0.0_wp
       do i = 1, engine%n
-         call body_state_at(engine, i, engine%time, u, v)
-         result%positions(i) = engine%q_initial(i) + u
-         result%velocities(i) = v
+         u = displacement(i)
+         v = result%velocities(i)
          e_kin = e_kin + kinetic_energy(engine%chain%mass(i), v)
-         e_grav = e_grav - engine%chain%mass(i) * engine%chain%gravity * u
          p = p + engine%chain%mass(i) * v
+         ! -m g u, and the sum, without an overflow on the way (+-Inf beyond the range;
+         ! the run then fails below)
+         if (engine%chain%gravity /= 0.0_wp .and. u /= 0.0_wp) e_grav = sum_in_range(e_grav, &
+            & sign(1.0_wp, u) * signed_product(-engine%chain%gravity, [engine%chain%mass(i), &
+            & abs(u)]))
       end do
       e_el = 0.0_wp
       do s = 0, engine%n
@@ -1894,7 +1936,7 @@ contains
          else
             x = result%positions(s) - result%positions(s + 1)
          end if
-         e_el = e_el + power_law_potential(law%stiffness, law%exponent, x)
+         e_el = sum_in_range(e_el, power_law_potential(law%stiffness, law%exponent, x))
       end do
       e_kin0 = 0.0_wp
       p0 = 0.0_wp
@@ -1915,7 +1957,15 @@ contains
             in_progress = in_progress + exact_dissipated(engine, s)
          end if
       end do
-      result%dissipated = engine%dissipated + in_progress
+      result%dissipated = sum_in_range(engine%dissipated, in_progress)
+      ! the balance only of energies that are doubles (infinities in it would raise the
+      ! invalid exception, which the Debug build traps)
+      if (.not. (ieee_is_finite(sum_in_range(sum_in_range(e_kin, e_el), e_grav)) .and. &
+         & ieee_is_finite(result%dissipated))) then
+         stat = hcimpact_err_domain
+         engine%message = energies_beyond_range
+         return
+      end if
       ! the energy put in by gravity counts in the scale of the error
       result%energy_error = energy_balance_error(e_kin + e_el + e_grav, result%dissipated, &
          & e_kin0, e_grav)
@@ -1964,8 +2014,7 @@ contains
          & .and. (ieee_is_nan(result%momentum_error) .or. ieee_is_finite(result%momentum_error)))) &
          & then
          stat = hcimpact_err_domain
-         engine%message = "the energies of the system leave the range of doubles (kinetic, " &
-            & // "elastic or gravitational energy, or their balance, beyond 1.8e308 J)"
+         engine%message = energies_beyond_range
       end if
       ! (samples after t_end are NaN, not infinite; ieee_is_nan, not a comparison: a NaN
       ! compared traps in the Debug build)
