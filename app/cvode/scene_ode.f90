@@ -12,12 +12,19 @@ module hcimpact_scene_ode
    private
 
    public :: ode_available, ode_description, ode_missing, ode_run_type, ode_impact, ode_chain
+   public :: ode_chain_description
 
    !> Whether this build can integrate the impact with CVODE
    logical, parameter :: ode_available = .true.
    !> The solver, for the log
    character(len=*), parameter :: ode_description = "SUNDIALS CVODE (BDF, dense Newton " &
       & // "with the analytic Jacobian, root finding for the events), scaled equation"
+   !> The integrator of a system's clusters, for the log
+   character(len=*), parameter :: ode_chain_description = "SUNDIALS CVODE (BDF or Adams," &
+      & // " as &bodies' integrator says; Newton with the banded Jacobian of the contact" &
+      & // " forces, solved by eliminating the displacements and a tridiagonal solve for" &
+      & // " the velocities; contacts followed on its interpolant), for clusters of" &
+      & // " overlapping contacts"
    !> Why it would be missing (it is not)
    character(len=*), parameter :: ode_missing = ""
 

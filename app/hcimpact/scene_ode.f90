@@ -14,11 +14,14 @@ module hcimpact_scene_ode
    private
 
    public :: ode_available, ode_description, ode_missing, ode_run_type, ode_impact, ode_chain
+   public :: ode_chain_description
 
    !> Whether this build can integrate the impact with CVODE
    logical, parameter :: ode_available = .false.
    !> The solver, for the log
    character(len=*), parameter :: ode_description = "none (built without the CVODE component)"
+   !> The integrator of a system's clusters, for the log
+   character(len=*), parameter :: ode_chain_description = ode_description
    !> Why it is missing and how to get it
    character(len=*), parameter :: ode_missing = &
       & "this hcimpact was built without the CVODE component (SUNDIALS): fpm builds never " &

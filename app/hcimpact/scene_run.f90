@@ -39,10 +39,12 @@ module hcimpact_scene_run
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
       & abandon_results, csv_open, csv_row, csv_line, csv_close, checkpoint_path
    use hcimpact_scene_ode, only : ode_available, ode_description, ode_missing, ode_run_type, &
+      & ode_chain_description, &
       & ode_impact
    use hcimpact_legacy_damping, only : n_rules => n_damping_rules, &
       & rule_names => damping_rule_names, legacy_chi => legacy_damping
    use hcimpact_scene_system, only : wall_clock
+   use hcimpact_chain_types, only : method_exact, method_integrated
    use hcimpact_scene_sweep, only : sweep_impacts, sweep_description
    use hcimpact_scene_systems, only : system_sweep_method, run_system_sweep
    use hcimpact_scene_impacts, only : impact_sweep_method, run_impact_sweep
@@ -194,6 +196,13 @@ contains
          used = used .or. needs(k)
          call say_text("  " // pad(output_names(k), 12), method(sc, k))
       end do
+      ! a system's isolated contacts come from the closed forms of one impact and its
+      ! time law, but with the method integrated; its clusters from CVODE, but with the
+      ! method exact
+      if (sc%is_system) then
+         used([c_impact, c_timelaw]) = sc%system%method /= method_integrated
+         used(c_ode) = sc%system%method /= method_exact
+      end if
       if (.not. all(used)) call say_wrapped("  not needed: ", pack(component_names, .not. used))
       if (sc%wanted(out_summary) .or. sc%wanted(out_sweep) .or. sc%wanted(out_impact_sweep)) &
          & call say_text("  impacts: ", &
@@ -214,8 +223,8 @@ contains
             code = exit_unavailable
             return
          end if
-         call say_text("  ODE solver: ", trim(ode_description) // " (for clusters of" &
-            & // " overlapping contacts)")
+         if (sc%system%method /= method_exact) call say_text("  ODE solver: ", &
+            & ode_chain_description)
       end if
       if (opts%plan_only) then
          if (console_failed()) then
