@@ -2103,10 +2103,12 @@ contains
       if (allocated(error)) return
       if (.not. src%groups(g_system_sweep)%present) return
       do k = 1, n_sweep_lists
-         call count_list(src, g_system_sweep, trim(sweep_names(k)), list_of(k), n(k), error)
+         call count_list(src, g_system_sweep, trim(sweep_names(k)), &
+            & sweep_values(trim(sweep_names(k))), n(k), error)
          if (allocated(error)) return
          call check_sweep_list(src, g_system_sweep, trim(sweep_names(k)), &
-            & trim(sweep_units(k)), list_of(k), n(k), lowest_of(k), error)
+            & trim(sweep_units(k)), sweep_values(trim(sweep_names(k))), n(k), lowest_of(k), &
+            & error)
          if (allocated(error)) return
          ! every pair's value: a system of one body has none
          if (n(k) > 0 .and. sys%n < 2 .and. k >= sweep_gap .and. k <= sweep_restitution) then
@@ -2173,35 +2175,11 @@ contains
       call combine_lists(src, g_system_sweep, sweep_names, n, sys%vary_product, error)
       if (allocated(error)) return
       do k = 1, n_sweep_lists
-         sys%vary(k)%values = list_of(k)
+         sys%vary(k)%values = sweep_values(trim(sweep_names(k)))
          sys%vary(k)%values = sys%vary(k)%values(1:n(k))
       end do
 
    contains
-
-      !> The namelist list of parameter k
-      function list_of(k) result(values)
-         integer, intent(in) :: k
-         real(wp) :: values(max_variations)
-         select case (k)
-         case (sweep_striker_speed)
-            values = vary_speed
-         case (sweep_mass)
-            values = vary_mass
-         case (sweep_gap)
-            values = vary_gap
-         case (sweep_stiffness)
-            values = vary_stiffness
-         case (sweep_exponent)
-            values = vary_exponent
-         case (sweep_b)
-            values = vary_b
-         case (sweep_restitution)
-            values = vary_restitution
-         case default
-            values = vary_gravity
-         end select
-      end function list_of
 
       !> The bound of parameter k's values (`check_sweep_list`)
       pure integer function lowest_of(k)
@@ -2216,6 +2194,35 @@ contains
          end select
       end function lowest_of
    end subroutine load_variations
+
+   !> The values of the sweep list `name` as the namelist groups &system_sweep and
+   !> &impact_sweep read it (the two share the lists of one name)
+   function sweep_values(name) result(values)
+      character(len=*), intent(in) :: name
+      real(wp) :: values(max_variations)
+      select case (name)
+      case ("striker_speed")
+         values = vary_speed
+      case ("mass")
+         values = vary_mass
+      case ("gap")
+         values = vary_gap
+      case ("stiffness")
+         values = vary_stiffness
+      case ("exponent")
+         values = vary_exponent
+      case ("b")
+         values = vary_b
+      case ("restitution")
+         values = vary_restitution
+      case ("gravity")
+         values = vary_gravity
+      case ("speed")
+         values = vary_impact_speed
+      case default
+         values = unset
+      end select
+   end function sweep_values
 
    !> Check the first n values of the sweep list `name` (unit `unit`) of group gid:
    !> finite, and `lowest` any_finite, not_negative (>= 0) or positive (> 0).
@@ -2322,11 +2329,13 @@ contains
          return
       end if
       do k = 1, size(names)
-         call count_list(src, g_impact_sweep, trim(names(k)), list_of(k), n(k), error)
+         call count_list(src, g_impact_sweep, trim(names(k)), sweep_values(trim(names(k))), &
+            & n(k), error)
          if (allocated(error)) return
          ! every value positive but b, which may be 0 (no damping: Hertz)
          call check_sweep_list(src, g_impact_sweep, trim(names(k)), trim(units(k)), &
-            & list_of(k), n(k), merge(not_negative, positive, names(k) == "b"), error)
+            & sweep_values(trim(names(k))), n(k), merge(not_negative, positive, &
+            & names(k) == "b"), error)
          if (allocated(error)) return
       end do
       if (sum(n) == 0) then
@@ -2347,25 +2356,6 @@ contains
       sc%vary_damping = vary_b(1:n(4))
       sc%vary_speed = vary_impact_speed(1:n(5))
 
-   contains
-
-      !> The namelist list of name k
-      function list_of(k) result(values)
-         integer, intent(in) :: k
-         real(wp) :: values(max_variations)
-         select case (k)
-         case (1)
-            values = vary_mass
-         case (2)
-            values = vary_stiffness
-         case (3)
-            values = vary_exponent
-         case (4)
-            values = vary_b
-         case default
-            values = vary_impact_speed
-         end select
-      end function list_of
    end subroutine load_impact_variations
 
    !> &left_wall or &right_wall: the law with the end body `end_body` (stiffness, or
