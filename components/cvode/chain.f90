@@ -30,7 +30,8 @@ module hcimpact_cvode_chain
    use hcimpact_cvode_report, only : report_detail
    use hcimpact_cvode_halting, only : halting_suspend, halting_resume, callback_enter, &
       & callback_leave
-   use hcimpact_status, only : hcimpact_ok, hcimpact_err_solver, hcimpact_err_domain
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_solver, hcimpact_err_domain, &
+      & hcimpact_err_no_convergence
    use hcimpact_force_element, only : contact_force_type
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
       & contact_record, by_integration, integrator_adams, method_integrated
@@ -504,7 +505,7 @@ contains
             exit run
          end if
          if (engine%counters%steps >= engine%options%max_steps) then
-            stat = hcimpact_err_solver
+            stat = hcimpact_err_no_convergence
             write(engine%message, '(a, es11.3e3, a, i0, a)') "CVODE at t = ", self%time, &
                & " s: more than options%max_steps = ", engine%options%max_steps, " steps"
             what = advance_failed

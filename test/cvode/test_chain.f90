@@ -1386,7 +1386,7 @@ contains
    subroutine test_bad_input(error)
       type(error_type), allocatable, intent(out) :: error
       type(chain_type) :: good, bad
-      type(chain_options) :: o
+      type(chain_options) :: o, o2
       type(chain_result) :: result
       integer :: stat
       real(wp) :: nan, inf
@@ -1537,6 +1537,12 @@ contains
       call expect(bad, o, hcimpact_err_no_convergence, "between walls to 1e6 s, 1000 contacts")
       if (allocated(error)) return
       o%t_end = -1.0_wp
+      ! the limit on the steps likewise (a touching cradle, 5 steps)
+      o2 = opts(method_auto, 1.0e-8_wp)
+      o2%max_steps = 5
+      call expect(steel_row(5, 1.0_wp, 0.0_wp, 0.0_wp), o2, hcimpact_err_no_convergence, &
+         & "a touching cradle in at most 5 steps")
+      if (allocated(error)) return
       if (allocated(error)) return
       ! an undamped ball on a floor under gravity bounces for ever; damped, it rests
       bad = steel_row(1, 0.0_wp, 0.0_wp, 0.0_wp)

@@ -16,7 +16,10 @@
  *  - core, Fortran (cases_core.f90): status_message and quadrature_status_message;
  *  - CVODE component (HCIMPACT_THREADS_CVODE): hcimpact_simulate from C, good and bad
  *    input and CVODE failures; `simulate` from Fortran (cases_cvode.f90) with the power
- *    law and with user laws, compared with its messages;
+ *    law and with user laws, compared with its messages; systems of bodies through
+ *    hcimpact_chain_simulate (cradles by CVODE and by the closed forms, a ball pair
+ *    on a floor, samples) and its failures (a cluster for the method exact, a negative
+ *    gap, NaN, too few steps, rtol out of range), with their messages;
  *  - LAPACK component (HCIMPACT_THREADS_LAPACK): the calibration fits from C, on good
  *    data and on data that fail (NaN, non-positive, NULL, underdetermined).
  * Threads are POSIX threads, not OpenMP, so that ThreadSanitizer sees every
@@ -33,12 +36,22 @@
 #include <time.h>
 
 #include "hcimpact.h"
+#ifdef HCIMPACT_THREADS_CVODE
+#include "hcimpact_cvode.h"
+#endif
+#ifdef HCIMPACT_THREADS_LAPACK
+#include "hcimpact_lapack.h"
+#endif
 
 #define N_ITEMS 4000    /* every item: the scalar functions and the texts */
 #define N_IMPACT 400    /* items below: closed-form impacts, velocity, time law */
 #define N_LAW 200       /* items below: an impact with a C callback law */
 #define N_CVODE 96      /* items below: hcimpact_simulate and Fortran simulate */
 #define N_FITS 72       /* items below: a calibration fit */
+#define N_CHAIN 48      /* items below: a system of bodies */
+#define N_BODIES 5
+#define N_CHAIN_CONTACTS 8
+#define N_CHAIN_SAMPLES 3
 #define N_TIMES 4
 #define N_DATA 8        /* points of a fit */
 #define TEXT 512
@@ -60,6 +73,14 @@ typedef struct {
   char fortran_simulate_message[TEXT];
   int fit_status;
   double fit[4 + 3 * N_DATA];
+#ifdef HCIMPACT_THREADS_CVODE
+  int chain_status;
+  hcimpact_chain_result chain;
+  double chain_positions[N_BODIES], chain_velocities[N_BODIES];
+  hcimpact_chain_contact chain_contacts[N_CHAIN_CONTACTS];
+  double chain_sampled[N_CHAIN_SAMPLES * (3 * N_BODIES + 1)];
+  char chain_message[TEXT];
+#endif
 } result_t;
 
 /* the Fortran cases (cases_core.f90, cases_cvode.f90) */
@@ -133,6 +154,85 @@ static void simulate_item(int i, result_t *r)
   r->simulate_status = hcimpact_simulate(&c, rtol, &r->simulate);
   thread_cvode_case(i, &r->fortran_simulate_status, r->fortran_simulate,
                     r->fortran_simulate_message, TEXT);
+}
+#endif
+
+#ifdef HCIMPACT_THREADS_CVODE
+/* A system of five steel balls (0.1 kg, Hertz), case by case (i % 8): a touching
+   cradle (a cluster: CVODE, BDF), the same with gaps and damping (the closed forms),
+   a pair falling onto a floor (Adams, samples), and failures, each with its message:
+   the method exact meeting a cluster, a negative gap, a NaN mass, too few steps, an
+   rtol out of range. */
+static void chain_item(int i, result_t *r)
+{
+  double m[N_BODIES], v[N_BODIES], gaps[N_BODIES - 1];
+  hcimpact_chain_law laws[N_BODIES - 1];
+  hcimpact_chain_wall floor = {1.7135e10, 1.5, 0.05, 1e-3};
+  hcimpact_chain_options o;
+  double times[N_CHAIN_SAMPLES] = {1e-4, 2e-3, 8e-3};
+  hcimpact_chain_samples samples;
+  const hcimpact_chain_wall *left = NULL;
+  double gravity = 0.0;
+  int n = N_BODIES, j;
+  memset(&o, 0, sizeof o);
+  for (j = 0; j < N_BODIES; ++j) {
+    m[j] = 0.1;
+    v[j] = 0.0;
+  }
+  v[0] = 0.2 + 0.1 * (i % 5);
+  for (j = 0; j < N_BODIES - 1; ++j) {
+    gaps[j] = 0.0;
+    laws[j].stiffness = 1.7135e10 / sqrt(2.0);
+    laws[j].exponent = 1.5;
+    laws[j].damping = 0.0;
+  }
+  o.rtol = 1e-8;
+  samples.count = 0;
+  samples.times = times;
+  samples.positions = r->chain_sampled;
+  samples.velocities = r->chain_sampled + N_CHAIN_SAMPLES * N_BODIES;
+  samples.forces = r->chain_sampled + 2 * N_CHAIN_SAMPLES * N_BODIES;
+  switch (i % 8) {
+  case 1: /* isolated contacts, damped */
+    for (j = 0; j < N_BODIES - 1; ++j) {
+      gaps[j] = 1e-4 * (j + 1);
+      laws[j].damping = 0.05;
+    }
+    break;
+  case 2: /* a pair dropped onto a floor, Adams, sampled */
+    n = 2;
+    v[0] = v[1] = -0.5;
+    left = &floor;
+    gravity = -9.81;
+    o.t_end = 1e-2;
+    o.integrator = HCIMPACT_CHAIN_ADAMS;
+    samples.count = N_CHAIN_SAMPLES;
+    samples.forces = NULL;
+    break;
+  case 3: /* a cluster for the method exact: HCIMPACT_ERR_DOMAIN, its time */
+    o.method = HCIMPACT_CHAIN_EXACT;
+    gaps[0] = 1e-3 * (1 + i % 3);
+    break;
+  case 4: /* HCIMPACT_ERR_DOMAIN: a negative gap */
+    gaps[i % (N_BODIES - 1)] = -1e-6;
+    break;
+  case 5: /* HCIMPACT_ERR_NOT_FINITE */
+    m[i % N_BODIES] = NAN;
+    break;
+  case 6: /* HCIMPACT_ERR_NO_CONVERGENCE: too few steps */
+    o.max_steps = 3 + i % 5;
+    break;
+  case 7: /* HCIMPACT_ERR_DOMAIN: rtol out of range */
+    o.rtol = 0.5;
+    break;
+  default:
+    break;
+  }
+  r->chain_status = hcimpact_chain_simulate(n, m, v, gaps, laws, left, NULL, gravity, &o,
+                                            &r->chain, r->chain_positions,
+                                            r->chain_velocities, N_CHAIN_CONTACTS,
+                                            r->chain_contacts, &samples, r->chain_message,
+                                            TEXT);
 }
 #endif
 
@@ -231,6 +331,7 @@ static void compute(int i, result_t *r)
   }
 #ifdef HCIMPACT_THREADS_CVODE
   if (i < N_CVODE) simulate_item(i, r);
+  if (i < N_CHAIN) chain_item(i, r);
 #endif
 #ifdef HCIMPACT_THREADS_LAPACK
   if (i < N_FITS) fit_item(i, r);
@@ -315,6 +416,12 @@ int main(int argc, char **argv)
             printf("  serial message:   '%s'\n  parallel message: '%s'\n",
                    serial[i].fortran_simulate_message, parallel[i].fortran_simulate_message);
           }
+#ifdef HCIMPACT_THREADS_CVODE
+          if (strcmp(serial[i].chain_message, parallel[i].chain_message) != 0) {
+            printf("  serial chain message:   '%s'\n  parallel chain message: '%s'\n",
+                   serial[i].chain_message, parallel[i].chain_message);
+          }
+#endif
         }
         ++mismatches;
       }
@@ -334,6 +441,16 @@ int main(int argc, char **argv)
     if (i < N_CVODE && i % 7 == 4 && serial[i].simulate_status != HCIMPACT_ERR_VELOCITY) ok = 0;
     if (i < N_CVODE && i % 7 == 2 && serial[i].simulate_status != HCIMPACT_ERR_SOLVER) ok = 0;
     if (i < N_CVODE && serial[i].fortran_simulate_message[0] == '\0') ok = 0;
+    if (i < N_CHAIN) {
+      static const int expected[8] = {HCIMPACT_OK, HCIMPACT_OK, HCIMPACT_OK,
+                                      HCIMPACT_ERR_DOMAIN, HCIMPACT_ERR_DOMAIN,
+                                      HCIMPACT_ERR_NOT_FINITE, HCIMPACT_ERR_NO_CONVERGENCE,
+                                      HCIMPACT_ERR_DOMAIN};
+      if (serial[i].chain_status != expected[i % 8]) ok = 0;
+      if (i % 8 == 0 && serial[i].chain.integrated_contacts == 0) ok = 0;
+      if (i % 8 == 1 && serial[i].chain.closed_form_contacts == 0) ok = 0;
+      if (serial[i].chain_message[0] == '\0') ok = 0;
+    }
 #endif
 #ifdef HCIMPACT_THREADS_LAPACK
     if (i < N_FITS && i % 8 == 0 && serial[i].fit_status != HCIMPACT_OK) ok = 0;
@@ -342,13 +459,18 @@ int main(int argc, char **argv)
 #endif
     if (!ok) {
       if (failures < 10) printf("UNEXPECTED serial result, item %d\n", i);
+#ifdef HCIMPACT_THREADS_CVODE
+      if (failures < 10 && i < N_CHAIN)
+        printf("  system: status %d, %s\n", serial[i].chain_status, serial[i].chain_message);
+#endif
       ++failures;
     }
   }
 
   printf("%d items (%d impacts, %d callback laws", N_ITEMS, N_IMPACT, N_LAW);
 #ifdef HCIMPACT_THREADS_CVODE
-  printf(", %d CVODE runs from C and %d from Fortran", N_CVODE, N_CVODE);
+  printf(", %d CVODE runs from C and %d from Fortran, %d systems", N_CVODE, N_CVODE,
+         N_CHAIN);
 #endif
 #ifdef HCIMPACT_THREADS_LAPACK
   printf(", %d fits", N_FITS);
