@@ -172,8 +172,10 @@ module hcimpact_scene_model
       real(wp), allocatable :: radius(:), density(:), young(:), poisson(:)
       !> Whether the masses came from radius and density
       logical :: mass_from_density = .false.
-      !> The laws of the neighbouring pairs (n - 1) and how they were obtained
+      !> The laws of the neighbouring pairs (n - 1) and how they were obtained; whether
+      !> their stiffnesses are Hertz's constants from the radii and materials
       type(contact_law), allocatable :: law(:)
+      logical :: stiffness_from_materials = .false.
       character(len=:), allocatable :: law_origin, damping_origin
       !> Target restitution and its speed (m/s), when b was derived from them
       real(wp) :: target_restitution = nan, reference_speed = nan

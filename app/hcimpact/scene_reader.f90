@@ -105,8 +105,9 @@ module hcimpact_scene_reader
    !> looking for the name in the text, `given`)
    integer, parameter :: unset_int = -huge(1)
 
-   !> The bounds of a sweep's list (`check_sweep_list`): any finite value, >= 0, > 0
-   integer, parameter :: any_finite = 0, not_negative = 1, positive = 2
+   !> The bounds of a sweep's list (`check_sweep_list`): any finite value, >= 0, > 0,
+   !> in (0, 1]
+   integer, parameter :: any_finite = 0, not_negative = 1, positive = 2, unit_interval = 3
    !> Length of the text variables; a text that fills one may have been cut, and is
    !> refused
    integer, parameter :: text_length = 256
@@ -914,6 +915,12 @@ contains
             & .and. is_number(token)) then
             text = "too many values for " // owner // " (at most " // str(max_bodies) &
                & // " bodies)"
+         else if (len(owner) > 0 .and. gid == g_system_sweep .and. lower(owner) == "mass_body") then
+            text = "mass_body takes one whole number, the index of the body whose mass the" &
+               & // " list mass varies ('" // token // "' is not read)"
+         else if (len(owner) > 0 .and. gid == g_system_sweep .and. lower(owner) == "at_speed") then
+            text = "at_speed takes one value, the speed in m/s at which the restitutions" &
+               & // " hold ('" // token // "' is one too many)"
          else if (len(owner) > 0 .and. (gid == g_system_sweep .or. gid == g_impact_sweep) &
             & .and. is_number(token)) then
             text = "too many values for " // owner // " (at most " // str(max_variations) &
@@ -1750,6 +1757,7 @@ contains
             end if
             c = hertz_constant(sys%young(1:n - 1), sys%poisson(1:n - 1), sys%radius(1:n - 1), &
                & sys%young(2:n), sys%poisson(2:n), sys%radius(2:n))
+            sys%stiffness_from_materials = .true.
             sys%law_origin = "Hertz's constants from the radii and materials"
          else
             sys%law_origin = "given"
@@ -2045,9 +2053,11 @@ contains
          call restitution_damping(src, gid, e(j), v(j), damping(j), error)
          if (allocated(error)) return
       end do
+      ! the speed of every pair's restitution when they share one (the default of a
+      ! sweep's restitutions), the target too when they share that
+      if (all(v == v(1))) speed = v(1)
       if (all(e == e(1)) .and. all(v == v(1))) then
          target = e(1)
-         speed = v(1)
          origin = "the exact damping for the restitution e = " // real_str(e(1), 6) &
             & // " at V = " // real_str(v(1), 6) // " m/s: b = beta(e)/V"
       else
@@ -2094,6 +2104,7 @@ contains
       type(system_type), intent(inout) :: sys
       character(len=:), allocatable, intent(out) :: error
       integer :: n(n_sweep_lists), k, i
+      real(wp) :: values(max_variations)
       do k = 1, n_sweep_lists
          allocate(sys%vary(k)%values(0))
       end do
@@ -2107,8 +2118,8 @@ contains
             & sweep_values(trim(sweep_names(k))), n(k), error)
          if (allocated(error)) return
          call check_sweep_list(src, g_system_sweep, trim(sweep_names(k)), &
-            & trim(sweep_units(k)), sweep_values(trim(sweep_names(k))), n(k), lowest_of(k), &
-            & error)
+            & trim(sweep_units(k)), sweep_values(trim(sweep_names(k))), n(k), &
+            & sweep_bound(trim(sweep_names(k))), error)
          if (allocated(error)) return
          ! every pair's value: a system of one body has none
          if (n(k) > 0 .and. sys%n < 2 .and. k >= sweep_gap .and. k <= sweep_restitution) then
@@ -2122,18 +2133,27 @@ contains
             & // join(sweep_names, ", ") // " (lists of values)"
          return
       end if
+      if (n(sweep_exponent) > 0 .and. n(sweep_stiffness) == 0 .and. &
+         & sys%stiffness_from_materials) then
+         if (any(vary_exponent(1:n(sweep_exponent)) /= 1.5_wp)) then
+            error = at(src, g_system_sweep, "exponent") // "the pairs' c is Hertz's constant" &
+               & // " from the materials, which is for n = 1.5: vary stiffness too, or give" &
+               & // " it in &bodies"
+            return
+         end if
+      end if
       if (n(sweep_b) > 0 .and. n(sweep_restitution) > 0) then
          error = at(src, g_system_sweep, "restitution") // "vary b or restitution, not both" &
             & // " (each sets every pair's damping)"
          return
       end if
-      if (any(vary_restitution(1:n(sweep_restitution)) > 1.0_wp)) then
-         error = at(src, g_system_sweep, "restitution") // "a coefficient of restitution lies" &
-            & // " in (0, 1]"
-         return
-      end if
       sys%vary_mass_body = 1
       if (vary_mass_body /= unset_body .or. given(src, g_system_sweep, "mass_body")) then
+         if (vary_mass_body == unset_body) then
+            error = at(src, g_system_sweep, "mass_body") // "mass_body has no value: give" &
+               & // " the index of a body"
+            return
+         end if
          if (n(sweep_mass) == 0) then
             error = at(src, g_system_sweep, "mass_body") // "mass_body names the body whose" &
                & // " mass the list mass varies: give mass too"
@@ -2153,10 +2173,18 @@ contains
       end if
       if (n(sweep_restitution) > 0) then
          sys%vary_at_speed = sys%reference_speed
-         if (.not. is_unset(vary_at_speed)) sys%vary_at_speed = vary_at_speed
+         if (.not. is_unset(vary_at_speed)) then
+            sys%vary_at_speed = vary_at_speed
+            if (.not. ieee_is_finite(vary_at_speed)) then
+               error = at(src, g_system_sweep, "at_speed") // "at_speed is not a finite" &
+                  & // " number" // finite_hint
+               return
+            end if
+         end if
          if (ieee_is_nan(sys%vary_at_speed)) then
             error = at(src, g_system_sweep, "restitution") // "restitution needs the speed at" &
-               & // " which it holds: give at_speed (m/s)"
+               & // " which it holds: give at_speed (m/s), as &bodies gives no restitution" &
+               & // " at one speed for every pair"
             return
          end if
          if (.not. (ieee_is_finite(sys%vary_at_speed) .and. sys%vary_at_speed > 0.0_wp)) then
@@ -2175,24 +2203,10 @@ contains
       call combine_lists(src, g_system_sweep, sweep_names, n, sys%vary_product, error)
       if (allocated(error)) return
       do k = 1, n_sweep_lists
-         sys%vary(k)%values = sweep_values(trim(sweep_names(k)))
-         sys%vary(k)%values = sys%vary(k)%values(1:n(k))
+         values = sweep_values(trim(sweep_names(k)))
+         sys%vary(k)%values = values(1:n(k))
       end do
 
-   contains
-
-      !> The bound of parameter k's values (`check_sweep_list`)
-      pure integer function lowest_of(k)
-         integer, intent(in) :: k
-         select case (k)
-         case (sweep_striker_speed, sweep_gravity)
-            lowest_of = any_finite
-         case (sweep_gap, sweep_b)
-            lowest_of = not_negative
-         case default
-            lowest_of = positive
-         end select
-      end function lowest_of
    end subroutine load_variations
 
    !> The values of the sweep list `name` as the namelist groups &system_sweep and
@@ -2224,8 +2238,26 @@ contains
       end select
    end function sweep_values
 
+   !> The bound of the values of the sweep list `name` (`check_sweep_list`): speeds and
+   !> gravity any finite value, gaps and b >= 0 (no damping: Hertz), restitutions in
+   !> (0, 1], the rest (masses, stiffnesses, exponents) positive
+   pure integer function sweep_bound(name)
+      character(len=*), intent(in) :: name
+      select case (name)
+      case ("striker_speed", "gravity")
+         sweep_bound = any_finite
+      case ("gap", "b")
+         sweep_bound = not_negative
+      case ("restitution")
+         sweep_bound = unit_interval
+      case default
+         sweep_bound = positive
+      end select
+   end function sweep_bound
+
    !> Check the first n values of the sweep list `name` (unit `unit`) of group gid:
-   !> finite, and `lowest` any_finite, not_negative (>= 0) or positive (> 0).
+   !> finite, and `lowest` any_finite, not_negative (>= 0), positive (> 0) or
+   !> unit_interval (in (0, 1]).
    subroutine check_sweep_list(src, gid, name, unit, values, n, lowest, error)
       type(scene_source), intent(in) :: src
       integer, intent(in) :: gid
@@ -2236,18 +2268,23 @@ contains
       character(len=:), allocatable :: unit_text
       integer :: i
       unit_text = " " // unit
-      if (unit == "-") unit_text = ""
+      if (unit == "-" .or. len(unit) == 0) unit_text = ""
       do i = 1, n
          ! finite first: an ordered comparison with NaN would trap in the Debug build
          if (.not. ieee_is_finite(values(i))) then
             error = at(src, gid, name) // name // " " // str(i) // " is not a finite number" &
                & // finite_hint
-         else if (lowest == positive .and. .not. values(i) > 0.0_wp) then
+         else if ((lowest == positive .or. lowest == unit_interval) .and. &
+            & .not. values(i) > 0.0_wp) then
             error = at(src, gid, name) // name // " " // str(i) // " = " &
                & // real_str(values(i), 6) // unit_text // ": must be positive"
          else if (lowest == not_negative .and. values(i) < 0.0_wp) then
             error = at(src, gid, name) // name // " " // str(i) // " = " &
                & // real_str(values(i), 6) // unit_text // ": must be >= 0"
+         else if (lowest == unit_interval .and. values(i) > 1.0_wp) then
+            error = at(src, gid, name) // name // " " // str(i) // " = " &
+               & // real_str(values(i), 6) // unit_text // ": a coefficient of restitution" &
+               & // " lies in (0, 1]"
          end if
          if (allocated(error)) return
       end do
@@ -2274,8 +2311,8 @@ contains
       select case (lower(trim(vary_combine)))
       case ("", "product")
          every_combination = .true.
-         ! counted in doubles, exact here: a product of five lists of 1000 passes the
-         ! default integer's range
+         ! counted in doubles, exact here: a product of several lists of 1000 passes
+         ! the default integer's range
          if (product(real(max(lengths, 1), wp)) > max_sweep_items) then
             error = at(src, gid, "") // real_str(product(real(max(lengths, 1), wp)), 15) &
                & // " variations: at most " // str(max_sweep_items)
@@ -2332,10 +2369,8 @@ contains
          call count_list(src, g_impact_sweep, trim(names(k)), sweep_values(trim(names(k))), &
             & n(k), error)
          if (allocated(error)) return
-         ! every value positive but b, which may be 0 (no damping: Hertz)
          call check_sweep_list(src, g_impact_sweep, trim(names(k)), trim(units(k)), &
-            & sweep_values(trim(names(k))), n(k), merge(not_negative, positive, &
-            & names(k) == "b"), error)
+            & sweep_values(trim(names(k))), n(k), sweep_bound(trim(names(k))), error)
          if (allocated(error)) return
       end do
       if (sum(n) == 0) then

@@ -12,7 +12,7 @@ module hcimpact_scene_systems
    use hcimpact_chain_types, only : by_closed_forms, by_integration, method_exact
    use hcimpact_scene_ode, only : ode_available, ode_missing
    use hcimpact_scene_model, only : scene_type, n_sweep_lists, sweep_names, sweep_units, &
-      & sweep_mass
+      & sweep_mass, sweep_restitution
    use hcimpact_scene_output, only : results_type, csv_type, csv_open, csv_row, csv_close, &
       & checkpoint_path
    use hcimpact_scene_system_items, only : system_item_count, system_item_inputs, &
@@ -37,11 +37,14 @@ contains
    function system_sweep_method(sc) result(text)
       type(scene_type), intent(in) :: sc
       character(len=:), allocatable :: text
-      integer :: items
+      integer :: items, k
       items = system_item_count(sc%system)
       text = "a whole run of the system for each of " // count_str(items, "variation") &
          & // " of &system_sweep"
-      if (items == 1) text = "one run of the system (&system_sweep varies nothing)"
+      if (size(sc%system%vary(sweep_restitution)%values) > 0) text = text // " (b from" &
+         & // " each restitution at " // real_str(sc%system%vary_at_speed, 6) // " m/s)"
+      if (.not. any([(size(sc%system%vary(k)%values) > 0, k = 1, n_sweep_lists)])) &
+         & text = "one run of the system (no &system_sweep)"
    end function system_sweep_method
 
    !> Run every variation; the console table and system_sweep.csv.
@@ -125,12 +128,19 @@ contains
       type(csv_type) :: csv
       real(wp) :: values(n_sweep_lists)
       integer :: n, k, i
-      n = sc%system%n
-      columns = [character(len=32) :: "method", "variation [-]", (trim(sweep_names(i)) &
-         & // " [" // trim(sweep_units(i)) // "]", i = 1, n_sweep_lists), "status [-]", &
+      character(len=32), parameter :: results(9) = [character(len=32) :: "status [-]", &
          & "time [s]", "contacts [-]", "closed_form_contacts [-]", "integrated_contacts [-]", &
          & "clusters [-]", "cvode_steps [-]", "energy_error [-]", "dissipated [J]"]
-      columns = [character(len=32) :: columns, ("velocity_" // str(i) // " [m/s]", i = 1, n)]
+      n = sc%system%n
+      allocate(columns(2 + n_sweep_lists + size(results) + n))
+      columns(1:2) = [character(len=32) :: "method", "variation [-]"]
+      do i = 1, n_sweep_lists
+         columns(2 + i) = column_name(sc, i) // " [" // trim(sweep_units(i)) // "]"
+      end do
+      columns(3 + n_sweep_lists:2 + n_sweep_lists + size(results)) = results
+      do i = 1, n
+         columns(2 + n_sweep_lists + size(results) + i) = "velocity_" // str(i) // " [m/s]"
+      end do
       call csv_open(res, "system_sweep.csv", columns, csv, error)
       if (allocated(error)) return
       do k = 1, size(outputs, 2)
@@ -143,6 +153,16 @@ contains
       end do
       call csv_close(csv, error)
    end subroutine write_rows
+
+   !> The name of the column of the sweep's list k: its name, the mass's with its
+   !> body (mass_2)
+   function column_name(sc, k) result(name)
+      type(scene_type), intent(in) :: sc
+      integer, intent(in) :: k
+      character(len=:), allocatable :: name
+      name = trim(sweep_names(k))
+      if (k == sweep_mass) name = name // "_" // str(sc%system%vary_mass_body)
+   end function column_name
 
    !> The console: the first rows (variation, the values of the lists it varies,
    !> status, contacts, the energy balance, the last body's final velocity).
@@ -194,13 +214,12 @@ contains
          & // " more in system_sweep.csv")
       call emit("")
    contains
-      !> A text (its first 12 characters) at the right of a field of 13
+      !> A text at the right of a field of 13 characters, after one blank at least
       pure function pad13(text) result(field)
          character(len=*), intent(in) :: text
-         character(len=13) :: field
-         integer :: l
-         l = min(len_trim(adjustl(text)), 12)
-         field = repeat(" ", 13 - l) // adjustl(text)
+         character(len=:), allocatable :: field
+         field = trim(adjustl(text))
+         field = repeat(" ", max(1, 13 - len(field))) // field
       end function pad13
    end subroutine print_table
 

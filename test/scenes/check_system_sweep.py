@@ -34,13 +34,16 @@ BASE = {"mass": [0.2, 0.1, 0.05], "velocity": [-1.0, -1.5, -2.0], "gap": 1e-3,
 WALL = "&left_wall stiffness = 1e9, b = 0.1, gap = 2e-3 /\n"
 
 SWEEPS = [
-    # name, lists (in NAMES' order), extra text of the group, combine, mass_body
+    # name, lists (in NAMES' order), combine, mass_body, what &bodies has besides BASE
     ("product", {"striker_speed": [-0.5, -3.0], "mass": [0.3, 0.02], "gap": [0.0, 5e-4],
                  "stiffness": [1e7, 3e8], "exponent": [1.5, 1.25], "b": [0.0, 0.3],
-                 "gravity": [-9.81, -1.62]}, "product", 3),
+                 "gravity": [-9.81, -1.62]}, "product", 3, {}),
     ("restitution", {"striker_speed": [-0.5, -1.0, -2.0], "restitution": [0.95, 0.6, 0.3]},
-     "list", None),
-    ("mass-first", {"mass": [0.5, 1e-3], "gravity": [0.0, -30.0]}, "product", None),
+     "list", None, {}),
+    ("mass-first", {"mass": [0.5, 1e-3], "gravity": [0.0, -30.0]}, "product", None, {}),
+    # &bodies' own restitution: its speed is the sweep's at_speed, not given there
+    ("restitution-default-speed", {"restitution": [0.9, 0.4], "gap": [0.0, 1e-4]}, "product",
+     None, {"restitution": 0.7}),
 ]
 AT_SPEED = 0.7
 
@@ -65,7 +68,7 @@ def scene_text(title, bodies, sweep=None, combine=None, mass_body=None, outputs=
         text += "&system_sweep\n"
         for name, values in sweep.items():
             text += f"  {name} = " + ", ".join(fmt(v) for v in values) + "\n"
-        if "restitution" in sweep:
+        if "restitution" in sweep and "restitution" not in bodies:
             text += f"  at_speed = {fmt(AT_SPEED)}\n"
         if mass_body is not None:
             text += f"  mass_body = {mass_body}\n"
@@ -103,10 +106,11 @@ def main():
     os.makedirs(out_dir, exist_ok=True)
     failures = 0
     rows_checked = 0
-    for name, sweep, combine, mass_body in SWEEPS:
+    for name, sweep, combine, mass_body, extra in SWEEPS:
+        base = dict(BASE, **extra)
         path = os.path.join(out_dir, f"{name}.nml")
         with open(path, "w") as f:
-            f.write(scene_text(name, BASE, sweep, combine, mass_body, "system_sweep"))
+            f.write(scene_text(name, base, sweep, combine, mass_body, "system_sweep"))
         rc, log = run(program, path, os.path.join(out_dir, name))
         if rc != 0:
             print(f"{name}: the sweep failed ({rc}):\n{log}")
@@ -121,9 +125,10 @@ def main():
             if int(float(row["variation [-]"])) != k:
                 problems.append(f"variation {row['variation [-]']}")
             for n, unit in zip(NAMES, UNITS):
-                if not same_number(row[f"{n} [{unit}]"], values.get(n)):
-                    problems.append(f"{n} = {row[f'{n} [{unit}]']}, expected {values.get(n)}")
-            bodies = dict(BASE, mass=list(BASE["mass"]), velocity=list(BASE["velocity"]))
+                column = f"mass_{mass_body or 1}" if n == "mass" else n
+                if not same_number(row[f"{column} [{unit}]"], values.get(n)):
+                    problems.append(f"{n} = {row[f'{column} [{unit}]']}, expected {values.get(n)}")
+            bodies = dict(base, mass=list(BASE["mass"]), velocity=list(BASE["velocity"]))
             for n, v in values.items():
                 if n == "striker_speed":
                     bodies["velocity"][0] = v

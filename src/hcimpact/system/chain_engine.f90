@@ -762,12 +762,30 @@ contains
       if (disc < 0.0_wp) return
       q = -(rate + sign(sc * sqrt(disc), rate))
       if (q == 0.0_wp) return
-      r1 = q / g
-      r2 = (gap / q) * 2.0_wp
+      ! a root beyond the range of doubles is never reached: huge, formed without
+      ! the overflow (q / g for a gravity of 5e-324 trapped in the Debug build)
+      r1 = quotient_or_huge(q, g)
+      r2 = quotient_or_huge(gap, q)
+      r2 = sign(min(2.0_wp * min(abs(r2), 0.5_wp * huge(1.0_wp)), huge(1.0_wp)), r2)
       ! the smallest positive root where the gap decreases (g tau + rate < 0)
       if (r1 > 0.0_wp .and. g * r1 + rate < 0.0_wp) tau = min(tau, r1)
       if (r2 > 0.0_wp .and. g * r2 + rate < 0.0_wp) tau = min(tau, r2)
    end function first_zero
+
+   !> a / b for b /= 0, or +-huge where the quotient is beyond the range of doubles,
+   !> without raising the overflow (gfortran's binary exponent of a subnormal is the
+   !> value's, which the bound needs)
+   elemental function quotient_or_huge(a, b) result(y)
+      real(wp), intent(in) :: a, b
+      real(wp) :: y
+      if (a == 0.0_wp) then
+         y = 0.0_wp
+      else if (exponent(a) - exponent(b) < maxexponent(1.0_wp)) then
+         y = a / b
+      else
+         y = sign(huge(1.0_wp), a) * sign(1.0_wp, b)
+      end if
+   end function quotient_or_huge
 
    !> The first time in [t_from, t_to] at which the bound cannot exclude that the gap
    !> of slot s is closed (huge when the gap provably stays open on the interval).
