@@ -968,10 +968,15 @@ contains
          text = "a value on this line is not of the right kind: " // clip(adjustl(line))
          return
       end if
-      if (index(msg, "out of range") > 0) then
-         text = "too many values, or an index out of range (at most " // str(max_speeds) &
-            & // " speeds, " // str(max_list) // " outputs or tolerances, " // str(max_bodies) &
-            & // " bodies)"
+      if (index(msg, "out of range") > 0 .or. index(msg, "Repeat count too large") > 0) then
+         if (gid == g_system_sweep .or. gid == g_impact_sweep) then
+            text = "too many values, or an index out of range (at most " &
+               & // str(max_variations) // " values per list)"
+         else
+            text = "too many values, or an index out of range (at most " // str(max_speeds) &
+               & // " speeds, " // str(max_list) // " outputs or tolerances, " &
+               & // str(max_bodies) // " bodies)"
+         end if
          return
       end if
       if (index(msg, "End of file") > 0) then
