@@ -392,9 +392,15 @@ contains
       if (elastic) text = text // " (b = 0: energy is conserved, to the solver's" &
          & // " tolerance where CVODE ran)"
       call emit(text)
-      if (.not. ieee_is_nan(result%momentum_error)) call emit("  momentum: relative error " &
-         & // real_str(result%momentum_error, 3) // " (no wall: the momentum changes by" &
-         & // " gravity's impulse M g t alone)")
+      if (.not. ieee_is_nan(result%momentum_error)) then
+         if (sc%system%gravity == 0.0_wp) then
+            call emit("  momentum: relative change " // real_str(result%momentum_error, 3) &
+               & // " (conserved: no wall, no gravity)")
+         else
+            call emit("  momentum: relative error " // real_str(result%momentum_error, 3) &
+               & // " (no wall: the momentum changes by gravity's impulse M g t alone)")
+         end if
+      end if
 
       if (size(result%contacts) > 0) then
          call emit("")

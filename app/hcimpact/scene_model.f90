@@ -23,7 +23,7 @@ module hcimpact_scene_model
       & out_system_sweep, out_impact_sweep
    public :: figure_outputs, system_outputs, default_scene_lines, max_speeds
    public :: scene_line_length, max_scene_lines, max_bodies
-   public :: sweep_list, n_sweep_lists, sweep_names, sweep_units, sweep_striker_speed, &
+   public :: sweep_list, n_sweep_lists, sweep_names, sweep_unit, sweep_striker_speed, &
       & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
       & sweep_gravity
    public :: unset_bits, is_unset
@@ -47,11 +47,9 @@ module hcimpact_scene_model
    integer, parameter :: sweep_striker_speed = 1, sweep_mass = 2, sweep_gap = 3, &
       & sweep_stiffness = 4, sweep_exponent = 5, sweep_b = 6, sweep_restitution = 7, &
       & sweep_gravity = 8
-   !> Their names in &system_sweep and their units
+   !> Their names in &system_sweep (their units: `sweep_unit`)
    character(len=*), parameter :: sweep_names(n_sweep_lists) = [character(len=13) :: &
       & "striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution", "gravity"]
-   character(len=*), parameter :: sweep_units(n_sweep_lists) = [character(len=5) :: "m/s", &
-      & "kg", "m", "N/m^n", "-", "s/m", "-", "m/s^2"]
 
    !> Most approach speeds a scene may list
    integer, parameter :: max_speeds = 1000
@@ -177,7 +175,8 @@ module hcimpact_scene_model
       type(contact_law), allocatable :: law(:)
       logical :: stiffness_from_materials = .false.
       character(len=:), allocatable :: law_origin, damping_origin
-      !> Target restitution and its speed (m/s), when b was derived from them
+      !> Where b was derived from restitutions: the speed (m/s) at which they hold when
+      !> every pair's is the same, and the restitution when every pair's is the same too
       real(wp) :: target_restitution = nan, reference_speed = nan
       !> The walls
       type(wall_type) :: left, right
@@ -252,6 +251,29 @@ module hcimpact_scene_model
    end type scene_type
 
 contains
+
+   !> The unit of a sweep's list (of &system_sweep or &impact_sweep) by its name; "-"
+   !> for a number without one.
+   pure function sweep_unit(name) result(unit)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: unit
+      select case (name)
+      case ("striker_speed", "speed")
+         unit = "m/s"
+      case ("mass")
+         unit = "kg"
+      case ("gap")
+         unit = "m"
+      case ("stiffness")
+         unit = "N/m^n"
+      case ("b")
+         unit = "s/m"
+      case ("gravity")
+         unit = "m/s^2"
+      case default
+         unit = "-"
+      end select
+   end function sweep_unit
 
    !> Whether a real is the mark of a value the file did not set (by its bits).
    elemental function is_unset(x) result(yes)

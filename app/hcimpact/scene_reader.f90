@@ -29,7 +29,7 @@ module hcimpact_scene_reader
       & add_outputs, output_choices, out_summary, out_sweep, out_histories, out_phase, &
       & out_loops, out_legacy, out_cvode, max_speeds, default_scene_lines, &
       & scene_line_length, max_scene_lines, unset_bits, is_unset, max_bodies, system_outputs, &
-      & out_contacts, out_final, out_impact_sweep, n_sweep_lists, sweep_names, sweep_units, &
+      & out_contacts, out_final, out_impact_sweep, n_sweep_lists, sweep_names, sweep_unit, &
       & sweep_striker_speed, sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, &
       & sweep_restitution, sweep_gravity
    use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
@@ -1457,19 +1457,9 @@ contains
          end if
          return
       end if
-      if (.not. (e > 0.0_wp .and. e <= 1.0_wp)) then
-         error = at(src, g_damping, "restitution") // "restitution = " // real_str(e, 6) &
-            & // ": a coefficient of restitution lies in (0, 1]"
-         return
-      end if
       if (ieee_is_nan(v)) then
          error = at(src, g_damping, "restitution") // "restitution needs the speed at which it" &
             & // " holds: give at_speed (m/s)"
-         return
-      end if
-      if (.not. v > 0.0_wp) then
-         error = at(src, g_damping, "at_speed") // "at_speed = " // real_str(v, 6) &
-            & // " m/s: must be positive"
          return
       end if
       call restitution_damping(src, g_damping, e, v, sc%damping, error)
@@ -1481,8 +1471,8 @@ contains
    end subroutine load_damping
 
    !> The damping b that gives the restitution e at the speed v (b = beta(e)/V, the
-   !> library's damping_for_restitution), e in (0, 1] and v > 0 checked by the caller;
-   !> an error where b would exceed the largest double or the library finds none.
+   !> library's damping_for_restitution); an error where e is not in (0, 1], v is not
+   !> positive and finite, b would exceed the largest double or the library finds none.
    subroutine restitution_damping(src, gid, e, v, b, error)
       type(scene_source), intent(in) :: src
       integer, intent(in) :: gid
@@ -1490,7 +1480,24 @@ contains
       real(wp), intent(out) :: b
       character(len=:), allocatable, intent(out) :: error
       integer :: stat
+      logical :: ok
       b = nan
+      ! (finite first, alone: an ordered comparison with NaN would trap in the Debug
+      ! build, and Fortran's .and. may evaluate both operands)
+      ok = ieee_is_finite(e)
+      if (ok) ok = e > 0.0_wp .and. e <= 1.0_wp
+      if (.not. ok) then
+         error = at(src, gid, "restitution") // "restitution = " // real_str(e, 6) &
+            & // ": a coefficient of restitution lies in (0, 1]"
+         return
+      end if
+      ok = ieee_is_finite(v)
+      if (ok) ok = v > 0.0_wp
+      if (.not. ok) then
+         error = at(src, gid, "at_speed") // "at_speed = " // real_str(v, 6) &
+            & // " m/s: must be positive and finite"
+         return
+      end if
       ! b = beta(e)/V must be a double (the library's damping_for_restitution raises
       ! the overflow exception, which the Debug build traps, before it says so)
       if (.not. quotient_of(restitution_inverse(e), v) <= huge(1.0_wp)) then
@@ -2050,10 +2057,6 @@ contains
             & // " restitution and at_speed (m/s)"
          return
       end if
-      if (any(e > 1.0_wp)) then
-         error = at(src, gid, "restitution") // "a coefficient of restitution lies in (0, 1]"
-         return
-      end if
       do j = 1, pairs
          call restitution_damping(src, gid, e(j), v(j), damping(j), error)
          if (allocated(error)) return
@@ -2123,7 +2126,7 @@ contains
             & sweep_values(trim(sweep_names(k))), n(k), error)
          if (allocated(error)) return
          call check_sweep_list(src, g_system_sweep, trim(sweep_names(k)), &
-            & trim(sweep_units(k)), sweep_values(trim(sweep_names(k))), n(k), &
+            & sweep_unit(trim(sweep_names(k))), sweep_values(trim(sweep_names(k))), n(k), &
             & sweep_bound(trim(sweep_names(k))), error)
          if (allocated(error)) return
          ! every pair's value: a system of one body has none
@@ -2177,25 +2180,15 @@ contains
          return
       end if
       if (n(sweep_restitution) > 0) then
-         sys%vary_at_speed = sys%reference_speed
          if (.not. is_unset(vary_at_speed)) then
             sys%vary_at_speed = vary_at_speed
-            if (.not. ieee_is_finite(vary_at_speed)) then
-               error = at(src, g_system_sweep, "at_speed") // "at_speed is not a finite" &
-                  & // " number" // finite_hint
-               return
-            end if
-         end if
-         if (ieee_is_nan(sys%vary_at_speed)) then
+         else if (ieee_is_nan(sys%reference_speed)) then
             error = at(src, g_system_sweep, "restitution") // "restitution needs the speed at" &
                & // " which it holds: give at_speed (m/s), as &bodies gives no restitution" &
                & // " at one speed for every pair"
             return
-         end if
-         if (.not. (ieee_is_finite(sys%vary_at_speed) .and. sys%vary_at_speed > 0.0_wp)) then
-            error = at(src, g_system_sweep, "at_speed") // "at_speed = " &
-               & // real_str(sys%vary_at_speed, 6) // " m/s: must be positive and finite"
-            return
+         else
+            sys%vary_at_speed = sys%reference_speed
          end if
          deallocate(sys%vary_restitution_b)
          allocate(sys%vary_restitution_b(n(sweep_restitution)))
@@ -2273,7 +2266,7 @@ contains
       character(len=:), allocatable :: unit_text
       integer :: i
       unit_text = " " // unit
-      if (unit == "-" .or. len(unit) == 0) unit_text = ""
+      if (unit == "-") unit_text = ""
       do i = 1, n
          ! finite first: an ordered comparison with NaN would trap in the Debug build
          if (.not. ieee_is_finite(values(i))) then
@@ -2354,8 +2347,6 @@ contains
       character(len=:), allocatable, intent(out) :: error
       character(len=*), parameter :: names(5) = [character(len=9) :: "mass", "stiffness", &
          & "exponent", "b", "speed"]
-      character(len=*), parameter :: units(5) = [character(len=6) :: "kg", "N/m^n", "", &
-         & "s/m", "m/s"]
       integer :: n(5), k
       allocate(sc%vary_mass(0), sc%vary_stiffness(0), sc%vary_exponent(0), &
          & sc%vary_damping(0), sc%vary_speed(0))
@@ -2374,7 +2365,7 @@ contains
          call count_list(src, g_impact_sweep, trim(names(k)), sweep_values(trim(names(k))), &
             & n(k), error)
          if (allocated(error)) return
-         call check_sweep_list(src, g_impact_sweep, trim(names(k)), trim(units(k)), &
+         call check_sweep_list(src, g_impact_sweep, trim(names(k)), sweep_unit(trim(names(k))), &
             & sweep_values(trim(names(k))), n(k), sweep_bound(trim(names(k))), error)
          if (allocated(error)) return
       end do

@@ -198,8 +198,11 @@ contains
       end do
       ! a system's isolated contacts come from the closed forms of one impact and its
       ! time law, but with the method integrated; its clusters from CVODE, but with the
-      ! method exact
+      ! method exact; the restitution law always
       if (sc%is_system) then
+         ! (k(b V) is the contacts' column beside each restitution, and beta(e) gives b
+         ! where a restitution is given)
+         used(c_klaw) = .true.
          used([c_impact, c_timelaw]) = sc%system%method /= method_integrated
          used(c_ode) = sc%system%method /= method_exact
       end if

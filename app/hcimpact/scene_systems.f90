@@ -11,7 +11,7 @@ module hcimpact_scene_systems
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_unavailable, status_message
    use hcimpact_chain_types, only : by_closed_forms, by_integration, method_exact
    use hcimpact_scene_ode, only : ode_available, ode_missing
-   use hcimpact_scene_model, only : scene_type, n_sweep_lists, sweep_names, sweep_units, &
+   use hcimpact_scene_model, only : scene_type, n_sweep_lists, sweep_names, sweep_unit, &
       & sweep_mass, sweep_restitution
    use hcimpact_scene_output, only : results_type, csv_type, csv_open, csv_row, csv_close, &
       & checkpoint_path
@@ -85,18 +85,15 @@ contains
          & // " that failed): " // failure_text(sc, nint(outputs(result_status, first_failed))))
    end subroutine run_system_sweep
 
-   !> Why a run failed, for the log: a cluster is beyond the method 'exact', or beyond
-   !> a build without CVODE.
+   !> Why a run failed, for the log: the status's text, or a cluster beyond a build
+   !> without CVODE.
    function failure_text(sc, status) result(text)
       type(scene_type), intent(in) :: sc
       integer, intent(in) :: status
       character(len=:), allocatable :: text
       text = status_message(status)
       if (status /= hcimpact_err_unavailable) return
-      if (sc%system%method == method_exact) then
-         text = "a cluster formed, which the method 'exact' does not compute (status " &
-            & // str(status) // ")"
-      else if (.not. ode_available) then
+      if (.not. ode_available .and. sc%system%method /= method_exact) then
          text = "a cluster formed, which needs the CVODE component (status " // str(status) &
             & // "): " // ode_missing
       end if
@@ -135,7 +132,7 @@ contains
       allocate(columns(2 + n_sweep_lists + size(results) + n))
       columns(1:2) = [character(len=32) :: "method", "variation [-]"]
       do i = 1, n_sweep_lists
-         columns(2 + i) = column_name(sc, i) // " [" // trim(sweep_units(i)) // "]"
+         columns(2 + i) = column_name(sc, i) // " [" // sweep_unit(trim(sweep_names(i))) // "]"
       end do
       columns(3 + n_sweep_lists:2 + n_sweep_lists + size(results)) = results
       do i = 1, n

@@ -1536,14 +1536,13 @@ contains
       o%t_end = 1.0e6_wp
       call expect(bad, o, hcimpact_err_no_convergence, "between walls to 1e6 s, 1000 contacts")
       if (allocated(error)) return
-      o%t_end = -1.0_wp
       ! the limit on the steps likewise (a touching cradle, 5 steps)
       o2 = opts(method_auto, 1.0e-8_wp)
       o2%max_steps = 5
       call expect(steel_row(5, 1.0_wp, 0.0_wp, 0.0_wp), o2, hcimpact_err_no_convergence, &
          & "a touching cradle in at most 5 steps")
       if (allocated(error)) return
-      if (allocated(error)) return
+      o%t_end = -1.0_wp
       ! an undamped ball on a floor under gravity bounces for ever; damped, it rests
       bad = steel_row(1, 0.0_wp, 0.0_wp, 0.0_wp)
       bad%left_wall = .true.

@@ -54,7 +54,7 @@ module hcimpact_chain_engine
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, contact_record, &
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
-      & kinetic_energy, energy_balance_error, within_range
+      & kinetic_energy, energy_balance_error
    implicit none
    private
 
@@ -523,13 +523,17 @@ contains
       integer, intent(in) :: i
       real(wp), intent(in) :: t
       real(wp), intent(out) :: u, v
-      real(wp) :: tau, x, xd, f, mass_l, mass_r, total, ucm
+      real(wp) :: tau, x, xd, f, mass_l, mass_r, total, ucm, gt
       integer :: s
       s = engine%body(i)%busy
       if (s < 0) then
+         ! u0 + (v0 + g tau/2) tau and v0 + g tau, +-Inf beyond the range of doubles
+         ! without raising the overflow (a caller's Debug build traps on it)
          tau = t - engine%body(i)%t0
-         u = engine%body(i)%u0 + (engine%body(i)%v0 + 0.5_wp * (engine%gravity * tau)) * tau
-         v = engine%body(i)%v0 + engine%gravity * tau
+         gt = product_in_range(engine%gravity, tau)
+         u = sum_in_range(engine%body(i)%u0, product_in_range(sum_in_range(engine%body(i)%v0, &
+            & 0.5_wp * gt), tau))
+         v = sum_in_range(engine%body(i)%v0, gt)
          return
       end if
       call contact_state(engine, s, t, x, xd, f)
@@ -755,7 +759,12 @@ contains
       ! discriminant rate^2 - 2 g gap is formed scaled by s^2, s the larger of |rate|
       ! and w = sqrt(2 |g gap|): unscaled, it underflows to 0 for a gravity of 5e-324
       ! (a root of 6e160 s lost) or overflows for speeds beyond 1e154 m/s
-      w = sqrt(2.0_wp * abs(g)) * sqrt(abs(gap))
+      ! (2 |g| formed only where it is a double: sqrt(2) sqrt(|g|) above)
+      if (abs(g) <= 0.5_wp * huge(1.0_wp)) then
+         w = sqrt(2.0_wp * abs(g)) * sqrt(abs(gap))
+      else
+         w = (sqrt(2.0_wp) * sqrt(abs(g))) * sqrt(abs(gap))
+      end if
       sc = max(abs(rate), w)
       if (.not. sc > 0.0_wp) return
       disc = (rate / sc)**2 - sign(1.0_wp, g) * sign(1.0_wp, gap) * (w / sc)**2
@@ -766,15 +775,16 @@ contains
       ! the overflow (q / g for a gravity of 5e-324 trapped in the Debug build)
       r1 = quotient_or_huge(q, g)
       r2 = quotient_or_huge(gap, q)
-      r2 = sign(min(2.0_wp * min(abs(r2), 0.5_wp * huge(1.0_wp)), huge(1.0_wp)), r2)
+      r2 = sign(2.0_wp * min(abs(r2), 0.5_wp * huge(1.0_wp)), r2)
       ! the smallest positive root where the gap decreases (g tau + rate < 0)
       if (r1 > 0.0_wp .and. g * r1 + rate < 0.0_wp) tau = min(tau, r1)
       if (r2 > 0.0_wp .and. g * r2 + rate < 0.0_wp) tau = min(tau, r2)
    end function first_zero
 
-   !> a / b for b /= 0, or +-huge where the quotient is beyond the range of doubles,
-   !> without raising the overflow (gfortran's binary exponent of a subnormal is the
-   !> value's, which the bound needs)
+   !> a / b for b /= 0, or +-huge where the quotient may be beyond the range of doubles
+   !> (from the binary exponents: also for some within a factor 2 of its top), without
+   !> raising the overflow (gfortran's binary exponent of a subnormal is the value's,
+   !> which the bound needs)
    elemental function quotient_or_huge(a, b) result(y)
       real(wp), intent(in) :: a, b
       real(wp) :: y
@@ -1878,6 +1888,25 @@ contains
       end if
    end function sum_in_range
 
+   !> a b for finite a and b, or +-Inf where it is beyond the range of doubles, without
+   !> raising the overflow (the rounding as a b's where it is a double)
+   elemental function product_in_range(a, b) result(y)
+      real(wp), intent(in) :: a, b
+      real(wp) :: y, f
+      if (a == 0.0_wp .or. b == 0.0_wp .or. exponent(a) + exponent(b) < maxexponent(1.0_wp)) &
+         & then
+         y = a * b
+      else
+         ! near or beyond the top: the product of the fractions, in [1/4, 1), scaled
+         f = fraction(a) * fraction(b)
+         if (exponent(a) + exponent(b) + exponent(f) > maxexponent(1.0_wp)) then
+            y = sign(ieee_value(1.0_wp, ieee_positive_inf), f)
+         else
+            y = scale(f, exponent(a) + exponent(b))
+         end if
+      end if
+   end function product_in_range
+
    !> The impulse of gravity g on bodies of the masses `mass` over the time t >= 0,
    !> M g t, without overflow on the way (the Debug build traps on it): +-Inf where it
    !> is beyond the range of doubles.
@@ -1903,9 +1932,10 @@ contains
    end function gravity_impulse
 
    !> The result from the final state of the engine.
-   !> hcimpact_err_domain (and engine%message) where an energy of the result left the
-   !> range of doubles on the way (the elastic or gravitational energy of extreme
-   !> systems; the initial energy and momentum are checked with the input).
+   !> hcimpact_err_domain (and engine%message) where a final or sampled position or
+   !> velocity, an energy of the result, the momentum or a term of the energy balance
+   !> is beyond the range of doubles (the initial energy and momentum are checked with
+   !> the input); nothing is formed that would raise an overflow on the way.
    subroutine fill_result(engine, result, stat)
       type(chain_engine), intent(inout) :: engine
       type(chain_result), intent(inout) :: result
@@ -1919,24 +1949,26 @@ contains
       allocate(result%positions(engine%n), result%velocities(engine%n), displacement(engine%n))
       do i = 1, engine%n
          call body_state_at(engine, i, engine%time, displacement(i), result%velocities(i))
-         result%positions(i) = engine%q_initial(i) + displacement(i)
+         result%positions(i) = sum_in_range(engine%q_initial(i), displacement(i))
       end do
-      ! the final kinetic energy and momentum must be doubles, checked before they are
-      ! formed (an overflow on the way would trap in a caller's Debug build)
-      if (.not. (all(ieee_is_finite(result%velocities)) .and. within_range(engine%chain%mass, &
-         & result%velocities))) then
+      ! a final state beyond the range of doubles, before anything is formed from it
+      if (.not. (all(ieee_is_finite(result%positions)) .and. &
+         & all(ieee_is_finite(result%velocities)))) then
          stat = hcimpact_err_domain
-         engine%message = energies_beyond_range
+         call state_beyond_range(engine)
          return
       end if
+      ! the energies and the momentum, +-Inf where beyond the range of doubles (then the
+      ! run fails below), without raising the overflow on the way; 1/2 m v^2 as
+      ! kinetic_energy's (m |v|) |v| / 2 where it is a double
       e_kin = 0.0_wp
       e_grav = 0.0_wp
       p = 0.0_wp
       do i = 1, engine%n
          u = displacement(i)
          v = result%velocities(i)
-         e_kin = e_kin + kinetic_energy(engine%chain%mass(i), v)
-         p = p + engine%chain%mass(i) * v
+         e_kin = sum_in_range(e_kin, product_of([engine%chain%mass(i), abs(v), abs(v), 0.5_wp]))
+         p = sum_in_range(p, signed_product(v, [engine%chain%mass(i)]))
          ! -m g u, and the sum, without an overflow on the way (+-Inf beyond the range;
          ! the run then fails below)
          if (engine%chain%gravity /= 0.0_wp .and. u /= 0.0_wp) e_grav = sum_in_range(e_grav, &
@@ -1976,10 +2008,12 @@ contains
          end if
       end do
       result%dissipated = sum_in_range(engine%dissipated, in_progress)
-      ! the balance only of energies that are doubles (infinities in it would raise the
-      ! invalid exception, which the Debug build traps)
-      if (.not. (ieee_is_finite(sum_in_range(sum_in_range(e_kin, e_el), e_grav)) .and. &
-         & ieee_is_finite(result%dissipated))) then
+      ! the balance only of energies that are doubles, with its terms and its scale (an
+      ! infinity in it would raise the invalid exception, an overflow the overflow: the
+      ! Debug build traps on both)
+      if (.not. (ieee_is_finite(p) .and. ieee_is_finite(sum_in_range(sum_in_range( &
+         & sum_in_range(sum_in_range(e_kin, e_el), e_grav), result%dissipated), -e_kin0)) &
+         & .and. ieee_is_finite(sum_in_range(e_kin0, abs(e_grav))))) then
          stat = hcimpact_err_domain
          engine%message = energies_beyond_range
          return
@@ -2043,11 +2077,17 @@ contains
          & any(.not. (ieee_is_finite(result%sample_velocities) .or. &
          & ieee_is_nan(result%sample_velocities)))) then
          stat = hcimpact_err_domain
-         write(engine%message, '(a, es11.3e3, a)') "by t = ", engine%time, " s a position or " &
-            & // "a velocity (final or sampled) leaves the range of doubles (beyond 1.8e308 " &
-            & // "m or m/s)"
+         call state_beyond_range(engine)
       end if
    end subroutine fill_result
+
+   !> The message of a final or sampled state beyond the range of doubles
+   subroutine state_beyond_range(engine)
+      type(chain_engine), intent(inout) :: engine
+      write(engine%message, '(a, es11.3e3, a)') "by t = ", engine%time, " s a position or " &
+         & // "a velocity (final or sampled) leaves the range of doubles (beyond 1.8e308 " &
+         & // "m or m/s)"
+   end subroutine state_beyond_range
 
    !> A failed run: the message, nothing else.
    subroutine fail(engine, result, stat)

@@ -26,7 +26,7 @@ module hcimpact_chain_types
 
    public :: contact_law, chain_type, chain_options, contact_record, chain_result
    public :: chain_counters, chain_switch
-   public :: check_chain, kinetic_energy, energy_balance_error, within_range
+   public :: check_chain, kinetic_energy, energy_balance_error
    public :: method_auto, method_exact, method_integrated
    public :: integrator_bdf, integrator_adams
    public :: by_closed_forms, by_integration, by_both
