@@ -366,7 +366,7 @@ contains
                & // " more bodies in final.csv")
             cycle
          end if
-         write(line, '(i6, 4es19.10e2)') i, sc%system%mass(i), sc%system%velocity(i), &
+         write(line, '(i6, 4es19.10e3)') i, sc%system%mass(i), sc%system%velocity(i), &
             & result%velocities(i), result%positions(i)
          call emit(trim(line))
       end do
@@ -410,7 +410,7 @@ contains
          shown = min(size(result%contacts), table_rows)
          do i = 1, shown
             call contact_restitution(sc%system, result%contacts(i), e, k)
-            write(line, '(i5, 2es17.9e2, 2f12.6, 2f9.5, es13.4e2, a14)') &
+            write(line, '(i5, 2es17.9e3, 2f12.6, 2f9.5, es13.4e3, a14)') &
                & result%contacts(i)%pair, result%contacts(i)%t_start, &
                & result%contacts(i)%t_end, result%contacts(i)%approach_speed, &
                & result%contacts(i)%separation_speed, e, k, result%contacts(i)%peak_force, &
