@@ -21,6 +21,7 @@ module hcimpact_chain_types
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_domain, hcimpact_err_size
    use hcimpact_contact, only : check_parameters
+   use hcimpact_power_force, only : product_of
    implicit none
    private
 
@@ -443,15 +444,22 @@ contains
          & damping=law%damping)
    end function law_status
 
-   !> Kinetic energy 1/2 m v^2 in J, formed as (m |v|) |v|/2: no intermediate overflow
-   !> where the energy itself is a double (v^2 alone overflows above 1.3e154 m/s).
+   !> Kinetic energy 1/2 m v^2 in J for a mass > 0, formed as ((m |v|) |v|)/2 where
+   !> that stays normal (v^2 alone overflows above 1.3e154 m/s), else from logarithms
+   !> (`product_of`): +Inf beyond the range of doubles, without raising the overflow
+   !> (a caller's Debug build traps on it). A velocity that is not finite gives Inf or
+   !> NaN.
    elemental function kinetic_energy(mass, velocity) result(energy)
       !> Mass in kg
       real(wp), intent(in) :: mass
       !> Velocity in m/s
       real(wp), intent(in) :: velocity
       real(wp) :: energy
-      energy = 0.5_wp * ((mass * abs(velocity)) * abs(velocity))
+      if (ieee_is_finite(velocity)) then
+         energy = product_of([mass, abs(velocity), abs(velocity), 0.5_wp])
+      else
+         energy = 0.5_wp * (mass * abs(velocity))
+      end if
    end function kinetic_energy
 
    !> The energy balance of a system as a relative error (`chain_result`%energy_error):
