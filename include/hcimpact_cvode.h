@@ -128,8 +128,11 @@ typedef struct {
   double dissipated;            /**< energy dissipated in the contacts up to time (also
                                      by those still in progress) */
   double momentum_error;        /**< relative error of the momentum against the
-                                     initial one plus gravity's impulse M g t (NaN
-                                     with a wall, whose impulses are not counted) */
+                                     initial one plus the outside impulses: gravity's
+                                     M g t and the walls' */
+  double wall_impulse_left;     /**< impulse the left wall gave the system up to
+                                     time, N s along the line (>= 0; 0 without it) */
+  double wall_impulse_right;    /**< the right wall's (<= 0; 0 without it) */
   int64_t n_contacts;           /**< every contact, also beyond contact_capacity */
   int64_t contacts_recorded;    /**< contacts written: min(n_contacts, capacity) */
   int64_t closed_form_contacts; /**< contacts computed by the closed forms */

@@ -393,7 +393,13 @@ contains
          & // " tolerance where CVODE ran)"
       call emit(text)
       if (.not. ieee_is_nan(result%momentum_error)) then
-         if (sc%system%gravity == 0.0_wp) then
+         if (sc%system%left%present .or. sc%system%right%present) then
+            call emit("  walls' impulses: left " // real_str(result%wall_impulse(1), 8) &
+               & // " N s, right " // real_str(result%wall_impulse(2), 8) // " N s")
+            call emit("  momentum: relative error " // real_str(result%momentum_error, 3) &
+               & // " (against the initial momentum plus the walls' impulses and " &
+               & // "gravity's M g t)")
+         else if (sc%system%gravity == 0.0_wp) then
             call emit("  momentum: relative change " // real_str(result%momentum_error, 3) &
                & // " (conserved: no wall, no gravity)")
          else

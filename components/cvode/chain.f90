@@ -38,9 +38,10 @@ module hcimpact_cvode_chain
    use hcimpact_chain_engine, only : chain_engine, cluster_integrator, run_engine, &
       & slot_gap0, slot_law, slot_exists, body_state_at, engine_record, capture_margin, &
       & advance_reached, advance_grow_left, advance_grow_right, advance_dissolved, &
-      & advance_captured, advance_failed, advance_split
+      & advance_captured, advance_failed, advance_split, add_wall_impulse
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
+      & impulse_index, wall_slopes, &
       & force_rate, slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
       & region_frame, frame_motion, first_step, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
@@ -278,7 +279,12 @@ contains
          self%atol(3 * k - 1) = engine%options%rtol * v_ref
          self%atol(3 * k) = engine%options%rtol * e_ref
       end do
-      self%atol(n_state) = engine%options%rtol * e_ref
+      self%atol(dissipation_index(m, m)) = engine%options%rtol * e_ref
+      ! the impulses' scale: the region's mass times v_ref (huge beyond the range)
+      self%region%impulse_scale = huge(1.0_wp)
+      if (v_ref <= huge(1.0_wp) / sum(self%region%mass)) self%region%impulse_scale = &
+         & sum(self%region%mass) * v_ref
+      self%atol(impulse_index(m, 1):) = engine%options%rtol * self%region%impulse_scale
       self%region%rtol = weights_rtol(engine%options%rtol, &
          & engine%options%integrator == integrator_adams)
 
@@ -383,7 +389,7 @@ contains
             & int(min(upper_band, n_state - 1), c_int64_t), self%ctx)
          if (.not. associated(self%jac_mat)) exit setup
          where = "the region's linear solver"
-         self%lin_sol => chain_linear_solver(self%region%m, self%ctx)
+         self%lin_sol => chain_linear_solver(self%region, self%ctx)
          if (.not. associated(self%lin_sol)) exit setup
          where = "CVodeSetLinearSolver"
          ierr = FCVodeSetLinearSolver(self%mem, self%lin_sol, self%jac_mat)
@@ -1235,6 +1241,9 @@ contains
          engine%body(i)%u0 = u(k)
          engine%body(i)%v0 = v(k)
       end do
+      ! the impulses the walls gave the region
+      call add_wall_impulse(engine, 1, self%y(impulse_index(m, 1)))
+      call add_wall_impulse(engine, 2, self%y(impulse_index(m, 2)))
       call hand_touching(self, engine)
       ! (the parts of a region that splits go on with its step)
       if (self%due == advance_split) self%step_for_growth = self%h_last
@@ -1361,7 +1370,8 @@ contains
       if (.not. ok) ierr = 1
    end function chain_rhs_callback
 
-   !> The error weights (CVODE's CVEwtFn): `error_weights` of the region.
+   !> The error weights (CVODE's CVEwtFn): `error_weights` of the region, the walls'
+   !> impulses with them.
    function chain_error_weights(y, ewt, user_data) result(ierr) bind(C)
       type(N_Vector) :: y, ewt
       type(c_ptr), value :: user_data
@@ -1372,7 +1382,7 @@ contains
       yv => FN_VGetArrayPointer(y)
       wv => FN_VGetArrayPointer(ewt)
       call error_weights(yv, region%rtol, region%scale, &
-         & sqrt(real(region_size(region%m), wp)), wv)
+         & sqrt(real(region_size(region%m), wp)), wv, region%impulse_scale)
       ierr = 0
    end function chain_error_weights
 
@@ -1398,6 +1408,7 @@ contains
       call c_f_pointer(c_loc(data(1)), band, [ldim, n])
       band = 0.0_c_double
       call region_jacobian(region, real(t, wp), yv, smu, band)
+      call wall_slopes(region, real(t, wp), yv, region%wall_slope)
       call callback_leave(region%halting, flags)
       ierr = 0
    end function chain_jacobian_callback

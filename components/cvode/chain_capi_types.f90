@@ -74,9 +74,11 @@ module hcimpact_cvode_chain_capi_types
       real(c_double) :: energy_error
       !> Energy dissipated in J
       real(c_double) :: dissipated
-      !> Relative error of the momentum against the initial one plus gravity's impulse
-      !> M g t (NaN with a wall)
+      !> Relative error of the momentum against the initial one plus the outside
+      !> impulses (gravity's M g t and the walls')
       real(c_double) :: momentum_error
+      !> The impulses the left and right walls gave the system (N s, along the line)
+      real(c_double) :: wall_impulse_left, wall_impulse_right
       !> Every contact, also those beyond the caller's capacity
       integer(c_int64_t) :: n_contacts
       !> Contacts written to the caller's array
@@ -202,6 +204,8 @@ contains
       c%energy_error = result%energy_error
       c%dissipated = result%dissipated
       c%momentum_error = result%momentum_error
+      c%wall_impulse_left = result%wall_impulse(1)
+      c%wall_impulse_right = result%wall_impulse(2)
       c%n_contacts = result%n_contacts
       c%contacts_recorded = 0
       if (allocated(result%contacts)) c%contacts_recorded = size(result%contacts)
@@ -221,7 +225,8 @@ contains
       !> C structure
       type(hcimpact_chain_result) :: c
       c = hcimpact_chain_result(time=nan, rest_time=nan, initial_energy=nan, &
-         & energy_error=nan, dissipated=nan, momentum_error=nan, n_contacts=0, &
+         & energy_error=nan, dissipated=nan, momentum_error=nan, wall_impulse_left=nan, &
+         & wall_impulse_right=nan, n_contacts=0, &
          & contacts_recorded=0, closed_form_contacts=0, integrated_contacts=0, steps=0, &
          & rhs_evals=0, jacobian_evals=0, roots=0, clusters=0, method_used=0, rested=0)
    end function failed_result

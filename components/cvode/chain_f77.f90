@@ -54,11 +54,12 @@ subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt,
    real(wp), intent(out) :: x(*)
    !> VF(N): final velocities in m/s
    real(wp), intent(out) :: vf(*)
-   !> RES(6): time reached, rest time (NaN unless the system came to rest on a wall),
+   !> RES(8): time reached, rest time (NaN unless the system came to rest on a wall),
    !> initial kinetic energy (J), relative energy error, energy dissipated (J),
-   !> relative momentum error (against the initial momentum plus gravity's impulse
-   !> M g t; NaN with a wall)
-   real(wp), intent(out) :: res(6)
+   !> relative momentum error (against the initial momentum plus the outside
+   !> impulses, gravity's M g t and the walls'), the impulses the left and the right
+   !> wall gave the system (N s along the line: >= 0, <= 0; 0 without the wall)
+   real(wp), intent(out) :: res(8)
    !> ICNT(11): contacts (all), contacts recorded in CONT, method used (1 closed forms,
    !> 2 integration, 3 both), 1 if the system came to rest, contacts by the closed
    !> forms, contacts by integration, steps, right-hand sides, Jacobians, roots,
@@ -128,7 +129,7 @@ subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt,
    x(1:n) = result%positions
    vf(1:n) = result%velocities
    res = [result%time, result%rest_time, result%initial_energy, result%energy_error, &
-      & result%dissipated, result%momentum_error]
+      & result%dissipated, result%momentum_error, result%wall_impulse]
    counts = [result%n_contacts, int(size(result%contacts), int64), &
       & int(result%method_used, int64), merge(1_int64, 0_int64, result%rested), &
       & result%counters%closed_form_contacts, result%counters%integrated_contacts, &

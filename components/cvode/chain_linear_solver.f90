@@ -20,8 +20,8 @@ module hcimpact_cvode_chain_linear_solver
       & FSUNLinSolFreeEmpty, SUNLINEARSOLVER_DIRECT
    use fsunmatrix_band_mod, only : FSUNBandMatrix_Data, FSUNBandMatrix_LDim, &
       & FSUNBandMatrix_StoredUpperBandwidth
-   use hcimpact_cvode_chain_system, only : newton_factor, factor_newton_matrix, &
-      & solve_newton, region_size
+   use hcimpact_cvode_chain_system, only : chain_region, newton_factor, &
+      & factor_newton_matrix, solve_newton, region_size
    implicit none
    private
 
@@ -29,8 +29,10 @@ module hcimpact_cvode_chain_linear_solver
 
    !> What the object's content points to
    type :: solver_state
-      !> Bodies of the region
+      !> Bodies of the region, and the region (its `wall_slopes`, kept by the Jacobian
+      !> callback)
       integer :: m = 0
+      type(chain_region), pointer :: region => null()
       type(newton_factor) :: factor
    end type solver_state
 
@@ -42,10 +44,10 @@ module hcimpact_cvode_chain_linear_solver
 
 contains
 
-   !> A new linear solver for a region of m bodies in the SUNDIALS context ctx; null
-   !> when it cannot be made (out of memory).
-   function chain_linear_solver(m, ctx) result(solver)
-      integer, intent(in) :: m
+   !> A new linear solver for a region in the SUNDIALS context ctx; null when it
+   !> cannot be made (out of memory). The region must outlive the solver.
+   function chain_linear_solver(region, ctx) result(solver)
+      type(chain_region), pointer, intent(in) :: region
       type(c_ptr), intent(in) :: ctx
       type(SUNLinearSolver), pointer :: solver
       type(SUNLinearSolver_Ops), pointer :: ops
@@ -61,7 +63,8 @@ contains
          nullify(solver)
          return
       end if
-      state%m = m
+      state%m = region%m
+      state%region => region
       solver%content = c_loc(state)
       call c_f_pointer(solver%ops, ops)
       ops%gettype = c_funloc(solver_type)
@@ -93,7 +96,7 @@ contains
       call c_f_pointer(c_loc(data(1)), band, &
          & [int(FSUNBandMatrix_LDim(a)), region_size(state%m)])
       call factor_newton_matrix(state%m, int(FSUNBandMatrix_StoredUpperBandwidth(a)), &
-         & band, state%factor, info)
+         & band, state%region%wall_slope, state%factor, info)
       if (info == 0) then
          ierr = ls_success
       else if (info > 0) then

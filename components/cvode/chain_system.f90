@@ -8,9 +8,10 @@
 !> j = 0 .. m around and between them: slot j is between local bodies j and j + 1; slot
 !> 0 is the left wall or the pair with the body outside on the left (a boundary, only
 !> watched), slot m likewise on the right. The state, per body k, is its displacement
-!> u_k, its velocity v_k and e_k, the energy dissipated so far in slot k - 1; the last
-!> component is that of slot m: y = (u_1, v_1, e_1, ..., u_m, v_m, e_m, e_(m+1)),
-!> 3 m + 1 values. Every force is the contact-force element's, clamped (no contact
+!> u_k, its velocity v_k and e_k, the energy dissipated so far in slot k - 1; then
+!> e_(m+1), that of slot m; then the impulses the walls have given the region so far
+!> (N s, along the line, 0 without a wall): y = (u_1, v_1, e_1, ..., u_m, v_m, e_m,
+!> e_(m+1), J_left, J_right), 3 m + 3 values. Every force is the contact-force element's, clamped (no contact
 !> pulls), from the exact deformation and rate of the slot's two ends
 !> (contact_force_pair with the initial gap as the distance).
 !>
@@ -19,7 +20,19 @@
 !> (`upper_band`, `lower_band`): one step costs O(m). The e rows are left out of the
 !> Jacobian (zero): e_k' depends on u, v of bodies k - 1 and k only, and nothing
 !> depends on e, so Newton's iteration converges for them one iteration behind u and
-!> v.
+!> v. The impulses' rows lie outside the band (J_left' = F_0 depends on u_1, v_1):
+!> the Jacobian callback keeps their two derivatives apart (`wall_slopes`) and the
+!> region's linear solver puts them into M, so that M holds the whole Jacobian.
+!> Then m^T M = m^T for m = (masses at the velocities, -1 at the impulses, 0
+!> elsewhere: the pair forces cancel), and every Newton iterate and step keeps
+!> sum m_k v_k - J_left - J_right - M g t as exactly as rounding allows: the momentum
+!> balance with walls (doc/chains.md) measures the bookkeeping, not the iteration's
+!> tolerance. They are results (the walls' impulses), in the error test as the
+!> momentum is: against rtol times the region's mass times v_ref (`error_weights`).
+!> Left out of it, they drifted from the momentum by up to 4e-3 rtol where Adams
+!> raised its step 3.7 times at order 5 to 6 (its history rescaled by powers of the
+!> ratio, whose rounding in these rows nothing checked); in it, by 7e-4 rtol at most
+!> (bench/chain/attack, test `momentum-with-walls`).
 !>
 !> The starts and ends of contacts, and their extrema, are found by the driver from each
 !> step's cubic Hermite interpolant of every slot's deformation (hcimpact_cvode_chain).
@@ -35,8 +48,8 @@ module hcimpact_cvode_chain_system
    public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
    public :: region_frame, frame_motion, first_step
    public :: error_weights, weights_rtol, newton_factor, factor_newton_matrix, solve_newton
-   public :: slot_state, dissipation_index, force_rate, slot_force_rate, upper_band, &
-      & lower_band
+   public :: slot_state, dissipation_index, impulse_index, wall_slopes, force_rate, &
+      & slot_force_rate, upper_band, lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
       & slot_boundary_right
 
@@ -65,8 +78,12 @@ module hcimpact_cvode_chain_system
       !> Set by the solver's error handler: its last message and code
       type(solver_report) :: report
       !> The relative tolerance and the scales of the errors: deformation (m), speed
-      !> (m/s) and energy (J) (the driver's error weights)
-      real(wp) :: rtol = 1.0e-10_wp, scale(3) = 1.0_wp
+      !> (m/s) and energy (J), and impulse (N s: the mass of the region times the
+      !> speed's scale, or huge beyond the range) (the driver's error weights)
+      real(wp) :: rtol = 1.0e-10_wp, scale(3) = 1.0_wp, impulse_scale = 1.0_wp
+      !> `wall_slopes` at the state of the last Jacobian (set by the Jacobian
+      !> callback, read by the linear solver's setup)
+      real(wp) :: wall_slope(2, 2) = 0.0_wp
    end type chain_region
 
    !> CVODE's Newton matrix M = I - gamma J of a region, factored through its
@@ -88,6 +105,9 @@ module hcimpact_cvode_chain_system
       real(wp), allocatable :: lower(:), pivot(:), upper(:)
       !> The diagonal of the energy rows, in the state's order
       real(wp), allocatable :: ee(:)
+      !> The impulses' rows (side 1 left, 2 right): M(J, u), M(J, v) of the end
+      !> body, and M(J, J)
+      real(wp) :: wall_row(2, 2) = 0.0_wp, wall_diagonal(2) = 1.0_wp
    end type newton_factor
 
    !> BDF's error weights are those of rtol times this (`weights_rtol`). A light body
@@ -114,10 +134,17 @@ contains
       if (j == m) dissipation_index = 3 * m + 1
    end function dissipation_index
 
+   !> Index in the state of the impulse the wall on side 1 (left) or 2 (right) has
+   !> given the region so far
+   pure integer function impulse_index(m, side)
+      integer, intent(in) :: m, side
+      impulse_index = 3 * m + 1 + side
+   end function impulse_index
+
    !> Number of state values of a region of m bodies
    pure integer function region_size(m)
       integer, intent(in) :: m
-      region_size = 3 * m + 1
+      region_size = 3 * m + 3
    end function region_size
 
    !> The two ends of slot j at the time t: positions (m) and velocities (m/s) of its
@@ -206,7 +233,8 @@ contains
 
    !> The error weights of a state of bodies (CVODE's CVEwtFn), for the serial region
    !> and a rank's block alike: y holds (u, v, e) per body and, serial, the region's
-   !> last dissipated energy after them (any value past the bodies' is an energy).
+   !> last dissipated energy after them (any value past the bodies' is an energy),
+   !> then with impulse_scale the two walls' impulses (the serial region's state).
    !> A displacement's error is measured against rtol x_ref, not against rtol |u|:
    !> the deformations, differences of displacements that grow as the bodies move,
    !> must keep their accuracy however far the bodies have gone. A velocity's against
@@ -224,7 +252,7 @@ contains
    !> dissipated energy of bodies of 1e-300 kg has rtol e_ref = 1e-310, whose
    !> reciprocal is +Inf, and CVODE failed at t = 0 (CV_CONV_FAILURE); such energies
    !> are subnormal, with fewer digits than any tolerance asks.
-   pure subroutine error_weights(y, rtol, scale, root_n, w)
+   pure subroutine error_weights(y, rtol, scale, root_n, w, impulse_scale)
       !> The state
       real(wp), intent(in) :: y(:)
       !> Relative tolerance
@@ -235,18 +263,27 @@ contains
       real(wp), intent(in) :: root_n
       !> The weights
       real(wp), intent(out) :: w(:)
+      !> The scale of the impulses (N s), when the state ends with them
+      real(wp), intent(in), optional :: impulse_scale
       real(wp) :: floor, least
-      integer :: k, m
+      integer :: k, m, last
       floor = 2.0_wp * epsilon(1.0_wp) * root_n
       least = tiny(1.0_wp) * root_n
-      m = size(y) / 3
+      last = size(y)
+      if (present(impulse_scale)) then
+         last = size(y) - 2
+         do k = last + 1, size(y)
+            w(k) = root_n / max(rtol * impulse_scale, floor * abs(y(k)), least)
+         end do
+      end if
+      m = last / 3
       do k = 1, m
          w(3 * k - 2) = root_n / max(rtol * scale(1), floor * abs(y(3 * k - 2)), least)
          w(3 * k - 1) = root_n / max(rtol * (abs(y(3 * k - 1)) + scale(2)), &
             & floor * abs(y(3 * k - 1)), least)
          w(3 * k) = root_n / max(rtol * scale(3), floor * abs(y(3 * k)), least)
       end do
-      do k = 3 * m + 1, size(y)
+      do k = 3 * m + 1, last
          w(k) = root_n / max(rtol * scale(3), floor * abs(y(k)), least)
       end do
    end subroutine error_weights
@@ -401,6 +438,8 @@ contains
       m = region%m
       ok = .true.
       f_left = 0.0_wp
+      dy(impulse_index(m, 1)) = 0.0_wp
+      dy(impulse_index(m, 2)) = 0.0_wp
       do j = 0, m
          call slot_state(region, j, t, y, x, w, e)
          ! (ieee_is_finite, not a comparison: a NaN compared traps in the Debug build)
@@ -417,8 +456,31 @@ contains
          end if
          f_left = e%force
          dy(dissipation_index(m, j)) = e%dissipation
+         ! the walls' forces on the end bodies
+         if (j == 0 .and. region%kind(j) == slot_left_wall) dy(impulse_index(m, 1)) = e%force
+         if (j == m .and. region%kind(j) == slot_right_wall) dy(impulse_index(m, 2)) = -e%force
       end do
    end subroutine region_rhs
+
+   !> The derivatives of the impulses' rates (`impulse_index`) with respect to the
+   !> displacement and velocity of their end body, slope(:, side) (0 without a wall):
+   !> J_left' = F_0(x, w) with x = -(gap + u_1), w = -v_1, and J_right' = -F_m with
+   !> x = u_m - gap, w = v_m, both -(dF/dx, dF/dw) of the slot's element.
+   pure subroutine wall_slopes(region, t, y, slope)
+      type(chain_region), intent(in) :: region
+      real(wp), intent(in) :: t, y(:)
+      real(wp), intent(out) :: slope(2, 2)
+      type(contact_force_type) :: e
+      real(wp) :: x, w
+      integer :: side, j
+      slope = 0.0_wp
+      do side = 1, 2
+         j = merge(0, region%m, side == 1)
+         if (region%kind(j) /= merge(slot_left_wall, slot_right_wall, side == 1)) cycle
+         call slot_state(region, j, t, y, x, w, e)
+         slope(:, side) = [-e%dforce_dx, -e%dforce_dv]
+      end do
+   end subroutine wall_slopes
 
    !> The acceleration of body k (m/s^2) under gravity, the force f_left of the slot on
    !> its left (+f_left on it) and f_right of the slot on its right (-f_right), in that
@@ -595,13 +657,17 @@ contains
 
    !> Factor the Newton matrix M of a region of m bodies (band storage as in
    !> region_jacobian: M(row, col) = band(smu + row - col + 1, col), with the
-   !> Jacobian's bandwidths around the diagonal). info: 0; k > 0 when the k-th pivot
-   !> of T is zero or not finite (CVODE then retries with a smaller step); -1 when M
-   !> has an entry outside the structure of newton_factor (the Jacobian changed
-   !> without this), or the factors cannot be allocated.
-   pure subroutine factor_newton_matrix(m, smu, band, factor, info)
+   !> Jacobian's bandwidths around the diagonal), completed by the impulses' rows
+   !> outside the band: -gamma times `wall_slopes`, gamma = -M(u_1, v_1) (u_1' = v_1).
+   !> info: 0; k > 0 when the k-th pivot of T is zero or not finite (CVODE then
+   !> retries with a smaller step); -1 when M has an entry outside the structure of
+   !> newton_factor (the Jacobian changed without this), or the factors cannot be
+   !> allocated.
+   pure subroutine factor_newton_matrix(m, smu, band, slope, factor, info)
       integer, intent(in) :: m, smu
       real(wp), intent(in) :: band(:, :)
+      !> `wall_slopes` of the Jacobian M was formed from
+      real(wp), intent(in) :: slope(2, 2)
       type(newton_factor), intent(inout) :: factor
       integer, intent(out) :: info
       real(wp) :: t_lower, t_diag
@@ -630,7 +696,13 @@ contains
          end do
          factor%ee(k) = entry(3 * k, 3 * k)
       end do
-      factor%ee(m + 1) = entry(n, n)
+      factor%ee(m + 1) = entry(dissipation_index(m, m), dissipation_index(m, m))
+      ! M(J, .) = e_J - gamma J'(.): the end body's columns (-gamma = M(u_1, v_1)),
+      ! and the diagonal
+      factor%wall_row(:, 1) = entry(1, 2) * slope(:, 1)
+      factor%wall_row(:, 2) = entry(1, 2) * slope(:, 2)
+      factor%wall_diagonal(1) = entry(impulse_index(m, 1), impulse_index(m, 1))
+      factor%wall_diagonal(2) = entry(impulse_index(m, 2), impulse_index(m, 2))
       info = 0
       ! T(k, k + l) = M(v_k, v_(k+l)) - M(v_k, u_(k+l)) M(u, v)/M(u, u) of body k + l
       do k = 1, m
@@ -658,25 +730,22 @@ contains
       end function entry
    end subroutine factor_newton_matrix
 
-   !> Whether M(row, col) of a region of m bodies may be nonzero: u_k with u_k, v_k;
-   !> v_k with u and v of bodies k - 1 .. k + 1; an energy with itself.
+   !> Whether M(row, col) of a region of m bodies may be nonzero in the band: u_k with
+   !> u_k, v_k; v_k with u and v of bodies k - 1 .. k + 1; an energy or an impulse
+   !> with itself (an impulse's other entries are outside the band).
    pure logical function entry_of_structure(m, row, col) result(inside)
       integer, intent(in) :: m, row, col
       integer :: kr, kc, sr, sc
-      ! body and kind (1 u, 2 v, 3 e) of the row and the column; the last value, e of
-      ! slot m, as kind 3 of a body m + 1
+      ! e of slot m and the impulses: with themselves alone
+      if (row > 3 * m .or. col > 3 * m) then
+         inside = row == col
+         return
+      end if
+      ! body and kind (1 u, 2 v, 3 e) of the row and the column
       kr = (row + 2) / 3
       sr = row - 3 * (kr - 1)
       kc = (col + 2) / 3
       sc = col - 3 * (kc - 1)
-      if (row == region_size(m)) then
-         kr = m + 1
-         sr = 3
-      end if
-      if (col == region_size(m)) then
-         kc = m + 1
-         sc = 3
-      end if
       select case (sr)
       case (1)
          inside = kc == kr .and. sc <= 2
@@ -716,6 +785,11 @@ contains
          x(3 * k) = x(3 * k) / factor%ee(k)
       end do
       x(3 * m + 1) = x(3 * m + 1) / factor%ee(m + 1)
+      ! the impulses, from their end body's solution
+      x(impulse_index(m, 1)) = (x(impulse_index(m, 1)) - factor%wall_row(1, 1) * x(1) &
+         & - factor%wall_row(2, 1) * x(2)) / factor%wall_diagonal(1)
+      x(impulse_index(m, 2)) = (x(impulse_index(m, 2)) - factor%wall_row(1, 2) * x(3 * m - 2) &
+         & - factor%wall_row(2, 2) * x(3 * m - 1)) / factor%wall_diagonal(2)
    end subroutine solve_newton
 
    !> dF/dt of slot j: F_x w + F_v w', w' from the accelerations dy (region_rhs)

@@ -87,9 +87,12 @@ class ChainResult:
     n_contacts: int
     #: relative error of kinetic + elastic + gravitational + dissipated energy
     energy_error: float
-    #: relative error of the momentum against the initial one plus gravity's impulse
-    #: M g t (NaN with a wall, whose impulses are not counted)
+    #: relative error of the momentum against the initial one plus the outside
+    #: impulses: gravity's M g t and the walls'
     momentum_error: float
+    #: the impulses the left and the right wall gave the system up to ``time``, N s
+    #: along the line (left >= 0, right <= 0; 0 without the wall)
+    wall_impulses: tuple
     #: initial kinetic energy and the energy dissipated, J
     initial_energy: float
     dissipated: float
@@ -298,7 +301,9 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
     return ChainResult(
         time=outcome.time, positions=x, velocities=vf, contacts=contacts,
         n_contacts=int(outcome.n_contacts), energy_error=outcome.energy_error,
-        momentum_error=outcome.momentum_error, initial_energy=outcome.initial_energy,
+        momentum_error=outcome.momentum_error,
+        wall_impulses=(outcome.wall_impulse_left, outcome.wall_impulse_right),
+        initial_energy=outcome.initial_energy,
         dissipated=outcome.dissipated, method_used=_METHOD_USED.get(outcome.method_used, "?"),
         rested=bool(outcome.rested),
         rest_time=outcome.rest_time if outcome.rested else math.nan,

@@ -85,7 +85,7 @@ class ChainOutcome(ctypes.Structure):
 
     _fields_ = ([(name, ctypes.c_double) for name in
                  ("time", "rest_time", "initial_energy", "energy_error", "dissipated",
-                  "momentum_error")]
+                  "momentum_error", "wall_impulse_left", "wall_impulse_right")]
                 + [(name, ctypes.c_int64) for name in CHAIN_COUNTS]
                 + [("method_used", ctypes.c_int), ("rested", ctypes.c_int)])
 

@@ -103,7 +103,15 @@ def test_walls_gravity_and_samples():
     assert r.sample_positions[0, 0] == 0.0 and r.sample_velocities[0, 0] == 0.0
     assert np.all(r.sample_forces[:, 1] == 0.0)               # no right wall
     assert np.all(r.sample_positions[:, 0] >= -0.01 - 1e-4)   # never through the floor
-    assert math.isnan(r.momentum_error)
+    # the momentum balance with the floor's impulse: m v = m g t + J_left
+    left, right = r.wall_impulses
+    assert left > 0.0 and right == 0.0
+    assert 0.1 * r.velocities[0] == pytest.approx(0.1 * -9.81 * 0.2 + left, abs=1e-12)
+    assert r.momentum_error < 1e-10
+    # before the ball reaches the floor, the floor has given nothing
+    early = hcimpact.chain([0.1], [0.0], wall_left={"stiffness": PLATE, "gap": 0.01},
+                           gravity=-9.81, t_end=0.04)
+    assert early.wall_impulses == (0.0, 0.0) and early.momentum_error < 1e-15
     # defaults of a wall: exponent 1.5, damping 0, gap 0
     touching = hcimpact.chain([0.1], [-1.0], wall_left={"stiffness": PLATE})
     full = hcimpact.chain([0.1], [-1.0], wall_left={"stiffness": PLATE, "exponent": 1.5,

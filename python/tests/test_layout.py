@@ -120,7 +120,7 @@ def test_contact_records_follow_the_header():
     for name, _ in _types.ChainContact._fields_:
         assert dtype.fields[name][1] == getattr(_types.ChainContact, name).offset
     outcome = [name for name, _ in _types.ChainOutcome._fields_]
-    assert outcome[6:15] == list(_types.CHAIN_COUNTS)
+    assert outcome[8:17] == list(_types.CHAIN_COUNTS)
 
 
 def test_the_parser_sees_a_changed_header():

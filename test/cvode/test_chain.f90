@@ -69,6 +69,7 @@ contains
          & new_unittest("two-bodies-integrated", test_two_bodies_integrated), &
          & new_unittest("elastic-energy-momentum", test_elastic_balance), &
          & new_unittest("momentum-under-gravity", test_momentum_gravity), &
+         & new_unittest("momentum-with-walls", test_momentum_walls), &
          & new_unittest("three-balls", test_three_balls), &
          & new_unittest("newtons-cradle", test_cradle), &
          & new_unittest("two-balls-on-a-floor", test_drop_two), &
@@ -801,18 +802,6 @@ contains
       end do
       print '(2x, a, f6.1, a)', "largest momentum error under gravity: ", worst, " eps"
 
-      ! a floor: the walls' impulses are not counted, no balance
-      chain = steel_row(2, 0.0_wp, 0.0_wp, 0.0_wp)
-      chain%gravity = -9.81_wp
-      chain%left_wall = .true.
-      chain%left_law = contact_law(steel_wall, 1.5_wp, 0.0_wp)
-      chain%left_gap = 1.0e-3_wp
-      call run(error, chain, opts(method_auto, 1.0e-8_wp, 0.05_wp), result, "on a floor")
-      if (allocated(error)) return
-      call check(error, ieee_is_nan(result%momentum_error), "on a floor: momentum error " &
-         & // format_real(result%momentum_error) // ", expected NaN")
-      if (allocated(error)) return
-
       ! M g t beyond the range of doubles: its kinetic energy is too (the masses add
       ! up to at most a quarter of the range), the run fails with its status, and
       ! neither the energies nor the balance overflow on the way (the Debug build
@@ -824,6 +813,185 @@ contains
       call check(error, stat == hcimpact_err_domain, "M g t of 2e310: status " &
          & // format_real(real(stat, wp)) // " " // trim(result%message))
    end subroutine test_momentum_gravity
+
+   !> The momentum balance with walls: p = p0 + M g t + J_left + J_right, the walls'
+   !> impulses integrated with the contacts (closed forms: m (v - v_in) of each
+   !> contact, also one in progress at t_end; CVODE: the impulses in the region's
+   !> state, their rows in its Newton matrix; at rest: the momentum left and the
+   !> weight since). Within 64 eps of the scale sum m |v0| + |M g t| + |J_left| +
+   !> |J_right| (the measured largest printed) for:
+   !> - a ball bouncing on a floor until it rests, and to a t_end past its rest
+   !>   (Adams and BDF);
+   !> - two balls dropped on a floor, to t_end within their contacts;
+   !> - a cradle of four with gaps between two walls, closed forms only (b = 0 and
+   !>   0.1), to t_end within a wall contact and after 40 contacts;
+   !> - five touching beads struck against a wall, integrated and auto;
+   !> - 300 random systems of 1 to 6 bodies: walls on one or both sides, gaps from 0
+   !>   (touching) to 1 mm, speeds both ways, b = 0 or not, g = 0 or not, method auto
+   !>   or integrated, Adams or BDF, t_end anywhere.
+   !> The walls' impulses have their signs (left >= 0, right <= 0), and a ball that
+   !> rests on a floor has taken -p0 - M g t from it.
+   subroutine test_momentum_walls(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      type(chain_options) :: o
+      integer :: k, n, trial, integrator, seed_size, stat, n_run
+      real(wp) :: worst(3), u(12), expected
+      character(len=96) :: what
+      real(wp), parameter :: drop_ends(3) = [0.01428_wp, 0.014285_wp, 0.05_wp]
+
+      worst = 0.0_wp
+      ! a ball bouncing on a floor until it rests, and beyond
+      do integrator = integrator_bdf, integrator_adams
+         do k = 1, 2
+            chain = steel_row(1, 0.0_wp, 0.0_wp, 0.0_wp)
+            chain%gravity = -9.81_wp
+            call floor_of(chain, 0.02_wp, 1.0_wp)
+            o = opts(method_auto, 1.0e-8_wp, merge(0.0_wp, 2.0_wp, k == 1))
+            o%integrator = integrator
+            write(what, '(a, i0, a, i0)') "ball on a floor, integrator ", integrator, &
+               & ", t_end case ", k
+            call run(error, chain, o, result, trim(what))
+            if (allocated(error)) return
+            call check(error, result%rested, trim(what) // ": did not rest")
+            if (allocated(error)) return
+            call balance_within(error, result, o, trim(what), worst)
+            if (allocated(error)) return
+            ! at rest (without t_end; with it, the ball is still settling within 1e-4
+            ! m/s of it at 2 s): the floor has taken all the momentum and the weight
+            if (k == 2) cycle
+            call check(error, all(result%velocities == 0.0_wp), trim(what) // ": not at rest")
+            if (allocated(error)) return
+            expected = -steel_mass * chain%gravity * result%time
+            call check(error, abs(result%wall_impulse(1) - expected) <= 1.0e-3_wp &
+               & * o%rtol * expected .and. result%wall_impulse(2) == 0.0_wp, &
+               & trim(what) // ": floor's impulse " // format_real(result%wall_impulse(1)) &
+               & // ", expected " // format_real(expected))
+            if (allocated(error)) return
+         end do
+      end do
+      ! two balls dropped on a floor, to t_end within and after their contacts
+      do k = 1, 3
+         chain = steel_row(2, 0.0_wp, 0.0_wp, 0.0_wp)
+         chain%gravity = -9.81_wp
+         call floor_of(chain, 1.0e-3_wp, 0.0_wp)
+         o = opts(method_auto, 1.0e-8_wp, drop_ends(k))
+         call run(error, chain, o, result, "two balls on a floor")
+         if (allocated(error)) return
+         call balance_within(error, result, o, "two balls on a floor", worst)
+         if (allocated(error)) return
+      end do
+      ! a cradle with gaps between two walls, by the closed forms alone
+      do k = 1, 4
+         chain = steel_row(4, 1.0_wp, merge(0.0_wp, steel_damping, k <= 2), 1.0e-3_wp)
+         chain%velocity(4) = 0.3_wp
+         call floor_of(chain, 2.0e-4_wp, chain%law(1)%damping)
+         chain%right_wall = .true.
+         chain%right_law = chain%left_law
+         chain%right_gap = 1.0e-4_wp
+         ! (to 3.4e-4 s the last ball is pressing on the right wall since 3.33e-4 s)
+         o = opts(method_auto, 1.0e-10_wp, merge(3.4e-4_wp, 2.0e-2_wp, mod(k, 2) == 1))
+         call run(error, chain, o, result, "cradle between walls")
+         if (allocated(error)) return
+         call balance_within(error, result, o, "cradle between walls", worst)
+         if (allocated(error)) return
+         call check(error, result%wall_impulse(1) >= 0.0_wp .and. &
+            & result%wall_impulse(2) < 0.0_wp .and. (result%n_contacts >= 10 .or. &
+            & mod(k, 2) == 1), "cradle between walls: the walls' impulses' signs")
+         if (allocated(error)) return
+      end do
+      ! touching beads struck against a wall, integrated
+      do k = 1, 2
+         chain = steel_row(5, 0.0_wp, steel_damping, 0.0_wp)
+         chain%velocity(5) = -1.0_wp
+         call floor_of(chain, 0.0_wp, steel_damping)
+         o = opts(merge(method_integrated, method_auto, k == 1), 1.0e-10_wp)
+         call run(error, chain, o, result, "beads against a wall")
+         if (allocated(error)) return
+         call balance_within(error, result, o, "beads against a wall", worst)
+         if (allocated(error)) return
+      end do
+      ! random systems with walls
+      call random_seed(size=seed_size)
+      call random_seed(put=[(20261127 + 11 * k, k = 1, seed_size)])
+      n_run = 0
+      do trial = 1, 300
+         call random_number(u)
+         n = 1 + int(6.0_wp * u(1))
+         chain = steel_row(n, 0.0_wp, merge(0.0_wp, 0.3_wp * u(2), u(3) < 0.3_wp), 0.0_wp)
+         do k = 1, n - 1
+            call random_number(u)
+            chain%gap(k) = merge(0.0_wp, 1.0e-3_wp * u(1), u(2) < 0.4_wp)
+         end do
+         call random_number(chain%velocity)
+         chain%velocity = 2.0_wp * chain%velocity - 1.0_wp
+         call random_number(u)
+         chain%gravity = merge(0.0_wp, 20.0_wp * (u(1) - 0.5_wp), u(2) < 0.4_wp)
+         if (u(3) < 0.7_wp) call floor_of(chain, merge(0.0_wp, 1.0e-3_wp * u(4), &
+            & u(5) < 0.3_wp), 0.3_wp * u(6))
+         if (u(7) >= 0.4_wp .or. .not. chain%left_wall) then
+            chain%right_wall = .true.
+            chain%right_law = contact_law(steel_wall, 1.5_wp, 0.3_wp * u(8))
+            chain%right_gap = merge(0.0_wp, 1.0e-3_wp * u(9), u(10) < 0.3_wp)
+         end if
+         o = opts(merge(method_integrated, method_auto, u(11) < 0.3_wp), 1.0e-9_wp, &
+            & 1.0e-3_wp + 0.05_wp * u(12))
+         call random_number(u)
+         o%integrator = merge(integrator_adams, integrator_bdf, u(1) < 0.5_wp)
+         o%max_steps = 200000
+         call chain_simulate(chain, result, stat, o)
+         ! (bodies pressed between two walls under gravity may take too many steps:
+         ! only the balance of the runs that succeed is checked)
+         if (stat /= hcimpact_ok) cycle
+         n_run = n_run + 1
+         write(what, '(a, i0, a, i0)') "random system ", trial, " of bodies ", n
+         call balance_within(error, result, o, trim(what), worst)
+         if (allocated(error)) return
+      end do
+      call check(error, n_run >= 250, "random systems with walls: only " // int_text(n_run) &
+         & // " of 300 ran")
+      if (allocated(error)) return
+      print '(2x, a, f6.1, a, f9.1, a, es9.2, a, i0, a)', "largest momentum error with " &
+         & // "walls: closed forms ", worst(1), " eps, BDF ", worst(2), " eps, Adams ", &
+         & worst(3), " rtol (", n_run, " random systems)"
+   end subroutine test_momentum_walls
+
+   !> A steel wall on the left of the chain at the gap given, damping b
+   subroutine floor_of(chain, gap, b)
+      type(chain_type), intent(inout) :: chain
+      real(wp), intent(in) :: gap, b
+      chain%left_wall = .true.
+      chain%left_law = contact_law(steel_wall, 1.5_wp, b)
+      chain%left_gap = gap
+   end subroutine floor_of
+
+   !> The momentum balance of a result within 256 eps + 0.05 rtol (the options'),
+   !> and 64 eps where every contact was computed by the closed forms; worst(1): the
+   !> largest by the closed forms alone (eps), worst(2) with CVODE's BDF (eps),
+   !> worst(3) with Adams (rtol)
+   subroutine balance_within(error, result, options, what, worst)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_result), intent(in) :: result
+      type(chain_options), intent(in) :: options
+      character(len=*), intent(in) :: what
+      real(wp), intent(inout) :: worst(3)
+      real(wp) :: bound
+      bound = 256.0_wp * epsilon(1.0_wp) + 0.05_wp * options%rtol
+      if (result%method_used == by_closed_forms) bound = 64.0_wp * epsilon(1.0_wp)
+      call check(error, result%momentum_error <= bound, what // ": momentum error " &
+         & // format_real(result%momentum_error) // " (walls' impulses " &
+         & // format_real(result%wall_impulse(1)) // ", " &
+         & // format_real(result%wall_impulse(2)) // ")")
+      if (allocated(error)) return
+      if (result%method_used == by_closed_forms) then
+         worst(1) = max(worst(1), result%momentum_error / epsilon(1.0_wp))
+      else if (options%integrator == integrator_bdf) then
+         worst(2) = max(worst(2), result%momentum_error / epsilon(1.0_wp))
+      else
+         worst(3) = max(worst(3), result%momentum_error / options%rtol)
+      end if
+   end subroutine balance_within
 
    ! ==================================================================================
    ! Touching balls, cradles, chains: against make_chain.py

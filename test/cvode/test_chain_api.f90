@@ -277,9 +277,11 @@ contains
          if (allocated(error)) return
          call check(error, all(same([got%result%time, got%result%rest_time, &
             & got%result%initial_energy, got%result%energy_error, got%result%dissipated, &
-            & got%result%momentum_error], [expected%time, expected%rest_time, &
-            & expected%initial_energy, expected%energy_error, expected%dissipated, &
-            & expected%momentum_error])), what // ": the result's reals")
+            & got%result%momentum_error, got%result%wall_impulse_left, &
+            & got%result%wall_impulse_right], [expected%time, &
+            & expected%rest_time, expected%initial_energy, expected%energy_error, &
+            & expected%dissipated, expected%momentum_error, expected%wall_impulse])), &
+            & what // ": the result's reals")
          if (allocated(error)) return
          call check(error, all([got%result%n_contacts, got%result%contacts_recorded, &
             & got%result%closed_form_contacts, got%result%integrated_contacts, &
@@ -331,7 +333,7 @@ contains
       character(len=:), allocatable :: what
       character(len=200) :: msg
       real(wp), allocatable :: gap(:), plaw(:, :), x(:), vf(:)
-      real(wp) :: wall(4, 2), opts(2), res(6), cont(capacity, 7)
+      real(wp) :: wall(4, 2), opts(2), res(8), cont(capacity, 7)
       integer :: iopts(4), icnt(11), icon(capacity, 2), info, k, stat, i, n
 
       do k = 1, n_systems
@@ -366,7 +368,7 @@ contains
          if (allocated(error)) return
          call check(error, all(same(res, [expected%time, expected%rest_time, &
             & expected%initial_energy, expected%energy_error, expected%dissipated, &
-            & expected%momentum_error])), what // ": RES")
+            & expected%momentum_error, expected%wall_impulse])), what // ": RES")
          if (allocated(error)) return
          call check(error, all(int(icnt, int64) == [expected%n_contacts, &
             & int(size(expected%contacts), int64), int(expected%method_used, int64), &
@@ -666,7 +668,7 @@ contains
       type(error_type), allocatable, intent(out) :: error
       external :: hcchn
       real(wp) :: xm(3), v(3), gap(2), plaw(3, 2), wall(4, 2), grav, opts(2), x(3), vf(3), &
-         & res(6), cont(4, 7), nan
+         & res(8), cont(4, 7), nan
       integer :: iopts(4), icnt(11), icon(4, 2), maxc, ldc, info
       character(len=120) :: msg
 

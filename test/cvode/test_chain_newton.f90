@@ -7,8 +7,12 @@
 !> close to the solution of Gaussian elimination with partial pivoting in quadruple
 !> precision to 1e-8 of its largest value, for matrices whose condition reaches
 !> about 1e8 (the Newton iteration needs far fewer digits: an error of the solve
-!> slows its convergence, it does not change what it converges to); a nonzero
-!> outside the structure and a zero pivot must be reported.
+!> slows its convergence, it does not change what it converges to). The walls'
+!> impulses' rows (outside the band, from wall_slopes) are part of M, and where no
+!> end of the region is a boundary (every outside force a wall's) the solution keeps
+!> the momentum's invariant: sum m_k z(v_k) - z(J_left) - z(J_right) equals the same
+!> sum of r to a few rounding errors of its terms. A nonzero outside the structure
+!> and a zero pivot must be reported.
 module test_cvode_chain_newton
    use, intrinsic :: iso_fortran_env, only : real128
    use testdrive, only : new_unittest, unittest_type, error_type, check, test_failed
@@ -17,6 +21,7 @@ module test_cvode_chain_newton
    use hcimpact_chain_types, only : contact_law
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_jacobian, &
       & newton_factor, factor_newton_matrix, solve_newton, upper_band, lower_band, &
+      & wall_slopes, impulse_index, &
       & slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
       & slot_boundary_right, slot_none
    implicit none
@@ -27,6 +32,8 @@ module test_cvode_chain_newton
    !> Stored upper bandwidth and leading dimension of the band storage (as SUNDIALS'
    !> band matrix for the band LU: upper + lower above the diagonal)
    integer, parameter :: smu = upper_band + lower_band, ldim = smu + lower_band + 1
+   !> wall_slopes of a region without walls
+   real(wp), parameter :: no_slope(2, 2) = 0.0_wp
 
 contains
 
@@ -48,14 +55,17 @@ contains
       type(chain_region) :: region
       type(newton_factor) :: factor
       real(wp), allocatable :: band(:, :), y(:), r(:), z(:), dense(:, :)
-      real(wp) :: gamma, u, worst, residual, forward, worst_forward
-      integer :: trial, m, n, k, info, row, col
+      real(wp) :: gamma, u, worst, residual, forward, worst_forward, slope(2, 2)
+      real(wp) :: balance, worst_balance
+      integer :: trial, m, n, k, info, row, col, side, walls_only
       integer :: seed_size
 
       call random_seed(size=seed_size)
       call random_seed(put=[(20261126 + 7 * k, k = 1, seed_size)])
       worst = 0.0_wp
       worst_forward = 0.0_wp
+      worst_balance = 0.0_wp
+      walls_only = 0
       do trial = 1, 400
          call random_number(u)
          m = 1 + int(u * 60.0_wp)
@@ -78,7 +88,14 @@ contains
                dense(row, col) = band(smu + row - col + 1, col)
             end do
          end do
-         call factor_newton_matrix(m, smu, band, factor, info)
+         ! the impulses' rows outside the band: -gamma J'(u, v of the end body)
+         call wall_slopes(region, 0.0_wp, y, slope)
+         do side = 1, 2
+            row = impulse_index(m, side)
+            col = merge(1, 3 * m - 2, side == 1)
+            dense(row, col:col + 1) = dense(row, col:col + 1) - gamma * slope(:, side)
+         end do
+         call factor_newton_matrix(m, smu, band, slope, factor, info)
          call check(error, info, 0, "trial " // int_text(trial) // " (m = " &
             & // int_text(m) // "): factor_newton_matrix info")
          if (allocated(error)) return
@@ -92,6 +109,19 @@ contains
             & / maxval(abs(z))
          worst = max(worst, residual)
          worst_forward = max(worst_forward, forward)
+         if (region%kind(0) /= slot_boundary_left .and. region%kind(m) /= &
+            & slot_boundary_right) then
+            walls_only = walls_only + 1
+            balance = abs(momentum_row(region, z) - momentum_row(region, r)) &
+               & / momentum_magnitude(region, z, r)
+            worst_balance = max(worst_balance, balance)
+            if (.not. balance <= real(8 * m, wp) * epsilon(1.0_wp)) then
+               call test_failed(error, "trial " // int_text(trial) // " (m = " &
+                  & // int_text(m) // "): the momentum's invariant kept to " &
+                  & // format_real(balance))
+               return
+            end if
+         end if
          if (.not. (residual <= 16.0_wp * epsilon(1.0_wp) .and. forward <= 1.0e-8_wp)) then
             call test_failed(error, "trial " // int_text(trial) // " (m = " &
                & // int_text(m) // ", gamma = " // format_real(gamma) &
@@ -102,9 +132,39 @@ contains
          deallocate(band, r, z, dense, factor%uu, factor%uv, factor%vu, factor%lower, &
             & factor%pivot, factor%upper, factor%ee)
       end do
-      print '(a, es10.3, a, es10.3, a)', "  largest backward error ", worst, &
-         & ", forward error ", worst_forward, " (400 regions)"
+      print '(a, es10.3, a, es10.3, a, es10.3, a, i0, a)', "  largest backward error ", &
+         & worst, ", forward error ", worst_forward, " (400 regions); momentum's " &
+         & // "invariant ", worst_balance / epsilon(1.0_wp), " eps (", walls_only, &
+         & " regions without a boundary)"
    end subroutine test_random_regions
+
+   !> sum m_k x(v_k) - x(J_left) - x(J_right) of a vector x of the region's state
+   pure real(wp) function momentum_row(region, x) result(total)
+      type(chain_region), intent(in) :: region
+      real(wp), intent(in) :: x(:)
+      integer :: k, m
+      m = region%m
+      total = 0.0_wp
+      do k = 1, m
+         total = total + region%mass(k) * x(3 * k - 1)
+      end do
+      total = total - x(impulse_index(m, 1)) - x(impulse_index(m, 2))
+   end function momentum_row
+
+   !> The magnitudes of the terms of momentum_row of x and of r
+   pure real(wp) function momentum_magnitude(region, x, r) result(total)
+      type(chain_region), intent(in) :: region
+      real(wp), intent(in) :: x(:), r(:)
+      integer :: k, m
+      m = region%m
+      total = 0.0_wp
+      do k = 1, m
+         total = total + region%mass(k) * (abs(x(3 * k - 1)) + abs(r(3 * k - 1)))
+      end do
+      do k = 1, 2
+         total = total + abs(x(impulse_index(m, k))) + abs(r(impulse_index(m, k)))
+      end do
+   end function momentum_magnitude
 
    !> A nonzero where the structure has none (u_1 coupled to u_2): info -1
    subroutine test_structure(error)
@@ -123,12 +183,12 @@ contains
       do k = 1, n
          band(smu + 1, k) = band(smu + 1, k) + 1.0_wp
       end do
-      call factor_newton_matrix(m, smu, band, factor, info)
+      call factor_newton_matrix(m, smu, band, no_slope, factor, info)
       call check(error, info, 0, "the region's own matrix")
       if (allocated(error)) return
       ! M(u_1, u_2): row 1, column 4
       band(smu + 1 - 4 + 1, 4) = 1.0e-3_wp
-      call factor_newton_matrix(m, smu, band, factor, info)
+      call factor_newton_matrix(m, smu, band, no_slope, factor, info)
       call check(error, info, -1, "an entry outside the structure")
    end subroutine test_structure
 
@@ -148,7 +208,7 @@ contains
       end do
       ! M(v_3, v_3) = 0
       band(smu + 1, 3 * 3 - 1) = 0.0_wp
-      call factor_newton_matrix(m, smu, band, factor, info)
+      call factor_newton_matrix(m, smu, band, no_slope, factor, info)
       call check(error, info, 3, "zero pivot of body 3")
    end subroutine test_zero_pivot
 

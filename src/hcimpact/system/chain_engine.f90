@@ -60,7 +60,7 @@ module hcimpact_chain_engine
 
    public :: chain_engine, cluster_integrator, run_engine
    public :: slot_gap0, slot_law, slot_exists, body_state_at, engine_record
-   public :: capture_margin, rest_state
+   public :: capture_margin, rest_state, add_wall_impulse
    public :: advance_reached, advance_grow_left, advance_grow_right, advance_dissolved, &
       & advance_captured, advance_failed, advance_split
 
@@ -191,6 +191,14 @@ module hcimpact_chain_engine
       integer(int64) :: n_contacts = 0
       !> Energy dissipated so far (J) and the counters
       real(wp) :: dissipated = 0.0_wp
+      !> The impulses the walls (1 left, 2 right) have given the system so far, along
+      !> the line (N s): the closed-form contacts that ended or were handed over, the
+      !> integrated regions written back, a system settled at rest
+      real(wp) :: wall_impulse(2) = 0.0_wp
+      !> A system settled at rest on a wall: since when (s), and on which (1, 2; 0
+      !> none), whose impulse then grows by the weight
+      real(wp) :: settle_time = nan
+      integer :: settle_side = 0
       type(chain_counters) :: counters
       type(chain_switch), allocatable :: switches(:)
       integer :: n_switches = 0
@@ -1183,6 +1191,8 @@ contains
          & engine%exact(s)%contact%velocity) * engine%exact(s)%outcome%energy_loss_ratio
       r%method = by_closed_forms
       call engine_record(engine, r)
+      if (s == 0) call add_wall_impulse(engine, 1, exact_wall_impulse(engine, s, xd))
+      if (s == engine%n) call add_wall_impulse(engine, 2, exact_wall_impulse(engine, s, xd))
       engine%exact(s)%active = .false.
       engine%time = max(engine%time, t_end)
       call schedule(engine, s)
@@ -1364,6 +1374,8 @@ contains
       tau = engine%time - engine%exact(s)%t_start
       engine%exact(s)%handed = .true.
       engine%exact(s)%so_far_dissipated = exact_dissipated(engine, s)
+      if (s == 0) call add_wall_impulse(engine, 1, exact_wall_impulse(engine, s, xd))
+      if (s == engine%n) call add_wall_impulse(engine, 2, exact_wall_impulse(engine, s, xd))
       engine%exact(s)%so_far_peak = f
       if (tau >= engine%exact(s)%outcome%time_at_peak_force) &
          & engine%exact(s)%so_far_peak = engine%exact(s)%outcome%peak_force
@@ -1374,6 +1386,34 @@ contains
       ! the integrator counts it when it ends
       engine%counters%closed_form_contacts = engine%counters%closed_form_contacts - 1
    end subroutine hand_over
+
+   !> The impulse (N s, along the line) a closed-form contact with a wall (slot s = 0
+   !> or n) has given its body from its start up to the rate xd of its deformation:
+   !> m (v - v_in), the body's velocity being -xd against the left wall and xd against
+   !> the right one (so v_in = -+ the approach speed)
+   pure function exact_wall_impulse(engine, s, xd) result(impulse)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      real(wp), intent(in) :: xd
+      real(wp) :: impulse
+      if (s == 0) then
+         impulse = product_in_range(engine%chain%mass(1), &
+            & sum_in_range(engine%exact(s)%contact%velocity, -xd))
+      else
+         impulse = product_in_range(engine%chain%mass(engine%n), &
+            & sum_in_range(xd, -engine%exact(s)%contact%velocity))
+      end if
+   end function exact_wall_impulse
+
+   !> Add the impulse (N s) to what the wall on side 1 (left) or 2 (right) has given
+   !> the system (+-Inf beyond the range of doubles: the run then fails in
+   !> fill_result)
+   pure subroutine add_wall_impulse(engine, side, impulse)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(in) :: side
+      real(wp), intent(in) :: impulse
+      engine%wall_impulse(side) = sum_in_range(engine%wall_impulse(side), impulse)
+   end subroutine add_wall_impulse
 
    !> The energy a closed-form contact of slot s in progress has dissipated so far:
    !> its energy in the frame of the pair's centre of mass at the start, less its
@@ -1785,9 +1825,17 @@ contains
          v_now(i - a + 1) = engine%body(i)%v0
       end do
       call rest_state(engine, a, b, u)
-      ! what the region has above its equilibrium will all be dissipated
+      ! what the region has above its equilibrium will all be dissipated, and the
+      ! momentum it has left goes into the wall it rests on, which from now on holds
+      ! its weight
       engine%dissipated = engine%dissipated + region_energy(engine, a, b, u_now, v_now) &
          & - region_energy(engine, a, b, u, 0.0_wp * v_now)
+      engine%settle_side = merge(1, 2, engine%gravity < 0.0_wp)
+      engine%settle_time = engine%time
+      do i = a, b
+         call add_wall_impulse(engine, engine%settle_side, &
+            & -product_in_range(engine%chain%mass(i), v_now(i - a + 1)))
+      end do
       do i = a, b
          engine%body(i) = body_state(t0=engine%time, u0=u(i - a + 1), v0=0.0_wp)
       end do
@@ -1926,8 +1974,9 @@ contains
       type(chain_engine), intent(inout) :: engine
       type(chain_result), intent(inout) :: result
       integer, intent(out) :: stat
-      integer :: i, s, nsamples
+      integer :: i, s, nsamples, side
       real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, p0, p, scale, x, in_progress, impulse
+      real(wp) :: walls(2), outside, magnitude, xd, f
       real(wp), allocatable :: displacement(:)
       type(contact_law) :: law
 
@@ -2006,18 +2055,34 @@ contains
       ! the energy put in by gravity counts in the scale of the error
       result%energy_error = energy_balance_error(e_kin + e_el + e_grav, result%dissipated, &
          & e_kin0, e_grav)
-      if (.not. (engine%chain%left_wall .or. engine%chain%right_wall)) then
-         ! without walls the one outside force is gravity's: p = p0 + M g t, its
-         ! impulse counted in the scale (as the energy it puts in counts in the energy's)
-         impulse = gravity_impulse(engine%chain%mass, engine%chain%gravity, engine%time)
-         ! (not max(scale, tiny): momenta of subnormal size are errors of their size)
-         ! an impulse beyond the range of doubles: no balance to form (NaN, not a
-         ! failure of the run)
-         result%momentum_error = nan
-         if (abs(impulse) <= huge(1.0_wp) - scale) then
-            scale = scale + abs(impulse)
+      ! the walls' impulses: besides those written back, a closed-form contact with a
+      ! wall still in progress, and the weight a wall has held since the system
+      ! settled on it
+      walls = engine%wall_impulse
+      do s = 0, engine%n, engine%n
+         if (.not. (slot_exists(engine, s) .and. engine%exact(s)%active)) cycle
+         call contact_state(engine, s, engine%time, x, xd, f)
+         side = merge(1, 2, s == 0)
+         walls(side) = sum_in_range(walls(side), exact_wall_impulse(engine, s, xd))
+      end do
+      if (engine%settle_side > 0) walls(engine%settle_side) = &
+         & sum_in_range(walls(engine%settle_side), -gravity_impulse(engine%chain%mass, &
+         & engine%chain%gravity, engine%time - engine%settle_time))
+      result%wall_impulse = walls
+      ! the outside forces are gravity's and the walls': p = p0 + M g t + J_left +
+      ! J_right, their impulses counted in the scale (as the energy gravity puts in
+      ! counts in the energy's); (not max(scale, tiny): momenta of subnormal size are
+      ! errors of their size); impulses beyond the range of doubles: no balance to form
+      ! (NaN; the run fails below for the walls', not for gravity's)
+      impulse = gravity_impulse(engine%chain%mass, engine%chain%gravity, engine%time)
+      outside = sum_in_range(sum_in_range(impulse, walls(1)), walls(2))
+      magnitude = sum_in_range(sum_in_range(abs(impulse), abs(walls(1))), abs(walls(2)))
+      result%momentum_error = nan
+      if (ieee_is_finite(magnitude)) then
+         if (magnitude <= huge(1.0_wp) - scale) then
+            scale = scale + magnitude
             result%momentum_error = 0.0_wp
-            if (scale > 0.0_wp) result%momentum_error = abs(p - (p0 + impulse)) / scale
+            if (scale > 0.0_wp) result%momentum_error = abs(p - (p0 + outside)) / scale
          end if
       end if
       result%rested = engine%rested
@@ -2052,6 +2117,10 @@ contains
          & then
          stat = hcimpact_err_domain
          engine%message = energies_beyond_range
+      else if (.not. all(ieee_is_finite(result%wall_impulse))) then
+         stat = hcimpact_err_domain
+         engine%message = "the impulses of the walls leave the range of doubles (beyond " &
+            & // "1.8e308 N s)"
       end if
       ! (samples after t_end are NaN, not infinite; ieee_is_nan, not a comparison: a NaN
       ! compared traps in the Debug build)

@@ -174,9 +174,14 @@ module hcimpact_chain_types
       real(wp) :: initial_energy = nan, energy_error = nan
       !> Dissipated energy in J (up to the time reached: contacts in progress included)
       real(wp) :: dissipated = nan
-      !> Relative error of the momentum against the initial one plus gravity's impulse
-      !> M g t, over sum(m |v0|) + |M g t| (without walls, else NaN: the walls'
-      !> impulses are not counted)
+      !> The impulses the walls gave the system up to the time reached (N s, along the
+      !> line: the left wall's >= 0, the right wall's <= 0; 0 without the wall),
+      !> integrated with the contacts (doc/chains.md, "Balances")
+      real(wp) :: wall_impulse(2) = nan
+      !> Relative error of the momentum against the initial one plus the outside
+      !> impulses, gravity's M g t and the walls', over sum(m |v0|) + |M g t| +
+      !> |wall_impulse(1)| + |wall_impulse(2)| (NaN where that sum is beyond the range
+      !> of doubles)
       real(wp) :: momentum_error = nan
       !> by_closed_forms when no contact was integrated, by_integration when every
       !> contact was, 3 when both were used
