@@ -89,6 +89,7 @@ static void two_bodies(void)
   check_close("velocity 2 after", vf[1], v2, 1e-14);
   check("energy balance", r.energy_error < 1e-14);
   check("momentum balance", r.momentum_error < 1e-15);
+  check("no walls: no walls' impulses", r.wall_impulse_left == 0.0 && r.wall_impulse_right == 0.0);
   check_close("initial energy", r.initial_energy, 0.5 * (m[0] * v[0] * v[0] + m[1] * v[1] * v[1]),
               1e-15);
   /* the centre of mass moves uniformly; the bodies part from touching at t_end */
@@ -189,6 +190,7 @@ static void bad_input(void)
                                  0, NULL, NULL, message, sizeof message);
   check_status("mass NaN", stat, HCIMPACT_ERR_NOT_FINITE, message);
   check("mass NaN: NaN outputs", isnan(r.time) && isnan(r.energy_error) && r.n_contacts == 0
+                                     && isnan(r.wall_impulse_left) && isnan(r.wall_impulse_right)
                                      && isnan(x[0]) && isnan(x[1]));
   stat = hcimpact_chain_simulate(2, zero_mass, v, gap, law, NULL, NULL, 0.0, NULL, &r, x, NULL,
                                  0, NULL, NULL, message, sizeof message);
