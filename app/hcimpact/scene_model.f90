@@ -25,7 +25,7 @@ module hcimpact_scene_model
    public :: scene_line_length, max_scene_lines, max_bodies
    public :: sweep_list, n_sweep_lists, sweep_names, sweep_unit, sweep_striker_speed, &
       & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
-      & sweep_gravity
+      & sweep_gravity, sweep_left_gap, sweep_right_gap
    public :: unset_bits, is_unset
 
 
@@ -42,14 +42,16 @@ module hcimpact_scene_model
    !> The parameters a sweep of systems (&system_sweep) varies, in the order in which
    !> they combine (the first varies slowest) and in which their columns stand: body 1's
    !> speed, the mass of one body, and for every pair the gap, the stiffness c, the
-   !> exponent n, the damping b (or b from a restitution), then gravity
-   integer, parameter :: n_sweep_lists = 8
+   !> exponent n, the damping b (or b from a restitution), then gravity and the gaps of
+   !> the left and the right wall to their end body
+   integer, parameter :: n_sweep_lists = 10
    integer, parameter :: sweep_striker_speed = 1, sweep_mass = 2, sweep_gap = 3, &
       & sweep_stiffness = 4, sweep_exponent = 5, sweep_b = 6, sweep_restitution = 7, &
-      & sweep_gravity = 8
+      & sweep_gravity = 8, sweep_left_gap = 9, sweep_right_gap = 10
    !> Their names in &system_sweep (their units: `sweep_unit`)
    character(len=*), parameter :: sweep_names(n_sweep_lists) = [character(len=13) :: &
-      & "striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution", "gravity"]
+      & "striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution", &
+      & "gravity", "left_gap", "right_gap"]
 
    !> Most approach speeds a scene may list
    integer, parameter :: max_speeds = 1000
@@ -262,7 +264,7 @@ contains
          unit = "m/s"
       case ("mass")
          unit = "kg"
-      case ("gap")
+      case ("gap", "left_gap", "right_gap")
          unit = "m"
       case ("stiffness")
          unit = "N/m^n"

@@ -31,7 +31,7 @@ module hcimpact_scene_reader
       & scene_line_length, max_scene_lines, unset_bits, is_unset, max_bodies, system_outputs, &
       & out_contacts, out_final, out_impact_sweep, n_sweep_lists, sweep_names, sweep_unit, &
       & sweep_striker_speed, sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, &
-      & sweep_restitution, sweep_gravity
+      & sweep_restitution, sweep_gravity, sweep_left_gap, sweep_right_gap
    use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
       & body_radius => radius, body_density => density, body_young => young, &
       & body_poisson => poisson, body_velocity => velocity, body_gap => gap, &
@@ -44,7 +44,8 @@ module hcimpact_scene_reader
       & vary_b => b, vary_combine => combine, vary_mass => mass, &
       & vary_stiffness => stiffness, vary_exponent => exponent, vary_impact_speed => speed, &
       & vary_restitution => restitution, vary_gravity => gravity, vary_at_speed => at_speed, &
-      & vary_mass_body => mass_body, unset_body
+      & vary_mass_body => mass_body, unset_body, vary_left_gap => left_gap, &
+      & vary_right_gap => right_gap
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
       & max_chain_rtol, &
       & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
@@ -87,7 +88,7 @@ module hcimpact_scene_reader
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "striker_speed, mass, mass_body, gap, stiffness, exponent, b, restitution, " &
-      & // "at_speed, gravity, combine", &
+      & // "at_speed, gravity, left_gap, right_gap, combine", &
       & "those of hcimpact_mpi_chain (doc/mpi.md)", &
       & "mass, stiffness, exponent, b, speed, combine"]
    !> Names that take a list of values
@@ -2102,8 +2103,9 @@ contains
    !> &system_sweep: the variations of the output system_sweep (none: the system alone),
    !> one list per parameter of `sweep_names`, each value checked (`check_sweep_list`):
    !> striker_speed and gravity finite, masses, stiffnesses and exponents positive, gaps
-   !> and b >= 0, restitutions in (0, 1] at the speed at_speed (> 0; default the speed
-   !> of &bodies' restitution) and turned into b here, b or restitution but not both;
+   !> (of pairs and walls) and b >= 0, restitutions in (0, 1] at the speed at_speed (> 0;
+   !> default the speed of &bodies' restitution) and turned into b here, b or
+   !> restitution but not both, a wall's gap only with that wall;
    !> "product" (default) or "list" (the lists given of one length). A variation the
    !> library refuses (check_chain: an exponent out of its domain) gets its status in
    !> its row, as one that fails.
@@ -2136,6 +2138,16 @@ contains
             return
          end if
       end do
+      if (n(sweep_left_gap) > 0 .and. .not. sys%left%present) then
+         error = at(src, g_system_sweep, "left_gap") // "left_gap is the gap of the left" &
+            & // " wall: the system has none (&left_wall)"
+         return
+      end if
+      if (n(sweep_right_gap) > 0 .and. .not. sys%right%present) then
+         error = at(src, g_system_sweep, "right_gap") // "right_gap is the gap of the" &
+            & // " right wall: the system has none (&right_wall)"
+         return
+      end if
       if (sum(n) == 0) then
          error = at(src, g_system_sweep, "") // "&system_sweep varies nothing: give " &
             & // join(sweep_names, ", ") // " (lists of values)"
@@ -2229,6 +2241,10 @@ contains
          values = vary_restitution
       case ("gravity")
          values = vary_gravity
+      case ("left_gap")
+         values = vary_left_gap
+      case ("right_gap")
+         values = vary_right_gap
       case ("speed")
          values = vary_impact_speed
       case default
@@ -2237,14 +2253,15 @@ contains
    end function sweep_values
 
    !> The bound of the values of the sweep list `name` (`check_sweep_list`): speeds and
-   !> gravity any finite value, gaps and b >= 0 (no damping: Hertz), restitutions in
+   !> gravity any finite value, gaps (of pairs and walls) and b >= 0 (no damping:
+   !> Hertz), restitutions in
    !> (0, 1], the rest (masses, stiffnesses, exponents) positive
    pure integer function sweep_bound(name)
       character(len=*), intent(in) :: name
       select case (name)
       case ("striker_speed", "gravity")
          sweep_bound = any_finite
-      case ("gap", "b")
+      case ("gap", "b", "left_gap", "right_gap")
          sweep_bound = not_negative
       case ("restitution")
          sweep_bound = unit_interval

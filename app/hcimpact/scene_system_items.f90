@@ -11,7 +11,7 @@ module hcimpact_scene_system_items
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result
    use hcimpact_scene_model, only : system_type, nan, n_sweep_lists, sweep_striker_speed, &
       & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
-      & sweep_gravity
+      & sweep_gravity, sweep_left_gap, sweep_right_gap
    use hcimpact_scene_ode, only : ode_chain
    use hcimpact_scene_variations, only : variation_index, variation_count
    implicit none
@@ -65,7 +65,8 @@ contains
 
    !> The columns of every variation: the system with what the sweep varies replaced
    !> (body 1's speed, body vary_mass_body's mass, every pair's gap, stiffness,
-   !> exponent and damping, b itself or from a restitution, gravity; the walls kept).
+   !> exponent and damping, b itself or from a restitution, gravity, the walls' gaps;
+   !> the walls' laws kept).
    pure function system_item_inputs(sys) result(inputs)
       type(system_type), intent(in) :: sys
       real(wp), allocatable :: inputs(:, :)
@@ -87,6 +88,8 @@ contains
          if (given(sweep_restitution)) varied%law%damping = &
             & sys%vary_restitution_b(which(sweep_restitution))
          if (given(sweep_gravity)) varied%gravity = values(sweep_gravity)
+         if (given(sweep_left_gap)) varied%left%gap = values(sweep_left_gap)
+         if (given(sweep_right_gap)) varied%right%gap = values(sweep_right_gap)
          inputs(:, k) = packed_system(varied)
       end do
    end function system_item_inputs

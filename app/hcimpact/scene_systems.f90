@@ -168,7 +168,8 @@ contains
       real(wp), intent(in) :: outputs(:, :)
       ! short headings of the parameters (sweep_names' order)
       character(len=*), parameter :: headings(n_sweep_lists) = [character(len=12) :: &
-         & "v1 (m/s)", "m (kg)", "gap (m)", "c (N/m^n)", "n", "b (s/m)", "e", "g (m/s^2)"]
+         & "v1 (m/s)", "m (kg)", "gap (m)", "c (N/m^n)", "n", "b (s/m)", "e", "g (m/s^2)", &
+         & "gap L (m)", "gap R (m)"]
       character(len=200) :: line
       character(len=:), allocatable :: head
       real(wp) :: values(n_sweep_lists)

@@ -19,7 +19,7 @@ module hcimpact_scene_variations
    public :: read_variations, max_variations, variations_text_length, variation_index, &
       & variation_count
    public :: striker_speed, gap, b, combine, mass, stiffness, exponent, speed, restitution, &
-      & gravity, at_speed, mass_body, unset_body
+      & gravity, at_speed, mass_body, unset_body, left_gap, right_gap
 
    !> Most values of one list
    integer, parameter :: max_variations = 1000
@@ -33,10 +33,12 @@ module hcimpact_scene_variations
 
    !> A system's sweep: the speeds of body 1 (m/s), the gaps of every pair (m), the
    !> damping of every pair (s/m), the restitutions of every pair at the speed at_speed
-   !> (m/s), gravity (m/s^2), and (with stiffness and exponent below, every pair's) the
-   !> masses of body mass_body (kg, `mass` below)
+   !> (m/s), gravity (m/s^2), the gaps of the left and the right wall to their end body
+   !> (m), and (with stiffness and exponent below, every pair's) the masses of body
+   !> mass_body (kg, `mass` below)
    real(wp) :: striker_speed(max_variations), gap(max_variations), b(max_variations), &
-      & restitution(max_variations), gravity(max_variations), at_speed
+      & restitution(max_variations), gravity(max_variations), at_speed, &
+      & left_gap(max_variations), right_gap(max_variations)
    integer :: mass_body
    !> "product" (every combination) or "list" (the lists side by side)
    character(len=variations_text_length) :: combine
@@ -48,7 +50,7 @@ module hcimpact_scene_variations
       & speed(max_variations)
 
    namelist /system_sweep/ striker_speed, mass, mass_body, gap, stiffness, exponent, b, &
-      & restitution, at_speed, gravity, combine
+      & restitution, at_speed, gravity, left_gap, right_gap, combine
    namelist /impact_sweep/ mass, stiffness, exponent, b, speed, combine
 
 contains
@@ -71,6 +73,8 @@ contains
       speed = unset
       restitution = unset
       gravity = unset
+      left_gap = unset
+      right_gap = unset
       at_speed = unset
       mass_body = unset_body
       combine = ""

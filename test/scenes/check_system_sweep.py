@@ -10,8 +10,8 @@ first list varying slowest) or side by side (combine = "list"), every parameter 
 holds the row's value (nan where the sweep does not vary it), and every row's final
 velocities and status are, to the last bit, those of a scene of its own in which the
 row's values stand in &bodies (body 1's velocity, one body's mass, every pair's gap,
-stiffness, exponent and b, or the restitution at its speed, gravity), run for the
-output `final`. The varied scene goes through the sweep's code (the lists, the
+stiffness, exponent and b, or the restitution at its speed, gravity) and the walls'
+groups (their gaps), run for the output `final`. The varied scene goes through the sweep's code (the lists, the
 substitution, the restitution's damping); the scene of its own through the reader of
 &bodies alone.
 """
@@ -23,15 +23,14 @@ import subprocess
 import sys
 
 NAMES = ["striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution",
-         "gravity"]
-UNITS = ["m/s", "kg", "m", "N/m^n", "-", "s/m", "-", "m/s^2"]
+         "gravity", "left_gap", "right_gap"]
+UNITS = ["m/s", "kg", "m", "N/m^n", "-", "s/m", "-", "m/s^2", "m", "m"]
 
 # three balls falling onto a wall (the left one nearest), a cluster and isolated
 # contacts alike
 BASE = {"mass": [0.2, 0.1, 0.05], "velocity": [-1.0, -1.5, -2.0], "gap": 1e-3,
         "stiffness": 1e8, "exponent": 1.5, "b": 0.05, "gravity": -9.81,
-        "t_end": 0.01}
-WALL = "&left_wall stiffness = 1e9, b = 0.1, gap = 2e-3 /\n"
+        "t_end": 0.01, "left_gap": 2e-3}
 
 SWEEPS = [
     # name, lists (in NAMES' order), combine, mass_body, what &bodies has besides BASE
@@ -44,6 +43,10 @@ SWEEPS = [
     # &bodies' own restitution: its speed is the sweep's at_speed, not given there
     ("restitution-default-speed", {"restitution": [0.9, 0.4], "gap": [0.0, 1e-4]}, "product",
      None, {"restitution": 0.7}),
+    # the walls' gaps: the drop height onto the left wall, and a right wall the bodies
+    # reach after their bounce or not
+    ("walls", {"left_gap": [0.0, 1e-3, 2e-2], "right_gap": [0.0, 4e-3]}, "product", None,
+     {"right_gap": 1e-2, "velocity": [-1.0, -1.5, 1.0]}),
 ]
 AT_SPEED = 0.7
 
@@ -63,7 +66,9 @@ def scene_text(title, bodies, sweep=None, combine=None, mass_body=None, outputs=
     else:
         text += f"  b = {fmt(bodies['b'])}\n"
     text += f"  gravity = {fmt(bodies['gravity'])}, t_end = {fmt(bodies['t_end'])}\n/\n"
-    text += WALL
+    text += f"&left_wall stiffness = 1e9, b = 0.1, gap = {fmt(bodies['left_gap'])} /\n"
+    if "right_gap" in bodies:
+        text += f"&right_wall stiffness = 1e9, b = 0.1, gap = {fmt(bodies['right_gap'])} /\n"
     if sweep:
         text += "&system_sweep\n"
         for name, values in sweep.items():
@@ -128,7 +133,7 @@ def main():
                 column = f"mass_{mass_body or 1}" if n == "mass" else n
                 if not same_number(row[f"{column} [{unit}]"], values.get(n)):
                     problems.append(f"{n} = {row[f'{column} [{unit}]']}, expected {values.get(n)}")
-            bodies = dict(base, mass=list(BASE["mass"]), velocity=list(BASE["velocity"]))
+            bodies = dict(base, mass=list(base["mass"]), velocity=list(base["velocity"]))
             for n, v in values.items():
                 if n == "striker_speed":
                     bodies["velocity"][0] = v
