@@ -41,7 +41,7 @@ module hcimpact_cvode_chain
       & advance_captured, advance_failed, advance_split, add_wall_impulse
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
-      & impulse_index, wall_slopes, &
+      & impulse_index, wall_slopes, set_weight, wall_impulse, &
       & force_rate, slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
       & region_frame, frame_motion, first_step, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
@@ -219,6 +219,7 @@ contains
       ! it moves with the slowest of them (`engine_frame`)
       call region_frame(self%region, v_start, self%v_frame, self%a_frame)
       self%region%gravity = self%region%gravity - self%a_frame
+      call set_weight(self%region)
       ! the gaps at zero displacements in the frame, and the bodies outside: their
       ! free flight from now, relative to their neighbour's reference and the frame;
       ! and per slot the rounding of the engine's states it comes from (`snap_touching`)
@@ -1242,8 +1243,8 @@ contains
          engine%body(i)%v0 = v(k)
       end do
       ! the impulses the walls gave the region
-      call add_wall_impulse(engine, 1, self%y(impulse_index(m, 1)))
-      call add_wall_impulse(engine, 2, self%y(impulse_index(m, 2)))
+      call add_wall_impulse(engine, 1, wall_impulse(self%region, 1, self%y, self%time - self%t0))
+      call add_wall_impulse(engine, 2, wall_impulse(self%region, 2, self%y, self%time - self%t0))
       call hand_touching(self, engine)
       ! (the parts of a region that splits go on with its step)
       if (self%due == advance_split) self%step_for_growth = self%h_last

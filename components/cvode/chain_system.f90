@@ -11,7 +11,10 @@
 !> u_k, its velocity v_k and e_k, the energy dissipated so far in slot k - 1; then
 !> e_(m+1), that of slot m; then the impulses the walls have given the region so far
 !> (N s, along the line, 0 without a wall): y = (u_1, v_1, e_1, ..., u_m, v_m, e_m,
-!> e_(m+1), J_left, J_right), 3 m + 3 values. Every force is the contact-force element's, clamped (no contact
+!> e_(m+1), J_left, J_right), 3 m + 3 values; the impulse of the wall that gravity
+!> points to less the weight's, M g t, which it holds at rest (`wall_impulse`: a
+!> stack resting there for 1.3 million steps let J, growing as M g t, add its
+!> rounding of 1e-16 |J| at every step). Every force is the contact-force element's, clamped (no contact
 !> pulls), from the exact deformation and rate of the slot's two ends
 !> (contact_force_pair with the initial gap as the distance).
 !>
@@ -48,6 +51,7 @@ module hcimpact_cvode_chain_system
    public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
    public :: region_frame, frame_motion, first_step
    public :: error_weights, weights_rtol, newton_factor, factor_newton_matrix, solve_newton
+   public :: set_weight, wall_impulse
    public :: slot_state, dissipation_index, impulse_index, wall_slopes, force_rate, &
       & slot_force_rate, upper_band, lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
@@ -84,6 +88,11 @@ module hcimpact_cvode_chain_system
       !> `wall_slopes` at the state of the last Jacobian (set by the Jacobian
       !> callback, read by the linear solver's setup)
       real(wp) :: wall_slope(2, 2) = 0.0_wp
+      !> The wall that gravity points to (1 left, 2 right; 0: none in the region, or
+      !> no gravity), and the region's weight M g (N, along the line): that wall's
+      !> state is its impulse less the weight's (module header)
+      integer :: weight_side = 0
+      real(wp) :: weight = 0.0_wp
    end type chain_region
 
    !> CVODE's Newton matrix M = I - gamma J of a region, factored through its
@@ -352,7 +361,7 @@ contains
       real(wp), intent(out) :: scale(3), weakest_force
       ! exp of at most this is a double
       real(wp), parameter :: max_log = 709.0_wp
-      real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total, lq
+      real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total, lq, mu_max
       type(contact_law) :: law
       integer :: k, j, m
       logical :: ok
@@ -366,6 +375,7 @@ contains
       total = sum(region%mass)
       x_ref = huge(1.0_wp)
       e_ref = 0.0_wp
+      mu_max = 0.0_wp
       weakest_force = huge(1.0_wp)
       do j = 0, m
          if (region%kind(j) == slot_none .or. region%kind(j) == slot_boundary_left &
@@ -412,10 +422,19 @@ contains
             weakest_force = min(weakest_force, exp(max(-max_log - 50.0_wp, min(max_log, lq))))
          end if
          e_ref = max(e_ref, kinetic_energy(mu, v_ref))
+         mu_max = max(mu_max, mu)
       end do
       if (.not. (x_ref > 0.0_wp .and. x_ref < huge(1.0_wp))) x_ref = 1.0e-6_wp
-      if (.not. v_ref > 0.0_wp) v_ref = sqrt(abs(region%gravity) * x_ref)
+      ! under gravity, at least the speed of a fall through x_ref: x_ref is then at least
+      ! the static compression, and x_ref / v_ref the time scale of the first step and
+      ! of the tolerances (a ball released at rest 1e-100 m above a floor met it at
+      ! 4.5e-50 m/s: v_ref 1e-49 m/s gave a first step of 4e38 s, taken as too long an
+      ! interval for CVODE's first checks, and the ball drifted through the floor)
+      ! (a product of square roots: |g| x_ref may leave the range)
+      v_ref = max(v_ref, sqrt(abs(region%gravity)) * sqrt(x_ref))
       if (.not. v_ref > 0.0_wp) v_ref = 1.0_wp
+      ! (the energy's scale with it: the kinetic energy of the largest mass of a contact)
+      if (mu_max > 0.0_wp) e_ref = max(e_ref, kinetic_energy(mu_max, v_ref))
       if (.not. e_ref > 0.0_wp) e_ref = kinetic_energy(total, v_ref)
       scale = [x_ref, v_ref, e_ref]
    end subroutine region_scales
@@ -460,7 +479,37 @@ contains
          if (j == 0 .and. region%kind(j) == slot_left_wall) dy(impulse_index(m, 1)) = e%force
          if (j == m .and. region%kind(j) == slot_right_wall) dy(impulse_index(m, 2)) = -e%force
       end do
+      ! the weight's impulse taken off the wall that holds it
+      if (region%weight_side > 0) dy(impulse_index(m, region%weight_side)) = &
+         & dy(impulse_index(m, region%weight_side)) + region%weight
    end subroutine region_rhs
+
+   !> The wall that gravity points to in a region (weight_side) and the region's
+   !> weight, M g (N); none where M g is beyond the range of doubles.
+   pure subroutine set_weight(region)
+      type(chain_region), intent(inout) :: region
+      real(wp) :: total
+      region%weight_side = 0
+      region%weight = 0.0_wp
+      total = sum(region%mass)
+      if (.not. abs(region%gravity) <= huge(1.0_wp) / total) return
+      if (region%gravity < 0.0_wp .and. region%kind(0) == slot_left_wall) then
+         region%weight_side = 1
+      else if (region%gravity > 0.0_wp .and. region%kind(region%m) == slot_right_wall) then
+         region%weight_side = 2
+      end if
+      if (region%weight_side > 0) region%weight = total * region%gravity
+   end subroutine set_weight
+
+   !> The impulse the wall on `side` (1 left, 2 right) gave the region over the time
+   !> `elapsed` since its start, from its state y (N s, along the line)
+   pure real(wp) function wall_impulse(region, side, y, elapsed) result(impulse)
+      type(chain_region), intent(in) :: region
+      integer, intent(in) :: side
+      real(wp), intent(in) :: y(:), elapsed
+      impulse = y(impulse_index(region%m, side))
+      if (side == region%weight_side) impulse = impulse - region%weight * elapsed
+   end function wall_impulse
 
    !> The derivatives of the impulses' rates (`impulse_index`) with respect to the
    !> displacement and velocity of their end body, slope(:, side) (0 without a wall):

@@ -70,6 +70,8 @@ contains
          & new_unittest("elastic-energy-momentum", test_elastic_balance), &
          & new_unittest("momentum-under-gravity", test_momentum_gravity), &
          & new_unittest("momentum-with-walls", test_momentum_walls), &
+         & new_unittest("pressed-on-a-wall", test_pressed_on_wall), &
+         & new_unittest("released-just-above-a-floor", test_released_above_floor), &
          & new_unittest("three-balls", test_three_balls), &
          & new_unittest("newtons-cradle", test_cradle), &
          & new_unittest("two-balls-on-a-floor", test_drop_two), &
@@ -956,6 +958,85 @@ contains
          & // "walls: closed forms ", worst(1), " eps, BDF ", worst(2), " eps, Adams ", &
          & worst(3), " rtol (", n_run, " random systems)"
    end subroutine test_momentum_walls
+
+   !> Three touching bodies (6.8 kg, 4.8 g, 1.1 g; a linear pair among them) pressed on
+   !> the right wall by gravity, undamped, integrated with BDF at rtol 1e-10 to 1 s
+   !> (174 000 steps): the momentum balance within 64 eps (measured 8). The wall's
+   !> impulse grows as M g t; held as such in CVODE's state, its rounding of 1e-16
+   !> |J| at every step had made 2e-12 N s (5000 eps) by then (found by an attack on
+   !> 27 November); the state is the impulse less the weight's (chain_system).
+   subroutine test_pressed_on_wall(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      type(chain_options) :: o
+      allocate(chain%mass(3), chain%velocity(3), chain%gap(2), chain%law(2))
+      chain%mass = [6.786083515850064_wp, 0.004792274116993805_wp, 0.0011398025586461923_wp]
+      chain%velocity = 0.0_wp
+      chain%gap = 0.0_wp
+      chain%law = [contact_law(10364.136699833529_wp, 1.5_wp, 0.0_wp), &
+         & contact_law(781617.0678745232_wp, 1.0_wp, 0.0_wp)]
+      chain%right_wall = .true.
+      chain%right_law = contact_law(31594.393420563953_wp, 1.2453013455435002_wp, 0.0_wp)
+      chain%gravity = 4.917185576937749_wp
+      o = opts(method_integrated, 1.0e-10_wp, 1.0_wp)
+      o%integrator = integrator_bdf
+      call run(error, chain, o, result, "pressed on a wall")
+      if (allocated(error)) return
+      print '(2x, a, f6.1, a, i0, a)', "pressed on a wall: momentum error ", &
+         & result%momentum_error / epsilon(1.0_wp), " eps after ", result%counters%steps, &
+         & " steps"
+      call check(error, result%momentum_error <= 64.0_wp * epsilon(1.0_wp) .and. &
+         & result%wall_impulse(2) < 0.0_wp .and. result%wall_impulse(1) == 0.0_wp, &
+         & "pressed on a wall: momentum error " // format_real(result%momentum_error) &
+         & // ", walls' impulses " // format_real(result%wall_impulse(1)) // ", " &
+         & // format_real(result%wall_impulse(2)))
+   end subroutine test_pressed_on_wall
+
+   !> A ball released at rest 5e-324 to 1e-10 m above a floor (and on it): the same
+   !> landing and settling to 0.2 s as from the floor itself, within 1e-6 of the
+   !> position and the floor's impulse (the gap's own fall differs by less), and at
+   !> rest without t_end. Its speed on arrival, 1e-49 m/s from 1e-100 m, made the
+   !> region's speed scale and its first step 4e38 s, which the region took as an
+   !> interval too short for CVODE: the ball drifted through the floor at 9.81 m/s
+   !> with success (gaps down to 1e-55 m; from 1e-25 to 1e-50 m CVODE failed). The
+   !> speed scale under gravity is at least that of a fall through the static
+   !> compression (region_scales). Found by an attack on 27 November.
+   subroutine test_released_above_floor(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: gaps(6) = [0.0_wp, 1.0e-10_wp, 1.0e-30_wp, 1.0e-60_wp, &
+         & 1.0e-100_wp, 5.0e-324_wp]
+      type(chain_type) :: chain
+      type(chain_result) :: result, on_floor
+      integer :: k
+      character(len=64) :: what
+      do k = 1, size(gaps)
+         chain = steel_row(1, 0.0_wp, 0.0_wp, 0.0_wp)
+         chain%mass = 1.0_wp
+         chain%gravity = -9.81_wp
+         chain%left_wall = .true.
+         chain%left_law = contact_law(1.0e6_wp, 1.5_wp, 0.1_wp)
+         chain%left_gap = gaps(k)
+         write(what, '(a, es10.3, a)') "released ", gaps(k), " m above a floor"
+         call run(error, chain, opts(method_auto, 1.0e-10_wp, 0.2_wp), result, trim(what))
+         if (allocated(error)) return
+         if (k == 1) on_floor = result
+         call check(error, result%counters%steps > 1000 .and. abs(result%positions(1) &
+            & - on_floor%positions(1)) <= 1.0e-6_wp * abs(on_floor%positions(1)) .and. &
+            & abs(result%wall_impulse(1) - on_floor%wall_impulse(1)) <= 1.0e-6_wp &
+            & * on_floor%wall_impulse(1), trim(what) // ": position " &
+            & // format_real(result%positions(1)) // " (on the floor " &
+            & // format_real(on_floor%positions(1)) // "), floor's impulse " &
+            & // format_real(result%wall_impulse(1)))
+         if (allocated(error)) return
+         call run(error, chain, opts(method_auto, 1.0e-10_wp), result, trim(what) // ", to rest")
+         if (allocated(error)) return
+         call check(error, result%rested .and. abs(result%positions(1) + (gaps(k) + (9.81_wp &
+            & / 1.0e6_wp)**(1.0_wp / 1.5_wp))) <= 1.0e-12_wp, trim(what) &
+            & // ": rests at " // format_real(result%positions(1)))
+         if (allocated(error)) return
+      end do
+   end subroutine test_released_above_floor
 
    !> A steel wall on the left of the chain at the gap given, damping b
    subroutine floor_of(chain, gap, b)
