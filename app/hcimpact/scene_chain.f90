@@ -79,6 +79,7 @@ contains
       type(scene_type), intent(in) :: sc
       type(system_type) :: s
       character(len=:), allocatable :: text
+      real(wp), allocatable :: c(:), n(:), b(:)
       s = sc%system
       call say("hcimpact " // hcimpact_version_string // ": " // sc%title)
       call say("Scene: " // sc%source)
@@ -91,9 +92,14 @@ contains
          & // " right)")
       if (s%n > 1) then
          call say_text("  gaps: ", range_text(s%gap, "m") // " (0: touching)")
-         call say_text("  pairs: ", "f = c x^n (1 + b x'), c = " // range_text(s%law%stiffness, &
-            & "N/m^n") // " (" // s%law_origin // "), n = " // range_text(s%law%exponent, "") &
-            & // ", b = " // range_text(s%law%damping, "s/m") // " (" // s%damping_origin // ")")
+         ! (the laws' parts as arrays of their own: passed as parts of the laws, each
+         ! would be copied into a temporary, which the Debug build reports)
+         c = s%law%stiffness
+         n = s%law%exponent
+         b = s%law%damping
+         call say_text("  pairs: ", "f = c x^n (1 + b x'), c = " // range_text(c, "N/m^n") &
+            & // " (" // s%law_origin // "), n = " // range_text(n, "") // ", b = " &
+            & // range_text(b, "s/m") // " (" // s%damping_origin // ")")
       end if
       call say_text("  left wall: ", wall_text(s%left))
       call say_text("  right wall: ", wall_text(s%right))
