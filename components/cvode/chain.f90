@@ -41,7 +41,7 @@ module hcimpact_cvode_chain
       & advance_captured, advance_failed, advance_split, add_wall_impulse
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
-      & impulse_index, wall_slopes, set_weight, wall_impulse, &
+      & impulse_index, set_weight, wall_impulse, &
       & force_rate, slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
       & region_frame, frame_motion, first_step, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
@@ -1408,8 +1408,7 @@ contains
       data => FSUNBandMatrix_Data(jac_mat)
       call c_f_pointer(c_loc(data(1)), band, [ldim, n])
       band = 0.0_c_double
-      call region_jacobian(region, real(t, wp), yv, smu, band)
-      call wall_slopes(region, real(t, wp), yv, region%wall_slope)
+      call region_jacobian(region, real(t, wp), yv, smu, band, region%wall_slope)
       call callback_leave(region%halting, flags)
       ierr = 0
    end function chain_jacobian_callback

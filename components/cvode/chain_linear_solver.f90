@@ -29,8 +29,8 @@ module hcimpact_cvode_chain_linear_solver
 
    !> What the object's content points to
    type :: solver_state
-      !> Bodies of the region, and the region (its `wall_slopes`, kept by the Jacobian
-      !> callback)
+      !> Bodies of the region, and the region (the impulses' rows of its last Jacobian,
+      !> kept by the Jacobian callback)
       integer :: m = 0
       type(chain_region), pointer :: region => null()
       type(newton_factor) :: factor

@@ -11,12 +11,12 @@
 !> u_k, its velocity v_k and e_k, the energy dissipated so far in slot k - 1; then
 !> e_(m+1), that of slot m; then the impulses the walls have given the region so far
 !> (N s, along the line, 0 without a wall): y = (u_1, v_1, e_1, ..., u_m, v_m, e_m,
-!> e_(m+1), J_left, J_right), 3 m + 3 values; the impulse of the wall that gravity
-!> points to less the weight's, M g t, which it holds at rest (`wall_impulse`: a
-!> stack resting there for 1.3 million steps let J, growing as M g t, add its
-!> rounding of 1e-16 |J| at every step). Every force is the contact-force element's, clamped (no contact
-!> pulls), from the exact deformation and rate of the slot's two ends
-!> (contact_force_pair with the initial gap as the distance).
+!> e_(m+1), J_left, J_right), 3 m + 3 values; for the wall that gravity points to, its
+!> impulse less the weight's, M g t, which it holds at rest (`wall_impulse`: three
+!> bodies pressed on a wall for 810 000 steps let J, growing as M g t, add its rounding
+!> of 1e-16 |J| at every step, 22 000 eps in all). Every force is the contact-force
+!> element's, clamped (no contact pulls), from the exact deformation and rate of the
+!> slot's two ends (contact_force_pair with the initial gap as the distance).
 !>
 !> Jacobian: v_k' depends on u and v of bodies k - 1, k, k + 1; u_k' = v_k. In the
 !> order above that is a band with 3 diagonals above the main one and 4 below
@@ -24,18 +24,15 @@
 !> Jacobian (zero): e_k' depends on u, v of bodies k - 1 and k only, and nothing
 !> depends on e, so Newton's iteration converges for them one iteration behind u and
 !> v. The impulses' rows lie outside the band (J_left' = F_0 depends on u_1, v_1):
-!> the Jacobian callback keeps their two derivatives apart (`wall_slopes`) and the
-!> region's linear solver puts them into M, so that M holds the whole Jacobian.
+!> the Jacobian callback keeps their two derivatives apart (`region_jacobian`'s slope)
+!> and the region's linear solver puts them into M, so that M holds the whole Jacobian.
 !> Then m^T M = m^T for m = (masses at the velocities, -1 at the impulses, 0
 !> elsewhere: the pair forces cancel), and every Newton iterate and step keeps
-!> sum m_k v_k - J_left - J_right - M g t as exactly as rounding allows: the momentum
-!> balance with walls (doc/chains.md) measures the bookkeeping, not the iteration's
-!> tolerance. They are results (the walls' impulses), in the error test as the
-!> momentum is: against rtol times the region's mass times v_ref (`error_weights`).
-!> Left out of it, they drifted from the momentum by up to 4e-3 rtol where Adams
-!> raised its step 3.7 times at order 5 to 6 (its history rescaled by powers of the
-!> ratio, whose rounding in these rows nothing checked); in it, by 7e-4 rtol at most
-!> (bench/chain/attack, test `momentum-with-walls`).
+!> sum m_k v_k - J_left - J_right - M g t whatever the iteration's tolerance: the
+!> momentum balance with walls (doc/chains.md) measures the bookkeeping and rounding
+!> (with Adams, the rounding of its history of high order, up to 0.012 rtol). The
+!> impulses are results, in the error test as the velocities are: against rtol times
+!> the region's mass times v_ref (`error_weights`).
 !>
 !> The starts and ends of contacts, and their extrema, are found by the driver from each
 !> step's cubic Hermite interpolant of every slot's deformation (hcimpact_cvode_chain).
@@ -52,7 +49,7 @@ module hcimpact_cvode_chain_system
    public :: region_frame, frame_motion, first_step
    public :: error_weights, weights_rtol, newton_factor, factor_newton_matrix, solve_newton
    public :: set_weight, wall_impulse
-   public :: slot_state, dissipation_index, impulse_index, wall_slopes, force_rate, &
+   public :: slot_state, dissipation_index, impulse_index, force_rate, &
       & slot_force_rate, upper_band, lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
       & slot_boundary_right
@@ -85,8 +82,8 @@ module hcimpact_cvode_chain_system
       !> (m/s) and energy (J), and impulse (N s: the mass of the region times the
       !> speed's scale, or huge beyond the range) (the driver's error weights)
       real(wp) :: rtol = 1.0e-10_wp, scale(3) = 1.0_wp, impulse_scale = 1.0_wp
-      !> `wall_slopes` at the state of the last Jacobian (set by the Jacobian
-      !> callback, read by the linear solver's setup)
+      !> The impulses' rows of the last Jacobian (`region_jacobian`'s slope: set by the
+      !> Jacobian callback, read by the linear solver's setup)
       real(wp) :: wall_slope(2, 2) = 0.0_wp
       !> The wall that gravity points to (1 left, 2 right; 0: none in the region, or
       !> no gravity), and the region's weight M g (N, along the line): that wall's
@@ -511,26 +508,6 @@ contains
       if (side == region%weight_side) impulse = impulse - region%weight * elapsed
    end function wall_impulse
 
-   !> The derivatives of the impulses' rates (`impulse_index`) with respect to the
-   !> displacement and velocity of their end body, slope(:, side) (0 without a wall):
-   !> J_left' = F_0(x, w) with x = -(gap + u_1), w = -v_1, and J_right' = -F_m with
-   !> x = u_m - gap, w = v_m, both -(dF/dx, dF/dw) of the slot's element.
-   pure subroutine wall_slopes(region, t, y, slope)
-      type(chain_region), intent(in) :: region
-      real(wp), intent(in) :: t, y(:)
-      real(wp), intent(out) :: slope(2, 2)
-      type(contact_force_type) :: e
-      real(wp) :: x, w
-      integer :: side, j
-      slope = 0.0_wp
-      do side = 1, 2
-         j = merge(0, region%m, side == 1)
-         if (region%kind(j) /= merge(slot_left_wall, slot_right_wall, side == 1)) cycle
-         call slot_state(region, j, t, y, x, w, e)
-         slope(:, side) = [-e%dforce_dx, -e%dforce_dv]
-      end do
-   end subroutine wall_slopes
-
    !> The acceleration of body k (m/s^2) under gravity, the force f_left of the slot on
    !> its left (+f_left on it) and f_right of the slot on its right (-f_right), in that
    !> order (one place for region_rhs and slot_force_rate, so that both give the same
@@ -642,18 +619,23 @@ contains
 
    !> The Jacobian into band storage (SUNDIALS' band matrix seen as a Fortran array):
    !> J(row, col) is band(smu + row - col + 1, col), smu the stored upper bandwidth.
-   !> Only the nonzero entries are added to (band zeroed by the caller).
-   pure subroutine region_jacobian(region, t, y, smu, band)
+   !> Only the nonzero entries are added to (band zeroed by the caller). With slope,
+   !> the rows of the impulses, outside the band: the derivatives of J_left' = F_0
+   !> and J_right' = -F_m by the displacement and velocity of their end body,
+   !> slope(:, side), both -(dF/dx, dF/dw) of the wall's element (0 without a wall).
+   pure subroutine region_jacobian(region, t, y, smu, band, slope)
       type(chain_region), intent(in) :: region
       real(wp), intent(in) :: t, y(:)
       integer, intent(in) :: smu
       real(wp), intent(inout) :: band(:, :)
+      real(wp), intent(out), optional :: slope(2, 2)
       type(contact_force_type) :: e
       real(wp) :: x, w, fx, fv, axl, avl, axr, avr
       integer :: k, j, m, l, r
       logical :: within
 
       m = region%m
+      if (present(slope)) slope = 0.0_wp
       do k = 1, m
          call band_add(band, smu, 3 * k - 2, 3 * k - 1, 1.0_wp)
       end do
@@ -686,12 +668,14 @@ contains
             call acceleration_of(fv, region%mass(1), avl, within)
             call band_add(band, smu, 2, 1, -axl)
             call band_add(band, smu, 2, 2, -avl)
+            if (present(slope)) slope(:, 1) = [-fx, -fv]
          case (slot_right_wall)
             ! x = u_m - gap, w = v_m; -F on body m
             call acceleration_of(fx, region%mass(m), axr, within)
             call acceleration_of(fv, region%mass(m), avr, within)
             call band_add(band, smu, 3 * m - 1, 3 * m - 2, -axr)
             call band_add(band, smu, 3 * m - 1, 3 * m - 1, -avr)
+            if (present(slope)) slope(:, 2) = [-fx, -fv]
          end select
       end do
    end subroutine region_jacobian
@@ -707,7 +691,8 @@ contains
    !> Factor the Newton matrix M of a region of m bodies (band storage as in
    !> region_jacobian: M(row, col) = band(smu + row - col + 1, col), with the
    !> Jacobian's bandwidths around the diagonal), completed by the impulses' rows
-   !> outside the band: -gamma times `wall_slopes`, gamma = -M(u_1, v_1) (u_1' = v_1).
+   !> outside the band: -gamma times `region_jacobian`'s slope, gamma = -M(u_1, v_1)
+   !> (u_1' = v_1).
    !> info: 0; k > 0 when the k-th pivot of T is zero or not finite (CVODE then
    !> retries with a smaller step); -1 when M has an entry outside the structure of
    !> newton_factor (the Jacobian changed without this), or the factors cannot be
@@ -715,7 +700,7 @@ contains
    pure subroutine factor_newton_matrix(m, smu, band, slope, factor, info)
       integer, intent(in) :: m, smu
       real(wp), intent(in) :: band(:, :)
-      !> `wall_slopes` of the Jacobian M was formed from
+      !> `region_jacobian`'s slope of the Jacobian M was formed from
       real(wp), intent(in) :: slope(2, 2)
       type(newton_factor), intent(inout) :: factor
       integer, intent(out) :: info

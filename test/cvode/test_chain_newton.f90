@@ -8,7 +8,7 @@
 !> precision to 1e-8 of its largest value, for matrices whose condition reaches
 !> about 1e8 (the Newton iteration needs far fewer digits: an error of the solve
 !> slows its convergence, it does not change what it converges to). The walls'
-!> impulses' rows (outside the band, from wall_slopes) are part of M, and where no
+!> impulses' rows (outside the band, region_jacobian's slope) are part of M, and where no
 !> end of the region is a boundary (every outside force a wall's) the solution keeps
 !> the momentum's invariant: sum m_k z(v_k) - z(J_left) - z(J_right) equals the same
 !> sum of r to a few rounding errors of its terms. A nonzero outside the structure
@@ -21,7 +21,7 @@ module test_cvode_chain_newton
    use hcimpact_chain_types, only : contact_law
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_jacobian, &
       & newton_factor, factor_newton_matrix, solve_newton, upper_band, lower_band, &
-      & wall_slopes, impulse_index, &
+      & impulse_index, &
       & slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
       & slot_boundary_right, slot_none
    implicit none
@@ -32,7 +32,7 @@ module test_cvode_chain_newton
    !> Stored upper bandwidth and leading dimension of the band storage (as SUNDIALS'
    !> band matrix for the band LU: upper + lower above the diagonal)
    integer, parameter :: smu = upper_band + lower_band, ldim = smu + lower_band + 1
-   !> wall_slopes of a region without walls
+   !> The impulses' rows of a region without walls
    real(wp), parameter :: no_slope(2, 2) = 0.0_wp
 
 contains
@@ -74,7 +74,7 @@ contains
          n = region_size(m)
          allocate(band(ldim, n), r(n), z(n), dense(n, n))
          band = 0.0_wp
-         call region_jacobian(region, 0.0_wp, y, smu, band)
+         call region_jacobian(region, 0.0_wp, y, smu, band, slope)
          call random_number(u)
          gamma = 10.0_wp**(-9.0_wp + 6.0_wp * u)
          ! M = I - gamma J, as CVODE forms it in the band matrix
@@ -89,7 +89,6 @@ contains
             end do
          end do
          ! the impulses' rows outside the band: -gamma J'(u, v of the end body)
-         call wall_slopes(region, 0.0_wp, y, slope)
          do side = 1, 2
             row = impulse_index(m, side)
             col = merge(1, 3 * m - 2, side == 1)

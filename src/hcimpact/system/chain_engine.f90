@@ -1191,8 +1191,7 @@ contains
          & engine%exact(s)%contact%velocity) * engine%exact(s)%outcome%energy_loss_ratio
       r%method = by_closed_forms
       call engine_record(engine, r)
-      if (s == 0) call add_wall_impulse(engine, 1, exact_wall_impulse(engine, s, xd))
-      if (s == engine%n) call add_wall_impulse(engine, 2, exact_wall_impulse(engine, s, xd))
+      call add_exact_wall_impulse(engine, s, xd)
       engine%exact(s)%active = .false.
       engine%time = max(engine%time, t_end)
       call schedule(engine, s)
@@ -1374,8 +1373,7 @@ contains
       tau = engine%time - engine%exact(s)%t_start
       engine%exact(s)%handed = .true.
       engine%exact(s)%so_far_dissipated = exact_dissipated(engine, s)
-      if (s == 0) call add_wall_impulse(engine, 1, exact_wall_impulse(engine, s, xd))
-      if (s == engine%n) call add_wall_impulse(engine, 2, exact_wall_impulse(engine, s, xd))
+      call add_exact_wall_impulse(engine, s, xd)
       engine%exact(s)%so_far_peak = f
       if (tau >= engine%exact(s)%outcome%time_at_peak_force) &
          & engine%exact(s)%so_far_peak = engine%exact(s)%outcome%peak_force
@@ -1387,23 +1385,21 @@ contains
       engine%counters%closed_form_contacts = engine%counters%closed_form_contacts - 1
    end subroutine hand_over
 
-   !> The impulse (N s, along the line) a closed-form contact with a wall (slot s = 0
-   !> or n) has given its body from its start up to the rate xd of its deformation:
-   !> m (v - v_in), the body's velocity being -xd against the left wall and xd against
-   !> the right one (so v_in = -+ the approach speed)
-   pure function exact_wall_impulse(engine, s, xd) result(impulse)
-      type(chain_engine), intent(in) :: engine
+   !> Where the closed-form contact of slot s is one with a wall (s = 0 or n): add the
+   !> impulse (N s, along the line) it has given its body from its start up to the rate
+   !> xd of its deformation, m (v - v_in), to that wall's; the body's velocity is -xd
+   !> against the left wall and xd against the right one (so v_in = -+ the approach
+   !> speed). Nothing for a pair of bodies.
+   pure subroutine add_exact_wall_impulse(engine, s, xd)
+      type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: s
       real(wp), intent(in) :: xd
-      real(wp) :: impulse
-      if (s == 0) then
-         impulse = product_in_range(engine%chain%mass(1), &
-            & sum_in_range(engine%exact(s)%contact%velocity, -xd))
-      else
-         impulse = product_in_range(engine%chain%mass(engine%n), &
-            & sum_in_range(xd, -engine%exact(s)%contact%velocity))
-      end if
-   end function exact_wall_impulse
+      if (s == 0) call add_wall_impulse(engine, 1, product_in_range(engine%chain%mass(1), &
+         & sum_in_range(engine%exact(s)%contact%velocity, -xd)))
+      if (s == engine%n) call add_wall_impulse(engine, 2, &
+         & product_in_range(engine%chain%mass(engine%n), &
+         & sum_in_range(xd, -engine%exact(s)%contact%velocity)))
+   end subroutine add_exact_wall_impulse
 
    !> Add the impulse (N s) to what the wall on side 1 (left) or 2 (right) has given
    !> the system (+-Inf beyond the range of doubles: the run then fails in
@@ -1974,7 +1970,7 @@ contains
       type(chain_engine), intent(inout) :: engine
       type(chain_result), intent(inout) :: result
       integer, intent(out) :: stat
-      integer :: i, s, nsamples, side
+      integer :: i, s, nsamples
       real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, p0, p, scale, x, in_progress, impulse
       real(wp) :: walls(2), outside, magnitude, xd, f
       real(wp), allocatable :: displacement(:)
@@ -2058,16 +2054,15 @@ contains
       ! the walls' impulses: besides those written back, a closed-form contact with a
       ! wall still in progress, and the weight a wall has held since the system
       ! settled on it
-      walls = engine%wall_impulse
       do s = 0, engine%n, engine%n
          if (.not. (slot_exists(engine, s) .and. engine%exact(s)%active)) cycle
          call contact_state(engine, s, engine%time, x, xd, f)
-         side = merge(1, 2, s == 0)
-         walls(side) = sum_in_range(walls(side), exact_wall_impulse(engine, s, xd))
+         call add_exact_wall_impulse(engine, s, xd)
       end do
-      if (engine%settle_side > 0) walls(engine%settle_side) = &
-         & sum_in_range(walls(engine%settle_side), -gravity_impulse(engine%chain%mass, &
-         & engine%chain%gravity, engine%time - engine%settle_time))
+      if (engine%settle_side > 0) call add_wall_impulse(engine, engine%settle_side, &
+         & -gravity_impulse(engine%chain%mass, engine%chain%gravity, &
+         & engine%time - engine%settle_time))
+      walls = engine%wall_impulse
       result%wall_impulse = walls
       ! the outside forces are gravity's and the walls': p = p0 + M g t + J_left +
       ! J_right, their impulses counted in the scale (as the energy gravity puts in

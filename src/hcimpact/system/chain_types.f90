@@ -176,7 +176,7 @@ module hcimpact_chain_types
       real(wp) :: dissipated = nan
       !> The impulses the walls gave the system up to the time reached (N s, along the
       !> line: the left wall's >= 0, the right wall's <= 0; 0 without the wall),
-      !> integrated with the contacts (doc/chains.md, "Balances")
+      !> integrated with the contacts (doc/chains.md, "The momentum balance")
       real(wp) :: wall_impulse(2) = nan
       !> Relative error of the momentum against the initial one plus the outside
       !> impulses, gravity's M g t and the walls', over sum(m |v0|) + |M g t| +
