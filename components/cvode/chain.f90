@@ -41,7 +41,7 @@ module hcimpact_cvode_chain
       & advance_captured, advance_failed, advance_split, add_wall_impulse
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
-      & impulse_index, set_weight, wall_impulse, &
+      & impulse_index, set_weight, wall_impulse, wall_impulse_scale, &
       & force_rate, slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
       & region_frame, frame_motion, first_step, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
@@ -281,10 +281,7 @@ contains
          self%atol(3 * k) = engine%options%rtol * e_ref
       end do
       self%atol(dissipation_index(m, m)) = engine%options%rtol * e_ref
-      ! the impulses' scale: the region's mass times v_ref (huge beyond the range)
-      self%region%impulse_scale = huge(1.0_wp)
-      if (v_ref <= huge(1.0_wp) / sum(self%region%mass)) self%region%impulse_scale = &
-         & sum(self%region%mass) * v_ref
+      self%region%impulse_scale = wall_impulse_scale(self%region%mass, v_ref)
       self%atol(impulse_index(m, 1):) = engine%options%rtol * self%region%impulse_scale
       self%region%rtol = weights_rtol(engine%options%rtol, &
          & engine%options%integrator == integrator_adams)

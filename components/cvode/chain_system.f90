@@ -47,7 +47,8 @@ module hcimpact_cvode_chain_system
 
    public :: chain_region, region_size, region_rhs, region_jacobian, region_scales
    public :: region_frame, frame_motion, first_step
-   public :: error_weights, weights_rtol, newton_factor, factor_newton_matrix, solve_newton
+   public :: error_weights, wall_impulse_scale, weights_rtol, newton_factor, &
+      & factor_newton_matrix, solve_newton
    public :: set_weight, wall_impulse
    public :: slot_state, dissipation_index, impulse_index, force_rate, &
       & slot_force_rate, upper_band, lower_band
@@ -240,7 +241,8 @@ contains
    !> The error weights of a state of bodies (CVODE's CVEwtFn), for the serial region
    !> and a rank's block alike: y holds (u, v, e) per body and, serial, the region's
    !> last dissipated energy after them (any value past the bodies' is an energy),
-   !> then with impulse_scale the two walls' impulses (the serial region's state).
+   !> then with impulse_scale the two walls' impulses (the serial region's state), or
+   !> the n_impulses a rank's block holds.
    !> A displacement's error is measured against rtol x_ref, not against rtol |u|:
    !> the deformations, differences of displacements that grow as the bodies move,
    !> must keep their accuracy however far the bodies have gone. A velocity's against
@@ -258,7 +260,7 @@ contains
    !> dissipated energy of bodies of 1e-300 kg has rtol e_ref = 1e-310, whose
    !> reciprocal is +Inf, and CVODE failed at t = 0 (CV_CONV_FAILURE); such energies
    !> are subnormal, with fewer digits than any tolerance asks.
-   pure subroutine error_weights(y, rtol, scale, root_n, w, impulse_scale)
+   pure subroutine error_weights(y, rtol, scale, root_n, w, impulse_scale, n_impulses)
       !> The state
       real(wp), intent(in) :: y(:)
       !> Relative tolerance
@@ -269,8 +271,10 @@ contains
       real(wp), intent(in) :: root_n
       !> The weights
       real(wp), intent(out) :: w(:)
-      !> The scale of the impulses (N s), when the state ends with them
+      !> The scale of the impulses (N s), when the state ends with them (`wall_impulse_scale`)
       real(wp), intent(in), optional :: impulse_scale
+      !> How many impulses the state ends with (with impulse_scale; default 2)
+      integer, intent(in), optional :: n_impulses
       real(wp) :: floor, least
       integer :: k, m, last
       floor = 2.0_wp * epsilon(1.0_wp) * root_n
@@ -278,6 +282,7 @@ contains
       last = size(y)
       if (present(impulse_scale)) then
          last = size(y) - 2
+         if (present(n_impulses)) last = size(y) - n_impulses
          do k = last + 1, size(y)
             w(k) = root_n / max(rtol * impulse_scale, floor * abs(y(k)), least)
          end do
@@ -293,6 +298,21 @@ contains
          w(k) = root_n / max(rtol * scale(3), floor * abs(y(k)), least)
       end do
    end subroutine error_weights
+
+   !> The scale of the walls' impulses in the error weights (N s): the mass of the
+   !> bodies that receive them times the speed's scale v_ref (huge beyond the range)
+   pure real(wp) function wall_impulse_scale(mass, v_ref)
+      real(wp), intent(in) :: mass(:), v_ref
+      real(wp) :: total
+      total = sum(mass)
+      wall_impulse_scale = huge(1.0_wp)
+      ! (huge / total overflows for a mass below 1 kg: the Debug build traps it)
+      if (total <= 1.0_wp) then
+         wall_impulse_scale = total * v_ref
+      else if (v_ref <= huge(1.0_wp) / total) then
+         wall_impulse_scale = total * v_ref
+      end if
+   end function wall_impulse_scale
 
    !> The relative tolerance of the error weights for a user's rtol: a fraction of it
    !> (`bdf_tolerance`, `adams_tolerance`), as the local errors of the steps add up

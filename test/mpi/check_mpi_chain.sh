@@ -9,8 +9,10 @@
 # too (CONTACTS.csv of both runs, in pair order): the same pairs in the same order,
 # every start and end within TIME_TOL seconds, approach and separation speeds within
 # SPEED_TOL m/s, peak force, largest deformation and dissipated energy within
-# RELATIVE_TOL of the larger of the two; at least one contact. With ENERGY_TOL in the
-# environment, the distributed run's energy_error (its summary) at most ENERGY_TOL.
+# RELATIVE_TOL of the larger of the two; at least one contact. With ENERGY_TOL or
+# MOMENTUM_TOL in the environment, the distributed run's energy_error or momentum_error
+# (its summary) at most that; with IMPULSE_TOL, both walls' impulses within that
+# relative to the serial run's.
 #
 # Usage: check_mpi_chain.sh MPIEXEC N PROGRAM SCENE OUTPUT_DIR POSITION_TOL VELOCITY_TOL
 #          [TIME_TOL SPEED_TOL RELATIVE_TOL]
@@ -60,15 +62,44 @@ paste -d, "$out/serial.csv" "$out/mpi.csv" | awk -F, -v qtol="$qtol" -v vtol="$v
     printf "%d beads, %s ranks: largest differences %.3g m, %.3g m/s\n", NR - 1, ranks, mq, mv
   }' ranks="$ranks"
 
-if [ -n "${ENERGY_TOL:-}" ]; then
-  energy="$(awk '$1 == "energy_error" { print $2 }' "$out/mpi.txt")"
-  # (a number in the summary's form: awk reads NaN or Infinity as 0)
-  if ! awk -v e="$energy" -v tol="$ENERGY_TOL" \
-    'BEGIN { exit !(e ~ /^[-+]?[0-9]+\.[0-9]+E[-+][0-9]+$/ && e + 0 <= tol + 0) }'; then
-    echo "FAIL: energy_error '$energy' with $ranks ranks, above $ENERGY_TOL" >&2
+# value NAME FILE: the summary's value of NAME in FILE, checked to be a number in the
+# summary's form (awk reads NaN or Infinity as 0)
+value() {
+  local v
+  v="$(awk -v name="$1" '$1 == name { print $2 }' "$2")"
+  if ! awk -v v="$v" 'BEGIN { exit !(v ~ /^[-+]?[0-9]+\.[0-9]+E[-+][0-9]+$/) }'; then
+    echo "FAIL: $1 '$v' in $2 is not a number" >&2
     exit 1
   fi
-  echo "energy_error $energy with $ranks ranks (at most $ENERGY_TOL)"
+  echo "$v"
+}
+# at_most NAME TOL: the distributed run's NAME (a balance's relative error) <= TOL
+at_most() {
+  local v
+  v="$(value "$1" "$out/mpi.txt")"
+  if ! awk -v v="$v" -v tol="$2" 'BEGIN { exit !(v + 0 <= tol + 0) }'; then
+    echo "FAIL: $1 $v with $ranks ranks, above $2" >&2
+    exit 1
+  fi
+  echo "$1 $v with $ranks ranks (at most $2)"
+}
+[ -z "${ENERGY_TOL:-}" ] || at_most energy_error "$ENERGY_TOL"
+[ -z "${MOMENTUM_TOL:-}" ] || at_most momentum_error "$MOMENTUM_TOL"
+# the walls' impulses against the serial run's, relative to the larger (both walls
+# of the scene must have given one)
+if [ -n "${IMPULSE_TOL:-}" ]; then
+  for side in left right; do
+    a="$(value "wall_impulse_$side" "$out/serial.txt")"
+    b="$(value "wall_impulse_$side" "$out/mpi.txt")"
+    if ! awk -v a="$a" -v b="$b" -v tol="$IMPULSE_TOL" 'BEGIN {
+        m = a < 0 ? -a : a; if (b > m || -b > m) m = b < 0 ? -b : b
+        d = a - b; if (d < 0) d = -d
+        exit !(m > 0 && d <= tol * m) }'; then
+      echo "FAIL: the $side wall's impulse $b N s with $ranks ranks, $a serially" >&2
+      exit 1
+    fi
+    echo "wall_impulse_$side $b N s with $ranks ranks, $a serially (within $IMPULSE_TOL)"
+  done
 fi
 [ -n "$ttol" ] || exit 0
 serial_lines="$(wc -l < "$out/serial_contacts.csv")"

@@ -21,7 +21,11 @@
 !> Walls: the first rank's region has the left wall in its slot 0, the last rank's the
 !> right wall in its last slot (`part_region`). The right wall's dissipated energy is
 !> the one value of the serial region's layout after the beads' (e_(m+1)): the last
-!> rank's block then holds 3 m + 1 values.
+!> rank's block then holds 3 m + 1 values of that layout (`n_motion`). After them comes
+!> the impulse each wall the block holds has given the chain so far (J_left on the
+!> first rank, then J_right on the last; J_left' = F_0, J_right' = -F_n, the rows of
+!> the serial region's `impulse_index`), so that the walls' impulses are results of
+!> the integration and the momentum's balance can be formed (doc/mpi.md).
 module hcimpact_mpi_chain_block
    use, intrinsic :: iso_fortran_env, only : int64
    use mpi_f08, only : MPI_Comm, MPI_Sendrecv, MPI_DOUBLE_PRECISION, MPI_PROC_NULL, &
@@ -30,7 +34,7 @@ module hcimpact_mpi_chain_block
    use hcimpact_chain_types, only : chain_type, kinetic_energy
    use hcimpact_force_element, only : contact_force_type
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
-      & slot_state, slot_none, slot_pair, slot_left_wall, slot_right_wall
+      & slot_state, slot_none, slot_pair, slot_left_wall, slot_right_wall, impulse_index
    implicit none
    private
 
@@ -54,6 +58,10 @@ module hcimpact_mpi_chain_block
       !> number of values of the block's state (3 m, 3 m + 1 with the right wall) and
       !> of the whole chain's
       integer :: n = 0, first = 1, m = 0, n_local = 0, n_global = 0
+      !> The values of the serial region's layout in the block's state (3 m, 3 m + 1
+      !> with the right wall), and where the block's state holds the impulse of the
+      !> left (1) and right (2) wall (0: not in this block)
+      integer :: n_motion = 0, impulse(2) = 0
       !> The neighbouring ranks (MPI_PROC_NULL at an end of the chain)
       integer :: left = MPI_PROC_NULL, right = MPI_PROC_NULL
       !> Halo beads in the region: 1 if there is a neighbour on that side, else 0
@@ -110,11 +118,23 @@ contains
       mr = block%n_left + block%m + block%n_right
       block%region = part_region(chain, block%first - block%n_left, &
          & block%first + block%m - 1 + block%n_right)
-      block%n_local = 3 * block%m
+      block%n_motion = 3 * block%m
       block%n_global = 3 * block%n
       if (chain%right_wall) then
+         block%n_global = block%n_global + 2
+         if (block%rank == block%n_ranks - 1) block%n_motion = block%n_motion + 1
+      end if
+      block%n_local = block%n_motion
+      if (chain%left_wall) then
          block%n_global = block%n_global + 1
-         if (block%rank == block%n_ranks - 1) block%n_local = block%n_local + 1
+         if (block%rank == 0) then
+            block%n_local = block%n_local + 1
+            block%impulse(1) = block%n_local
+         end if
+      end if
+      if (chain%right_wall .and. block%rank == block%n_ranks - 1) then
+         block%n_local = block%n_local + 1
+         block%impulse(2) = block%n_local
       end if
       allocate(block%y_region(region_size(mr)), block%dy_region(region_size(mr)))
       block%y_region = 0.0_wp
@@ -143,14 +163,15 @@ contains
    end subroutine exchange_halo
 
    !> The block's right-hand side dy at the time t from its state y and the halo beads
-   !> of the last exchange; ok false if a force is not finite.
+   !> of the last exchange (the walls' impulses: the walls' forces on the chain); ok
+   !> false if a force is not finite.
    subroutine block_rhs(block, t, y, dy, ok)
       type(chain_block), intent(inout) :: block
       real(wp), intent(in) :: t, y(:)
       real(wp), intent(out) :: dy(:)
       logical, intent(out) :: ok
-      integer :: nl, lo, mr
-      nl = block%n_local
+      integer :: nl, lo, mr, side
+      nl = block%n_motion
       mr = block%region%m
       lo = 3 * block%n_left
       if (block%n_left == 1) block%y_region(1:2) = block%halo_left
@@ -158,6 +179,10 @@ contains
       if (block%n_right == 1) block%y_region(3 * mr - 2:3 * mr - 1) = block%halo_right
       call region_rhs(block%region, t, block%y_region, block%dy_region, ok)
       dy(1:nl) = block%dy_region(lo + 1:lo + nl)
+      do side = 1, 2
+         if (block%impulse(side) > 0) dy(block%impulse(side)) = &
+            & block%dy_region(impulse_index(mr, side))
+      end do
    end subroutine block_rhs
 
    !> The region (hcimpact_cvode_chain_system) of the beads g_first .. g_last of the

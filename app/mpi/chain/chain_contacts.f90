@@ -371,10 +371,10 @@ contains
       p%t = t
       p%f = element%force
       p%df = force_rate(block%region, j, tracker%dy_region, p%w, element)
-      ! the pair's dissipated energy: a value of the bead on its right (the last value
-      ! of the block for the right wall)
+      ! the pair's dissipated energy: a value of the bead on its right (for the right
+      ! wall the value after the beads')
       i_energy = 3 * (j + 1 - block%n_left)
-      if (j == mr) i_energy = block%n_local
+      if (j == mr) i_energy = 3 * block%m + 1
       call taylor_value(tracker%taylor(:, i_energy), dt, p%e, du)
    end subroutine probe_at
 

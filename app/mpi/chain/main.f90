@@ -9,7 +9,8 @@
 !> the final position and velocity of every bead in bead order, CONTACTS.csv (when
 !> named) every contact that ended, in pair order (hcimpact_mpi_chain_contacts); the
 !> summary (work
-!> done, the halo exchanges and their bytes, the energy balance) goes to the standard
+!> done, the halo exchanges and their bytes, the energy and momentum balances and the
+!> walls' impulses) goes to the standard
 !> output. --serial computes the same chain with the CVODE component's serial
 !> integrator (`chain_simulate`, method_integrated) in one process without MPI: the
 !> reference of the tests.
@@ -25,11 +26,12 @@ program hcimpact_mpi_chain
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result, max_message, &
-      & contact_record, energy_balance_error
+      & contact_record, energy_balance_error, momentum_balance_error, gravity_impulse, &
+      & sum_in_range
    use hcimpact_cvode_halting, only : halting_suspend, halting_resume
    use hcimpact_cvode, only : chain_simulate
    use hcimpact_cvode_chain_system, only : chain_region, region_scales, region_size, &
-      & region_frame, frame_motion
+      & region_frame, frame_motion, wall_impulse_scale
    use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_scene, scene_system
    use hcimpact_mpi_chain_block, only : block_setup, block_partition, halo_doubles, &
       & part_region, region_energy
@@ -126,6 +128,10 @@ contains
          & str_i(result%counters%jacobian_evals), ok)
       call summary_line(output_unit, "contacts", str_i(result%n_contacts), ok)
       call summary_line(output_unit, "energy_error", str_r(result%energy_error), ok)
+      call summary_line(output_unit, "momentum_error", str_r(result%momentum_error), ok)
+      call summary_line(output_unit, "wall_impulse_left", str_full(result%wall_impulse(1)), ok)
+      call summary_line(output_unit, "wall_impulse_right", str_full(result%wall_impulse(2)), &
+         & ok)
       call summary_line(output_unit, "seconds", str_r(seconds), ok)
       if (.not. ok) then
          ! a failed run leaves no file that looks complete
@@ -149,7 +155,8 @@ contains
          & y_whole(:)
       integer, allocatable :: counts(:), displs(:)
       real(wp) :: dissipated_local, dissipated, energy0, energy_error, t0, t1, seconds, q0, &
-         & energy_end, weakest_force, v_frame, a_frame, shift, speed, e_grav
+         & energy_end, weakest_force, v_frame, a_frame, shift, speed, e_grav, p, p0, &
+         & momentum_scale, momentum_error, walls_local(2), walls(2)
       integer(int64) :: exchanges, halo_bytes, unconverged
       type(contact_record), allocatable :: contacts(:)
       integer :: rank, n_ranks, stat, k, m, n, r, first, size_r, i
@@ -184,6 +191,7 @@ contains
       whole%gravity = whole%gravity - a_frame
       y(2:3 * n - 1:3) = chain%velocity - v_frame
       call region_scales(whole, y, run%scale, weakest_force)
+      run%impulse_scale = wall_impulse_scale(chain%mass, run%scale(2))
       whole%gravity = chain%gravity
       ! (as the serial chain's integration: forces below the normal range keep fewer
       ! bits than the tolerance needs)
@@ -212,9 +220,14 @@ contains
       allocate(local(2 * m))
       local(1:m) = y(1:3 * m:3)
       local(m + 1:2 * m) = y(2:3 * m:3)
-      ! (the last rank's block ends with the right wall's dissipated energy)
-      dissipated_local = sum(y(3:run%block%n_local:3))
-      if (run%block%n_local > 3 * m) dissipated_local = dissipated_local + y(3 * m + 1)
+      ! (the last rank's values end with the right wall's dissipated energy, then come
+      ! the impulses of the walls the block holds)
+      dissipated_local = sum(y(3:3 * m:3))
+      if (run%block%n_motion > 3 * m) dissipated_local = dissipated_local + y(3 * m + 1)
+      walls_local = 0.0_wp
+      do i = 1, 2
+         if (run%block%impulse(i) > 0) walls_local(i) = y(run%block%impulse(i))
+      end do
       allocate(counts(n_ranks), displs(n_ranks), gathered(2 * n))
       do r = 0, n_ranks - 1
          call block_partition(n, n_ranks, r, i, size_r)
@@ -224,6 +237,8 @@ contains
       call MPI_Gatherv(local, 2 * m, MPI_DOUBLE_PRECISION, gathered, counts, displs, &
          & MPI_DOUBLE_PRECISION, 0, MPI_COMM_WORLD)
       call MPI_Reduce(dissipated_local, dissipated, 1, MPI_DOUBLE_PRECISION, MPI_SUM, 0, &
+         & MPI_COMM_WORLD)
+      call MPI_Reduce(walls_local, walls, 2, MPI_DOUBLE_PRECISION, MPI_SUM, 0, &
          & MPI_COMM_WORLD)
       call MPI_Reduce(run%block%exchanges, exchanges, 1, MPI_INTEGER8, MPI_SUM, 0, &
          & MPI_COMM_WORLD)
@@ -271,6 +286,21 @@ contains
                message = "the energies of the chain leave the range of doubles (kinetic, " &
                   & // "elastic or gravitational energy, or their balance, beyond 1.8e308 J)"
             end if
+            ! the momentum against p0 + M g t + J_left + J_right, as chain_simulate's
+            ! momentum_error (`momentum_balance_error`; every m v is a double where the
+            ! kinetic energies are, and sum m |v0| one by check_chain)
+            if (ok) then
+               p = 0.0_wp
+               p0 = 0.0_wp
+               momentum_scale = 0.0_wp
+               do i = 1, n
+                  p = sum_in_range(p, chain%mass(i) * v(i))
+                  p0 = p0 + chain%mass(i) * chain%velocity(i)
+                  momentum_scale = momentum_scale + chain%mass(i) * abs(chain%velocity(i))
+               end do
+               momentum_error = momentum_balance_error(p, p0, momentum_scale, &
+                  & [gravity_impulse(chain%mass, chain%gravity, options%t_end), walls])
+            end if
          else
             ok = .false.
             write(message, '(a, es11.3e3, a)') "by t = ", options%t_end, " s a position or a " &
@@ -310,6 +340,9 @@ contains
             call summary_line(output_unit, "contact_locations_unconverged", &
                & str_i(unconverged), ok)
             call summary_line(output_unit, "energy_error", str_r(energy_error), ok)
+            call summary_line(output_unit, "momentum_error", str_r(momentum_error), ok)
+            call summary_line(output_unit, "wall_impulse_left", str_full(walls(1)), ok)
+            call summary_line(output_unit, "wall_impulse_right", str_full(walls(2)), ok)
             call summary_line(output_unit, "seconds", str_r(seconds), ok)
             if (.not. ok) then
                ! a failed run leaves no file that looks complete
@@ -353,5 +386,12 @@ contains
       character(len=24) :: text
       write(text, '(es13.5e3)') value
    end function str_r
+
+   !> A result to 17 digits (every double read back as itself)
+   pure function str_full(value) result(text)
+      real(wp), intent(in) :: value
+      character(len=32) :: text
+      write(text, '(es25.17e3)') value
+   end function str_full
 
 end program hcimpact_mpi_chain

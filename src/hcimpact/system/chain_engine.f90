@@ -54,7 +54,8 @@ module hcimpact_chain_engine
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, contact_record, &
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
-      & kinetic_energy, energy_balance_error
+      & kinetic_energy, energy_balance_error, momentum_balance_error, sum_in_range, &
+      & gravity_impulse
    implicit none
    private
 
@@ -1911,27 +1912,6 @@ contains
       end do
    end subroutine take_samples
 
-   !> a + b, or +-Inf where it is beyond the range of doubles and NaN where it has no
-   !> value (infinities of both signs), without raising an exception on the way
-   elemental function sum_in_range(a, b) result(total)
-      real(wp), intent(in) :: a, b
-      real(wp) :: total
-      if (ieee_is_nan(a) .or. ieee_is_nan(b)) then
-         total = nan
-      else if (ieee_is_finite(a) .and. ieee_is_finite(b)) then
-         if ((a > 0.0_wp .eqv. b > 0.0_wp) .and. abs(a) > huge(1.0_wp) - abs(b)) then
-            total = sign(ieee_value(1.0_wp, ieee_positive_inf), a)
-         else
-            total = a + b
-         end if
-      else if (ieee_is_finite(a) .or. ieee_is_finite(b) .or. (a > 0.0_wp .eqv. b > 0.0_wp)) then
-         ! an infinity and a finite value, or two of one sign: exact, nothing raised
-         total = a + b
-      else
-         total = nan
-      end if
-   end function sum_in_range
-
    !> a b for finite a and b, or +-Inf where it is beyond the range of doubles, without
    !> raising the overflow (the rounding as a b's where it is a double)
    elemental function product_in_range(a, b) result(y)
@@ -1951,16 +1931,6 @@ contains
       end if
    end function product_in_range
 
-   !> The impulse of gravity g on bodies of the masses `mass` over the time t >= 0,
-   !> M g t, without overflow on the way (the Debug build traps on it): +-Inf where it
-   !> is beyond the range of doubles. (The masses add up to a quarter of the range at
-   !> most: check_chain.)
-   pure function gravity_impulse(mass, g, t) result(impulse)
-      real(wp), intent(in) :: mass(:), g, t
-      real(wp) :: impulse
-      impulse = sign(product_of([sum(mass), abs(g), t]), g)
-   end function gravity_impulse
-
    !> The result from the final state of the engine.
    !> hcimpact_err_domain (and engine%message) where a final or sampled position or
    !> velocity, an energy of the result, the momentum or a term of the energy balance
@@ -1972,7 +1942,7 @@ contains
       integer, intent(out) :: stat
       integer :: i, s, nsamples
       real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, p0, p, scale, x, in_progress, impulse
-      real(wp) :: walls(2), outside, magnitude, xd, f
+      real(wp) :: walls(2), xd, f
       real(wp), allocatable :: displacement(:)
       type(contact_law) :: law
 
@@ -2065,21 +2035,10 @@ contains
       walls = engine%wall_impulse
       result%wall_impulse = walls
       ! the outside forces are gravity's and the walls': p = p0 + M g t + J_left +
-      ! J_right, their impulses counted in the scale (as the energy gravity puts in
-      ! counts in the energy's); (not max(scale, tiny): momenta of subnormal size are
-      ! errors of their size); impulses beyond the range of doubles: no balance to form
-      ! (NaN; the run fails below for the walls', not for gravity's)
+      ! J_right (NaN where their impulses are beyond the range of doubles: the run
+      ! fails below for the walls', not for gravity's)
       impulse = gravity_impulse(engine%chain%mass, engine%chain%gravity, engine%time)
-      outside = sum_in_range(sum_in_range(impulse, walls(1)), walls(2))
-      magnitude = sum_in_range(sum_in_range(abs(impulse), abs(walls(1))), abs(walls(2)))
-      result%momentum_error = nan
-      if (ieee_is_finite(magnitude)) then
-         if (magnitude <= huge(1.0_wp) - scale) then
-            scale = scale + magnitude
-            result%momentum_error = 0.0_wp
-            if (scale > 0.0_wp) result%momentum_error = abs(p - (p0 + outside)) / scale
-         end if
-      end if
+      result%momentum_error = momentum_balance_error(p, p0, scale, [impulse, walls])
       result%rested = engine%rested
       result%rest_time = engine%rest_time
       result%n_contacts = engine%n_contacts

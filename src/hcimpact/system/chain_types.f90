@@ -16,7 +16,8 @@
 !> 0 the left wall and body 1, pair n body n and the right wall.
 module hcimpact_chain_types
    use, intrinsic :: iso_fortran_env, only : int64
-   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan, ieee_value, &
+      & ieee_positive_inf
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_domain, hcimpact_err_size
@@ -27,7 +28,8 @@ module hcimpact_chain_types
 
    public :: contact_law, chain_type, chain_options, contact_record, chain_result
    public :: chain_counters, chain_switch
-   public :: check_chain, kinetic_energy, energy_balance_error
+   public :: check_chain, kinetic_energy, energy_balance_error, momentum_balance_error
+   public :: sum_in_range, gravity_impulse
    public :: method_auto, method_exact, method_integrated
    public :: integrator_bdf, integrator_adams
    public :: by_closed_forms, by_integration, by_both
@@ -478,6 +480,69 @@ contains
       real(wp) :: error
       error = abs(e_end + dissipated - e_kin0) / max(e_kin0 + abs(e_grav), tiny(1.0_wp))
    end function energy_balance_error
+
+   !> The momentum balance of a system as a relative error (`chain_result`%
+   !> momentum_error): the final momentum p against the initial one p0 plus the
+   !> impulses from outside (gravity's M g t, the walls'), over scale0 = sum m |v0|
+   !> plus the impulses' magnitudes (they count in the scale as the energy gravity puts
+   !> in counts in the energy's; not max(scale, tiny): momenta of subnormal size are
+   !> errors of their size). NaN where p or an impulse's sum is beyond the range of
+   !> doubles (no balance to form); nothing is raised on the way.
+   pure function momentum_balance_error(p, p0, scale0, impulses) result(error)
+      !> Final and initial momentum (N s), sum m |v0| (N s, finite, >= 0)
+      real(wp), intent(in) :: p, p0, scale0
+      !> The impulses from outside (N s)
+      real(wp), intent(in) :: impulses(:)
+      real(wp) :: error
+      real(wp) :: outside, magnitude, scale
+      integer :: i
+      error = nan
+      if (.not. ieee_is_finite(p)) return
+      outside = 0.0_wp
+      magnitude = 0.0_wp
+      do i = 1, size(impulses)
+         outside = sum_in_range(outside, impulses(i))
+         magnitude = sum_in_range(magnitude, abs(impulses(i)))
+      end do
+      ! (then |p0 + outside| <= scale0 + magnitude, a double)
+      if (.not. ieee_is_finite(magnitude)) return
+      if (magnitude > huge(1.0_wp) - scale0) return
+      scale = scale0 + magnitude
+      error = 0.0_wp
+      if (scale > 0.0_wp) error = abs(p - (p0 + outside)) / scale
+   end function momentum_balance_error
+
+   !> a + b, or +-Inf where it is beyond the range of doubles and NaN where it has no
+   !> value (infinities of both signs), without raising an exception on the way
+   elemental function sum_in_range(a, b) result(total)
+      real(wp), intent(in) :: a, b
+      real(wp) :: total
+      if (ieee_is_nan(a) .or. ieee_is_nan(b)) then
+         total = nan
+      else if (ieee_is_finite(a) .and. ieee_is_finite(b)) then
+         if ((a > 0.0_wp .eqv. b > 0.0_wp) .and. abs(a) > huge(1.0_wp) - abs(b)) then
+            total = sign(ieee_value(1.0_wp, ieee_positive_inf), a)
+         else
+            total = a + b
+         end if
+      else if (ieee_is_finite(a) .or. ieee_is_finite(b) .or. (a > 0.0_wp .eqv. b > 0.0_wp)) then
+         ! an infinity and a finite value, or two of one sign: exact, nothing raised
+         total = a + b
+      else
+         total = nan
+      end if
+   end function sum_in_range
+
+
+   !> The impulse of gravity g on bodies of the masses `mass` over the time t >= 0,
+   !> M g t, without overflow on the way (the Debug build traps on it): +-Inf where it
+   !> is beyond the range of doubles. (The masses add up to a quarter of the range at
+   !> most: check_chain.)
+   pure function gravity_impulse(mass, g, t) result(impulse)
+      real(wp), intent(in) :: mass(:), g, t
+      real(wp) :: impulse
+      impulse = sign(product_of([sum(mass), abs(g), t]), g)
+   end function gravity_impulse
 
    !> Whether the kinetic energy and the momentum sum(m |v|) of bodies are doubles,
    !> found without forming a value beyond the range (the Debug build traps an
