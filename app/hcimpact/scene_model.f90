@@ -25,7 +25,8 @@ module hcimpact_scene_model
    public :: scene_line_length, max_scene_lines, max_bodies
    public :: sweep_list, n_sweep_lists, sweep_names, sweep_unit, sweep_striker_speed, &
       & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
-      & sweep_gravity, sweep_left_gap, sweep_right_gap
+      & sweep_gravity, sweep_left_gap, sweep_right_gap, sweep_left_b, sweep_right_b, &
+      & sweep_t_end
    public :: unset_bits, is_unset
 
 
@@ -42,16 +43,18 @@ module hcimpact_scene_model
    !> The parameters a sweep of systems (&system_sweep) varies, in the order in which
    !> they combine (the first varies slowest) and in which their columns stand: body 1's
    !> speed, the mass of one body, and for every pair the gap, the stiffness c, the
-   !> exponent n, the damping b (or b from a restitution), then gravity and the gaps of
-   !> the left and the right wall to their end body
-   integer, parameter :: n_sweep_lists = 10
+   !> exponent n, the damping b (or b from a restitution), then gravity, the gaps of
+   !> the left and the right wall to their end body, the walls' damping b, and the end
+   !> time
+   integer, parameter :: n_sweep_lists = 13
    integer, parameter :: sweep_striker_speed = 1, sweep_mass = 2, sweep_gap = 3, &
       & sweep_stiffness = 4, sweep_exponent = 5, sweep_b = 6, sweep_restitution = 7, &
-      & sweep_gravity = 8, sweep_left_gap = 9, sweep_right_gap = 10
+      & sweep_gravity = 8, sweep_left_gap = 9, sweep_right_gap = 10, sweep_left_b = 11, &
+      & sweep_right_b = 12, sweep_t_end = 13
    !> Their names in &system_sweep (their units: `sweep_unit`)
    character(len=*), parameter :: sweep_names(n_sweep_lists) = [character(len=13) :: &
       & "striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution", &
-      & "gravity", "left_gap", "right_gap"]
+      & "gravity", "left_gap", "right_gap", "left_b", "right_b", "t_end"]
 
    !> Most approach speeds a scene may list
    integer, parameter :: max_speeds = 1000
@@ -193,8 +196,8 @@ module hcimpact_scene_model
       !> side by side
       type(sweep_list) :: vary(n_sweep_lists)
       logical :: vary_product = .true.
-      !> The body whose mass the list `mass` varies
-      integer :: vary_mass_body = 1
+      !> The body whose mass the list `mass` varies, and whose velocity `striker_speed`
+      integer :: vary_mass_body = 1, vary_striker_body = 1
       !> The damping b (s/m) of each value of the list `restitution`, b = beta(e)/V at
       !> the speed `vary_at_speed` (m/s)
       real(wp), allocatable :: vary_restitution_b(:)
@@ -268,8 +271,10 @@ contains
          unit = "m"
       case ("stiffness")
          unit = "N/m^n"
-      case ("b")
+      case ("b", "left_b", "right_b")
          unit = "s/m"
+      case ("t_end")
+         unit = "s"
       case ("gravity")
          unit = "m/s^2"
       case default

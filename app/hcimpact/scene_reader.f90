@@ -31,7 +31,8 @@ module hcimpact_scene_reader
       & scene_line_length, max_scene_lines, unset_bits, is_unset, max_bodies, system_outputs, &
       & out_contacts, out_final, out_impact_sweep, n_sweep_lists, sweep_names, sweep_unit, &
       & sweep_striker_speed, sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, &
-      & sweep_restitution, sweep_gravity, sweep_left_gap, sweep_right_gap
+      & sweep_restitution, sweep_gravity, sweep_left_gap, sweep_right_gap, sweep_left_b, &
+      & sweep_right_b
    use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
       & body_radius => radius, body_density => density, body_young => young, &
       & body_poisson => poisson, body_velocity => velocity, body_gap => gap, &
@@ -45,7 +46,8 @@ module hcimpact_scene_reader
       & vary_stiffness => stiffness, vary_exponent => exponent, vary_impact_speed => speed, &
       & vary_restitution => restitution, vary_gravity => gravity, vary_at_speed => at_speed, &
       & vary_mass_body => mass_body, unset_body, vary_left_gap => left_gap, &
-      & vary_right_gap => right_gap
+      & vary_right_gap => right_gap, vary_left_b => left_b, vary_right_b => right_b, &
+      & vary_t_end => t_end, vary_striker_body => striker_body
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
       & max_chain_rtol, &
       & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
@@ -87,8 +89,9 @@ module hcimpact_scene_reader
       & // "restitution, at_speed, gravity, t_end, rtol, method, integrator", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
-      & "striker_speed, mass, mass_body, gap, stiffness, exponent, b, restitution, " &
-      & // "at_speed, gravity, left_gap, right_gap, combine", &
+      & "striker_speed, striker_body, mass, mass_body, gap, stiffness, exponent, b, " &
+      & // "restitution, at_speed, gravity, left_gap, right_gap, left_b, right_b, t_end, " &
+      & // "combine", &
       & "those of hcimpact_mpi_chain (doc/mpi.md)", &
       & "mass, stiffness, exponent, b, speed, combine"]
    !> Names that take a list of values
@@ -919,6 +922,10 @@ contains
          else if (len(owner) > 0 .and. gid == g_system_sweep .and. lower(owner) == "mass_body") then
             text = "mass_body takes one whole number, the index of the body whose mass the" &
                & // " list mass varies ('" // token // "' is not read)"
+         else if (len(owner) > 0 .and. gid == g_system_sweep .and. &
+            & lower(owner) == "striker_body") then
+            text = "striker_body takes one whole number, the index of the body whose" &
+               & // " velocity the list striker_speed varies ('" // token // "' is not read)"
          else if (len(owner) > 0 .and. gid == g_system_sweep .and. lower(owner) == "at_speed") then
             text = "at_speed takes one value, the speed in m/s at which the restitutions" &
                & // " hold ('" // token // "' is one too many)"
@@ -2103,9 +2110,10 @@ contains
    !> &system_sweep: the variations of the output system_sweep (none: the system alone),
    !> one list per parameter of `sweep_names`, each value checked (`check_sweep_list`):
    !> striker_speed and gravity finite, masses, stiffnesses and exponents positive, gaps
-   !> (of pairs and walls) and b >= 0, restitutions in (0, 1] at the speed at_speed (> 0;
-   !> default the speed of &bodies' restitution) and turned into b here, b or
-   !> restitution but not both, a wall's gap only with that wall;
+   !> (of pairs and walls) and b (of pairs and walls) >= 0, end times > 0, restitutions
+   !> in (0, 1] at the speed at_speed (> 0; default the speed of &bodies' restitution)
+   !> and turned into b here, b or restitution but not both, a wall's gap and b only
+   !> with that wall, striker_body and mass_body a body's index with their list;
    !> "product" (default) or "list" (the lists given of one length). A variation the
    !> library refuses (check_chain: an exponent out of its domain) gets its status in
    !> its row, as one that fails.
@@ -2138,16 +2146,20 @@ contains
             return
          end if
       end do
-      if (n(sweep_left_gap) > 0 .and. .not. sys%left%present) then
-         error = at(src, g_system_sweep, "left_gap") // "left_gap is the gap of the left" &
-            & // " wall: the system has none (&left_wall)"
+      do k = sweep_left_gap, sweep_right_b
+         ! (left_gap, right_gap, left_b, right_b)
+         if (n(k) == 0) cycle
+         if (k == sweep_left_gap .or. k == sweep_left_b) then
+            if (sys%left%present) cycle
+            error = at(src, g_system_sweep, trim(sweep_names(k))) // trim(sweep_names(k)) &
+               & // " is a value of the left wall: the system has none (&left_wall)"
+         else
+            if (sys%right%present) cycle
+            error = at(src, g_system_sweep, trim(sweep_names(k))) // trim(sweep_names(k)) &
+               & // " is a value of the right wall: the system has none (&right_wall)"
+         end if
          return
-      end if
-      if (n(sweep_right_gap) > 0 .and. .not. sys%right%present) then
-         error = at(src, g_system_sweep, "right_gap") // "right_gap is the gap of the" &
-            & // " right wall: the system has none (&right_wall)"
-         return
-      end if
+      end do
       if (sum(n) == 0) then
          error = at(src, g_system_sweep, "") // "&system_sweep varies nothing: give " &
             & // join(sweep_names, ", ") // " (lists of values)"
@@ -2167,25 +2179,12 @@ contains
             & // " (each sets every pair's damping)"
          return
       end if
-      sys%vary_mass_body = 1
-      if (vary_mass_body /= unset_body .or. given(src, g_system_sweep, "mass_body")) then
-         if (vary_mass_body == unset_body) then
-            error = at(src, g_system_sweep, "mass_body") // "mass_body has no value: give" &
-               & // " the index of a body"
-            return
-         end if
-         if (n(sweep_mass) == 0) then
-            error = at(src, g_system_sweep, "mass_body") // "mass_body names the body whose" &
-               & // " mass the list mass varies: give mass too"
-            return
-         end if
-         if (vary_mass_body < 1 .or. vary_mass_body > sys%n) then
-            error = at(src, g_system_sweep, "mass_body") // "mass_body = " &
-               & // str(vary_mass_body) // ": the bodies are 1 to " // str(sys%n)
-            return
-         end if
-         sys%vary_mass_body = vary_mass_body
-      end if
+      call choose_body(src, "mass_body", vary_mass_body, "mass", n(sweep_mass), sys%n, &
+         & sys%vary_mass_body, error)
+      if (allocated(error)) return
+      call choose_body(src, "striker_body", vary_striker_body, "striker_speed", &
+         & n(sweep_striker_speed), sys%n, sys%vary_striker_body, error)
+      if (allocated(error)) return
       if (.not. is_unset(vary_at_speed) .and. n(sweep_restitution) == 0) then
          error = at(src, g_system_sweep, "at_speed") // "at_speed is the speed of the" &
             & // " restitutions: give restitution too"
@@ -2219,6 +2218,32 @@ contains
 
    end subroutine load_variations
 
+   !> &system_sweep's index `name` (mass_body, striker_body: `value` as read, unset_body
+   !> when not) of the body whose value the list `list` (n values) varies: 1 when not
+   !> given, else a body's index and only with its list.
+   subroutine choose_body(src, name, value, list, n, n_bodies, body, error)
+      type(scene_source), intent(in) :: src
+      character(len=*), intent(in) :: name, list
+      integer, intent(in) :: value, n, n_bodies
+      integer, intent(out) :: body
+      character(len=:), allocatable, intent(out) :: error
+      body = 1
+      if (value == unset_body .and. .not. given(src, g_system_sweep, name)) return
+      if (value == unset_body) then
+         error = at(src, g_system_sweep, name) // name // " has no value: give the index" &
+            & // " of a body"
+      else if (n == 0) then
+         error = at(src, g_system_sweep, name) // name // " names the body whose " &
+            & // trim(merge("mass    ", "velocity", list == "mass")) // " the list " // list &
+            & // " varies: give " // list // " too"
+      else if (value < 1 .or. value > n_bodies) then
+         error = at(src, g_system_sweep, name) // name // " = " // str(value) &
+            & // ": the bodies are 1 to " // str(n_bodies)
+      else
+         body = value
+      end if
+   end subroutine choose_body
+
    !> The values of the sweep list `name` as the namelist groups &system_sweep and
    !> &impact_sweep read it (the two share the lists of one name)
    function sweep_values(name) result(values)
@@ -2245,6 +2270,12 @@ contains
          values = vary_left_gap
       case ("right_gap")
          values = vary_right_gap
+      case ("left_b")
+         values = vary_left_b
+      case ("right_b")
+         values = vary_right_b
+      case ("t_end")
+         values = vary_t_end
       case ("speed")
          values = vary_impact_speed
       case default
@@ -2253,15 +2284,15 @@ contains
    end function sweep_values
 
    !> The bound of the values of the sweep list `name` (`check_sweep_list`): speeds and
-   !> gravity any finite value, gaps (of pairs and walls) and b >= 0 (no damping:
-   !> Hertz), restitutions in
-   !> (0, 1], the rest (masses, stiffnesses, exponents) positive
+   !> gravity any finite value, gaps and b (of pairs and walls) >= 0 (no damping:
+   !> Hertz), restitutions in (0, 1], the rest (masses, stiffnesses, exponents, end
+   !> times) positive
    pure integer function sweep_bound(name)
       character(len=*), intent(in) :: name
       select case (name)
       case ("striker_speed", "gravity")
          sweep_bound = any_finite
-      case ("gap", "b", "left_gap", "right_gap")
+      case ("gap", "b", "left_gap", "right_gap", "left_b", "right_b")
          sweep_bound = not_negative
       case ("restitution")
          sweep_bound = unit_interval

@@ -11,7 +11,8 @@ module hcimpact_scene_system_items
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result
    use hcimpact_scene_model, only : system_type, nan, n_sweep_lists, sweep_striker_speed, &
       & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
-      & sweep_gravity, sweep_left_gap, sweep_right_gap
+      & sweep_gravity, sweep_left_gap, sweep_right_gap, sweep_left_b, sweep_right_b, &
+      & sweep_t_end
    use hcimpact_scene_ode, only : ode_chain
    use hcimpact_scene_variations, only : variation_index, variation_count
    implicit none
@@ -64,9 +65,9 @@ contains
    end subroutine item_variation
 
    !> The columns of every variation: the system with what the sweep varies replaced
-   !> (body 1's speed, body vary_mass_body's mass, every pair's gap, stiffness,
-   !> exponent and damping, b itself or from a restitution, gravity, the walls' gaps;
-   !> the walls' laws kept).
+   !> (body vary_striker_body's speed, body vary_mass_body's mass, every pair's gap,
+   !> stiffness, exponent and damping, b itself or from a restitution, gravity, the
+   !> walls' gaps and damping, the end time; the walls' c and n kept).
    pure function system_item_inputs(sys) result(inputs)
       type(system_type), intent(in) :: sys
       real(wp), allocatable :: inputs(:, :)
@@ -79,7 +80,8 @@ contains
       do k = 1, size(inputs, 2)
          call item_variation(sys, k, values, which)
          varied = sys
-         if (given(sweep_striker_speed)) varied%velocity(1) = values(sweep_striker_speed)
+         if (given(sweep_striker_speed)) varied%velocity(sys%vary_striker_body) = &
+            & values(sweep_striker_speed)
          if (given(sweep_mass)) varied%mass(sys%vary_mass_body) = values(sweep_mass)
          if (given(sweep_gap)) varied%gap = values(sweep_gap)
          if (given(sweep_stiffness)) varied%law%stiffness = values(sweep_stiffness)
@@ -90,6 +92,9 @@ contains
          if (given(sweep_gravity)) varied%gravity = values(sweep_gravity)
          if (given(sweep_left_gap)) varied%left%gap = values(sweep_left_gap)
          if (given(sweep_right_gap)) varied%right%gap = values(sweep_right_gap)
+         if (given(sweep_left_b)) varied%left%law%damping = values(sweep_left_b)
+         if (given(sweep_right_b)) varied%right%law%damping = values(sweep_right_b)
+         if (given(sweep_t_end)) varied%t_end = values(sweep_t_end)
          inputs(:, k) = packed_system(varied)
       end do
    end function system_item_inputs

@@ -12,7 +12,7 @@ module hcimpact_scene_systems
    use hcimpact_chain_types, only : by_closed_forms, by_integration, method_exact
    use hcimpact_scene_ode, only : ode_available, ode_missing
    use hcimpact_scene_model, only : scene_type, n_sweep_lists, sweep_names, sweep_unit, &
-      & sweep_mass, sweep_restitution
+      & sweep_mass, sweep_restitution, sweep_striker_speed
    use hcimpact_scene_output, only : results_type, csv_type, csv_open, csv_row, csv_close, &
       & checkpoint_path
    use hcimpact_scene_system_items, only : system_item_count, system_item_inputs, &
@@ -152,13 +152,16 @@ contains
    end subroutine write_rows
 
    !> The name of the column of the sweep's list k: its name, the mass's with its
-   !> body (mass_2)
+   !> body (mass_2), the striker's speed with its body when that is not body 1
+   !> (striker_speed_3)
    function column_name(sc, k) result(name)
       type(scene_type), intent(in) :: sc
       integer, intent(in) :: k
       character(len=:), allocatable :: name
       name = trim(sweep_names(k))
       if (k == sweep_mass) name = name // "_" // str(sc%system%vary_mass_body)
+      if (k == sweep_striker_speed .and. sc%system%vary_striker_body /= 1) name = name &
+         & // "_" // str(sc%system%vary_striker_body)
    end function column_name
 
    !> The console: the first rows (variation, the values of the lists it varies,
@@ -169,7 +172,7 @@ contains
       ! short headings of the parameters (sweep_names' order)
       character(len=*), parameter :: headings(n_sweep_lists) = [character(len=12) :: &
          & "v1 (m/s)", "m (kg)", "gap (m)", "c (N/m^n)", "n", "b (s/m)", "e", "g (m/s^2)", &
-         & "gap L (m)", "gap R (m)"]
+         & "gap L (m)", "gap R (m)", "b L (s/m)", "b R (s/m)", "t_end (s)"]
       character(len=200) :: line
       character(len=:), allocatable :: head
       real(wp) :: values(n_sweep_lists)
@@ -186,6 +189,8 @@ contains
          if (.not. varied(j)) cycle
          if (j == sweep_mass) then
             head = head // pad13("m" // str(sc%system%vary_mass_body) // " (kg)")
+         else if (j == sweep_striker_speed) then
+            head = head // pad13("v" // str(sc%system%vary_striker_body) // " (m/s)")
          else
             head = head // pad13(trim(headings(j)))
          end if

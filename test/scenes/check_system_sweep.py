@@ -9,11 +9,11 @@ and checks system_sweep.csv: its rows come in the order of the lists' product (t
 first list varying slowest) or side by side (combine = "list"), every parameter column
 holds the row's value (nan where the sweep does not vary it), and every row's final
 velocities and status are, to the last bit, those of a scene of its own in which the
-row's values stand in &bodies (body 1's velocity, one body's mass, every pair's gap,
-stiffness, exponent and b, or the restitution at its speed, gravity) and the walls'
-groups (their gaps), run for the output `final`. The varied scene goes through the sweep's code (the lists, the
-substitution, the restitution's damping); the scene of its own through the reader of
-&bodies alone.
+row's values stand in &bodies (one body's velocity, one body's mass, every pair's gap,
+stiffness, exponent and b, or the restitution at its speed, gravity, the end time)
+and the walls' groups (their gaps and b), run for the output `final`. The varied
+scene goes through the sweep's code (the lists, the substitution, the restitution's
+damping); the scene of its own through the reader of &bodies alone.
 """
 import csv
 import itertools
@@ -23,30 +23,36 @@ import subprocess
 import sys
 
 NAMES = ["striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution",
-         "gravity", "left_gap", "right_gap"]
-UNITS = ["m/s", "kg", "m", "N/m^n", "-", "s/m", "-", "m/s^2", "m", "m"]
+         "gravity", "left_gap", "right_gap", "left_b", "right_b", "t_end"]
+UNITS = ["m/s", "kg", "m", "N/m^n", "-", "s/m", "-", "m/s^2", "m", "m", "s/m", "s/m", "s"]
 
 # three balls falling onto a wall (the left one nearest), a cluster and isolated
 # contacts alike
 BASE = {"mass": [0.2, 0.1, 0.05], "velocity": [-1.0, -1.5, -2.0], "gap": 1e-3,
         "stiffness": 1e8, "exponent": 1.5, "b": 0.05, "gravity": -9.81,
-        "t_end": 0.01, "left_gap": 2e-3}
+        "t_end": 0.01, "left_gap": 2e-3, "left_b": 0.1, "right_b": 0.1}
 
 SWEEPS = [
-    # name, lists (in NAMES' order), combine, mass_body, what &bodies has besides BASE
+    # name, lists (in NAMES' order), combine, the bodies the sweep names (mass_body,
+    # striker_body), what &bodies has besides BASE
     ("product", {"striker_speed": [-0.5, -3.0], "mass": [0.3, 0.02], "gap": [0.0, 5e-4],
                  "stiffness": [1e7, 3e8], "exponent": [1.5, 1.25], "b": [0.0, 0.3],
-                 "gravity": [-9.81, -1.62]}, "product", 3, {}),
+                 "gravity": [-9.81, -1.62]}, "product", {"mass_body": 3}, {}),
     ("restitution", {"striker_speed": [-0.5, -1.0, -2.0], "restitution": [0.95, 0.6, 0.3]},
-     "list", None, {}),
-    ("mass-first", {"mass": [0.5, 1e-3], "gravity": [0.0, -30.0]}, "product", None, {}),
+     "list", {}, {}),
+    ("mass-first", {"mass": [0.5, 1e-3], "gravity": [0.0, -30.0]}, "product", {}, {}),
     # &bodies' own restitution: its speed is the sweep's at_speed, not given there
     ("restitution-default-speed", {"restitution": [0.9, 0.4], "gap": [0.0, 1e-4]}, "product",
-     None, {"restitution": 0.7}),
+     {}, {"restitution": 0.7}),
     # the walls' gaps: the drop height onto the left wall, and a right wall the bodies
     # reach after their bounce or not
-    ("walls", {"left_gap": [0.0, 1e-3, 2e-2], "right_gap": [0.0, 4e-3]}, "product", None,
+    ("walls", {"left_gap": [0.0, 1e-3, 2e-2], "right_gap": [0.0, 4e-3]}, "product", {},
      {"right_gap": 1e-2, "velocity": [-1.0, -1.5, 1.0]}),
+    # the middle body's speed, the walls' damping (elastic or not) and the end time
+    # (before, between and after the contacts with the walls)
+    ("walls-damping-time", {"striker_speed": [-0.5, 2.0], "left_b": [0.0, 0.4],
+                            "right_b": [0.0, 0.2], "t_end": [2e-3, 6e-3, 0.03]},
+     "product", {"striker_body": 2}, {"right_gap": 1e-2, "velocity": [-1.0, -1.5, 1.0]}),
 ]
 AT_SPEED = 0.7
 
@@ -55,7 +61,7 @@ def fmt(x):
     return repr(float(x))
 
 
-def scene_text(title, bodies, sweep=None, combine=None, mass_body=None, outputs="final"):
+def scene_text(title, bodies, sweep=None, combine=None, chosen=None, outputs="final"):
     text = f'&scene title = "{title}", outputs = "{outputs}" /\n&bodies\n'
     text += "  mass = " + ", ".join(fmt(m) for m in bodies["mass"]) + "\n"
     text += "  velocity = " + ", ".join(fmt(v) for v in bodies["velocity"]) + "\n"
@@ -66,17 +72,19 @@ def scene_text(title, bodies, sweep=None, combine=None, mass_body=None, outputs=
     else:
         text += f"  b = {fmt(bodies['b'])}\n"
     text += f"  gravity = {fmt(bodies['gravity'])}, t_end = {fmt(bodies['t_end'])}\n/\n"
-    text += f"&left_wall stiffness = 1e9, b = 0.1, gap = {fmt(bodies['left_gap'])} /\n"
+    text += (f"&left_wall stiffness = 1e9, b = {fmt(bodies['left_b'])}, "
+             f"gap = {fmt(bodies['left_gap'])} /\n")
     if "right_gap" in bodies:
-        text += f"&right_wall stiffness = 1e9, b = 0.1, gap = {fmt(bodies['right_gap'])} /\n"
+        text += (f"&right_wall stiffness = 1e9, b = {fmt(bodies['right_b'])}, "
+                 f"gap = {fmt(bodies['right_gap'])} /\n")
     if sweep:
         text += "&system_sweep\n"
         for name, values in sweep.items():
             text += f"  {name} = " + ", ".join(fmt(v) for v in values) + "\n"
         if "restitution" in sweep and "restitution" not in bodies:
             text += f"  at_speed = {fmt(AT_SPEED)}\n"
-        if mass_body is not None:
-            text += f"  mass_body = {mass_body}\n"
+        for which, body in (chosen or {}).items():
+            text += f"  {which} = {body}\n"
         text += f'  combine = "{combine}"\n/\n'
     return text
 
@@ -111,11 +119,13 @@ def main():
     os.makedirs(out_dir, exist_ok=True)
     failures = 0
     rows_checked = 0
-    for name, sweep, combine, mass_body, extra in SWEEPS:
+    for name, sweep, combine, chosen, extra in SWEEPS:
+        mass_body = chosen.get("mass_body", 1)
+        striker_body = chosen.get("striker_body", 1)
         base = dict(BASE, **extra)
         path = os.path.join(out_dir, f"{name}.nml")
         with open(path, "w") as f:
-            f.write(scene_text(name, base, sweep, combine, mass_body, "system_sweep"))
+            f.write(scene_text(name, base, sweep, combine, chosen, "system_sweep"))
         rc, log = run(program, path, os.path.join(out_dir, name))
         if rc != 0:
             print(f"{name}: the sweep failed ({rc}):\n{log}")
@@ -130,15 +140,19 @@ def main():
             if int(float(row["variation [-]"])) != k:
                 problems.append(f"variation {row['variation [-]']}")
             for n, unit in zip(NAMES, UNITS):
-                column = f"mass_{mass_body or 1}" if n == "mass" else n
+                column = n
+                if n == "mass":
+                    column = f"mass_{mass_body}"
+                elif n == "striker_speed" and striker_body != 1:
+                    column = f"striker_speed_{striker_body}"
                 if not same_number(row[f"{column} [{unit}]"], values.get(n)):
                     problems.append(f"{n} = {row[f'{column} [{unit}]']}, expected {values.get(n)}")
             bodies = dict(base, mass=list(base["mass"]), velocity=list(base["velocity"]))
             for n, v in values.items():
                 if n == "striker_speed":
-                    bodies["velocity"][0] = v
+                    bodies["velocity"][striker_body - 1] = v
                 elif n == "mass":
-                    bodies["mass"][(mass_body or 1) - 1] = v
+                    bodies["mass"][mass_body - 1] = v
                 else:
                     bodies[n] = v
             one = os.path.join(out_dir, f"{name}-{k}")
