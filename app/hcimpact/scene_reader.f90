@@ -32,7 +32,7 @@ module hcimpact_scene_reader
       & out_contacts, out_final, out_impact_sweep, n_sweep_lists, sweep_names, sweep_unit, &
       & sweep_striker_speed, sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, &
       & sweep_restitution, sweep_gravity, sweep_left_gap, sweep_right_gap, sweep_left_b, &
-      & sweep_right_b
+      & sweep_right_b, sweep_left_stiffness, sweep_right_stiffness
    use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
       & body_radius => radius, body_density => density, body_young => young, &
       & body_poisson => poisson, body_velocity => velocity, body_gap => gap, &
@@ -47,7 +47,8 @@ module hcimpact_scene_reader
       & vary_restitution => restitution, vary_gravity => gravity, vary_at_speed => at_speed, &
       & vary_mass_body => mass_body, unset_body, vary_left_gap => left_gap, &
       & vary_right_gap => right_gap, vary_left_b => left_b, vary_right_b => right_b, &
-      & vary_t_end => t_end, vary_striker_body => striker_body
+      & vary_t_end => t_end, vary_striker_body => striker_body, &
+      & vary_left_stiffness => left_stiffness, vary_right_stiffness => right_stiffness
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
       & max_chain_rtol, &
       & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
@@ -90,8 +91,8 @@ module hcimpact_scene_reader
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "striker_speed, striker_body, mass, mass_body, gap, stiffness, exponent, b, " &
-      & // "restitution, at_speed, gravity, left_gap, right_gap, left_b, right_b, t_end, " &
-      & // "combine", &
+      & // "restitution, at_speed, gravity, left_gap, right_gap, left_b, right_b, " &
+      & // "left_stiffness, right_stiffness, t_end, combine", &
       & "those of hcimpact_mpi_chain (doc/mpi.md)", &
       & "mass, stiffness, exponent, b, speed, combine"]
    !> Names that take a list of values
@@ -2112,7 +2113,7 @@ contains
    !> striker_speed and gravity finite, masses, stiffnesses and exponents positive, gaps
    !> (of pairs and walls) and b (of pairs and walls) >= 0, end times > 0, restitutions
    !> in (0, 1] at the speed at_speed (> 0; default the speed of &bodies' restitution)
-   !> and turned into b here, b or restitution but not both, a wall's gap and b only
+   !> and turned into b here, b or restitution but not both, a wall's gap, b and c only
    !> with that wall, striker_body and mass_body a body's index with their list;
    !> "product" (default) or "list" (the lists given of one length). A variation the
    !> library refuses (check_chain: an exponent out of its domain) gets its status in
@@ -2146,10 +2147,10 @@ contains
             return
          end if
       end do
-      do k = sweep_left_gap, sweep_right_b
-         ! (left_gap, right_gap, left_b, right_b)
+      do k = sweep_left_gap, sweep_right_stiffness
+         ! (the walls' gaps, b and c, left and right)
          if (n(k) == 0) cycle
-         if (k == sweep_left_gap .or. k == sweep_left_b) then
+         if (any(k == [sweep_left_gap, sweep_left_b, sweep_left_stiffness])) then
             if (sys%left%present) cycle
             error = at(src, g_system_sweep, trim(sweep_names(k))) // trim(sweep_names(k)) &
                & // " is a value of the left wall: the system has none (&left_wall)"
@@ -2274,6 +2275,10 @@ contains
          values = vary_left_b
       case ("right_b")
          values = vary_right_b
+      case ("left_stiffness")
+         values = vary_left_stiffness
+      case ("right_stiffness")
+         values = vary_right_stiffness
       case ("t_end")
          values = vary_t_end
       case ("speed")
