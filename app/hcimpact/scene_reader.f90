@@ -29,10 +29,10 @@ module hcimpact_scene_reader
       & add_outputs, output_choices, out_summary, out_sweep, out_histories, out_phase, &
       & out_loops, out_legacy, out_cvode, max_speeds, default_scene_lines, &
       & scene_line_length, max_scene_lines, unset_bits, is_unset, max_bodies, system_outputs, &
-      & out_contacts, out_final, out_impact_sweep, n_sweep_lists, sweep_names, sweep_unit, &
+      & out_contacts, out_final, out_motion, out_impact_sweep, n_sweep_lists, sweep_names, sweep_unit, &
       & sweep_striker_speed, sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, &
       & sweep_restitution, sweep_gravity, sweep_left_gap, sweep_right_gap, sweep_left_b, &
-      & sweep_right_b, sweep_left_stiffness, sweep_right_stiffness
+      & sweep_right_b, sweep_left_stiffness, sweep_right_stiffness, sweep_t_end
    use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
       & body_radius => radius, body_density => density, body_young => young, &
       & body_poisson => poisson, body_velocity => velocity, body_gap => gap, &
@@ -1843,13 +1843,17 @@ contains
       options%rtol = sys%rtol
       options%method = sys%method
       options%integrator = sys%integrator
+      call load_variations(src, sys, error)
+      if (allocated(error)) return
+      ! a sweep of end times gives every run its own (each checked by the library as it
+      ! runs): the system itself, when nothing else runs it, with the shortest of them
+      if (size(sys%vary(sweep_t_end)%values) > 0 .and. .not. any(sc%wanted([out_contacts, &
+         & out_final, out_motion]))) options%t_end = minval(sys%vary(sweep_t_end)%values)
       call check_chain(chain, options, stat, message)
       if (stat /= hcimpact_ok) then
          error = at(src, g_bodies, "") // trim(message) // " (" // status_message(stat) // ")"
          return
       end if
-      call load_variations(src, sys, error)
-      if (allocated(error)) return
       sc%system = sys
 
    contains

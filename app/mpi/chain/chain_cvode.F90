@@ -201,9 +201,11 @@ contains
          ierr = FCVodeSetStopTime(mem, real(t_end, c_double))
          if (ierr /= CV_SUCCESS) exit setup
          ! the serial chain's first step (`first_step`), not CVODE's estimate from t_end
+         ! (nor t_end when shorter: CVODE stops at t_end anyway, and a first step of
+         ! t_end = 1e-300 s times the time to the stop, 1e-600, underflowed to 0, which
+         ! CVODE took for a stop behind the start: CV_ILL_INPUT)
          where = "CVodeSetInitStep"
-         ierr = FCVodeSetInitStep(mem, real(min(first_step(run%rtol, run%scale), t_end), &
-            & c_double))
+         ierr = FCVodeSetInitStep(mem, real(first_step(run%rtol, run%scale), c_double))
          if (ierr /= CV_SUCCESS) exit setup
          ! a setup that failed on another rank only: none of them may enter CVode,
          ! whose steps every rank must take together

@@ -31,7 +31,7 @@ program hcimpact_mpi_chain
    use hcimpact_cvode_halting, only : halting_suspend, halting_resume
    use hcimpact_cvode, only : chain_simulate
    use hcimpact_cvode_chain_system, only : chain_region, region_scales, region_size, &
-      & region_frame, frame_motion, wall_impulse_scale
+      & region_frame, frame_motion, wall_impulse_scale, pushing_impulse
    use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_scene, scene_system
    use hcimpact_mpi_chain_block, only : block_setup, block_partition, halo_doubles, &
       & part_region, region_energy
@@ -43,6 +43,8 @@ program hcimpact_mpi_chain
    implicit none
 
    integer, parameter :: exit_ok = 0, exit_failure = 1, exit_usage = 2
+   !> The shortest run the distributed chain computes (s; below, t_end^2 underflows)
+   real(wp), parameter :: min_t_end = 1.0e-150_wp
    character(len=4096) :: scene_path, state_path, contacts_path, arg
    logical :: serial
    integer :: n_args, first_arg
@@ -171,6 +173,11 @@ contains
       if (.not. ok) call fail_all(rank, exit_usage, message)
       call scene_system(scene, n_ranks, chain, options, stat, message)
       if (stat /= hcimpact_ok) call fail_all(rank, exit_usage, message)
+      ! CVODE takes the product of the times to its stop and to t_end from the start,
+      ! t_end^2, for a stop behind the start where it underflows to 0 (CV_ILL_INPUT);
+      ! the serial chain (--serial, the scene runner) computes such runs
+      if (options%t_end < min_t_end) call fail_all(rank, exit_usage, "t_end below " &
+         & // "1e-150 s: CVODE cannot stop there (t_end^2 underflows); --serial computes it")
       n = size(chain%mass)
 
       call block_setup(chain, MPI_COMM_WORLD, run%block)
@@ -190,7 +197,7 @@ contains
       run%block%region%gravity = run%block%region%gravity - a_frame
       whole%gravity = whole%gravity - a_frame
       y(2:3 * n - 1:3) = chain%velocity - v_frame
-      call region_scales(whole, y, run%scale, weakest_force)
+      call region_scales(whole, y, run%scale, weakest_force, options%t_end)
       run%impulse_scale = wall_impulse_scale(chain%mass, run%scale(2))
       whole%gravity = chain%gravity
       ! (as the serial chain's integration: forces below the normal range keep fewer
@@ -226,7 +233,8 @@ contains
       if (run%block%n_motion > 3 * m) dissipated_local = dissipated_local + y(3 * m + 1)
       walls_local = 0.0_wp
       do i = 1, 2
-         if (run%block%impulse(i) > 0) walls_local(i) = y(run%block%impulse(i))
+         if (run%block%impulse(i) > 0) walls_local(i) = pushing_impulse(i, &
+            & y(run%block%impulse(i)))
       end do
       allocate(counts(n_ranks), displs(n_ranks), gathered(2 * n))
       do r = 0, n_ranks - 1
