@@ -86,12 +86,16 @@ contains
    end subroutine run_system_sweep
 
    !> Why a run failed, for the log: the status's text, or a cluster beyond a build
-   !> without CVODE.
+   !> without CVODE. (A row keeps its status alone, as doubles that every process
+   !> returns alike: the library's own message, e.g. the bound on contacts a run met,
+   !> comes from the variation run alone.)
    function failure_text(sc, status) result(text)
       type(scene_type), intent(in) :: sc
       integer, intent(in) :: status
       character(len=:), allocatable :: text
-      text = status_message(status)
+      text = status_message(status) // " (status " // str(status) // "; the system with" &
+         & // " that variation's values, run alone for the output final, gives the" &
+         & // " library's own message)"
       if (status /= hcimpact_err_unavailable) return
       if (.not. ode_available .and. sc%system%method /= method_exact) then
          text = "a cluster formed, which needs the CVODE component (status " // str(status) &
