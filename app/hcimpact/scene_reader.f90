@@ -931,7 +931,8 @@ contains
             text = "at_speed takes one value, the speed in m/s at which the restitutions" &
                & // " hold ('" // token // "' is one too many)"
          else if (len(owner) > 0 .and. (gid == g_system_sweep .or. gid == g_impact_sweep) &
-            & .and. (is_number(token) .or. scan(token, "0123456789+-.") == 1)) then
+            & .and. lower(owner) /= "combine" .and. (is_number(token) .or. &
+            & scan(token, "0123456789+-.") == 1)) then
             ! (a name never begins as a number does: gfortran names the values past the
             ! list's end, from the second past it on two of them run together, 1e-41e-4)
             text = "too many values for " // owner // " (at most " // str(max_variations) &

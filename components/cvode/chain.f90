@@ -103,6 +103,9 @@ module hcimpact_cvode_chain
       real(wp) :: tn = 0.0_wp
       logical :: stepped = .false.
       integer :: due = advance_reached
+      !> Whether a contact with the left (1) and right (2) wall opened in the region
+      !> (`note_wall`): a wall never touched gave it no impulse
+      logical :: wall_touched(2) = .false.
       !> Steps in a row that left the time where it was
       integer :: stalled = 0
       !> Per end (1 left, 2 right): whether the boundary pair touched at the start,
@@ -297,6 +300,7 @@ contains
       ! and every slot's state now, the start of the first step's interpolants
       allocate(self%contact(0:m), self%history(0:m), resting(0:m))
       resting = .false.
+      self%wall_touched = .false.
       do j = 0, m
          s = self%first - 1 + j
          if (self%region%kind(j) == slot_none) cycle
@@ -323,6 +327,7 @@ contains
                & peak=engine%exact(s)%so_far_peak, &
                & deformation=engine%exact(s)%so_far_deformation, &
                & earlier=engine%exact(s)%so_far_dissipated)
+            call note_wall(self, j)
             engine%exact(s)%handed = .false.
          else if (x >= 0.0_wp) then
             ! in contact, or touching: a touching pair that is pushed is in contact
@@ -1040,11 +1045,21 @@ contains
       approach_then = self%contact(j)%touching_approach
       self%contact(j) = open_contact(open=.true., t_start=t_start, approach=approach, &
          & e_base=e_base, peak=0.0_wp, deformation=0.0_wp, earlier=0.0_wp)
+      call note_wall(self, j)
       if (since <= t_start) then
          self%contact(j)%t_start = since
          self%contact(j)%approach = approach_then
       end if
    end subroutine open_at
+
+   !> A contact of slot j opened: where that is a wall, the region has touched it
+   !> (`wall_impulse`)
+   pure subroutine note_wall(self, j)
+      type(cvode_chain_integrator), intent(inout) :: self
+      integer, intent(in) :: j
+      if (self%region%kind(j) == slot_left_wall) self%wall_touched(1) = .true.
+      if (self%region%kind(j) == slot_right_wall) self%wall_touched(2) = .true.
+   end subroutine note_wall
 
    !> The largest value on [0, h] of the cubic with values p0, p1 and slopes d0, d1 at
    !> its ends (both ends and an interior maximum where the slope turns negative).
@@ -1245,8 +1260,10 @@ contains
          engine%body(i)%v0 = v(k)
       end do
       ! the impulses the walls gave the region
-      call add_wall_impulse(engine, 1, wall_impulse(self%region, 1, self%y, self%time - self%t0))
-      call add_wall_impulse(engine, 2, wall_impulse(self%region, 2, self%y, self%time - self%t0))
+      call add_wall_impulse(engine, 1, wall_impulse(self%region, 1, self%y, &
+         & self%time - self%t0, self%wall_touched(1)))
+      call add_wall_impulse(engine, 2, wall_impulse(self%region, 2, self%y, &
+         & self%time - self%t0, self%wall_touched(2)))
       call hand_touching(self, engine)
       ! (the parts of a region that splits go on with its step)
       if (self%due == advance_split) self%step_for_growth = self%h_last

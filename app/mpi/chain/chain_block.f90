@@ -28,6 +28,7 @@
 !> the integration and the momentum's balance can be formed (doc/mpi.md).
 module hcimpact_mpi_chain_block
    use, intrinsic :: iso_fortran_env, only : int64
+   use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_value, ieee_quiet_nan
    use mpi_f08, only : MPI_Comm, MPI_Sendrecv, MPI_DOUBLE_PRECISION, MPI_PROC_NULL, &
       & MPI_STATUS_IGNORE, MPI_Comm_rank, MPI_Comm_size
    use hcimpact_kinds, only : wp
@@ -177,6 +178,14 @@ contains
       if (block%n_left == 1) block%y_region(1:2) = block%halo_left
       block%y_region(lo + 1:lo + nl) = y(1:nl)
       if (block%n_right == 1) block%y_region(3 * mr - 2:3 * mr - 1) = block%halo_right
+      ! a state CVODE tried that is not finite (its norms then reject the step): NaN
+      ! without comparing it (the Debug build traps a comparison with NaN; beads of
+      ! 1e-200 kg met one)
+      if (.not. all(ieee_is_finite(block%y_region))) then
+         dy = ieee_value(1.0_wp, ieee_quiet_nan)
+         ok = .false.
+         return
+      end if
       call region_rhs(block%region, t, block%y_region, block%dy_region, ok)
       dy(1:nl) = block%dy_region(lo + 1:lo + nl)
       do side = 1, 2

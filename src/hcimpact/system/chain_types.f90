@@ -494,7 +494,7 @@ contains
       !> The impulses from outside (N s)
       real(wp), intent(in) :: impulses(:)
       real(wp) :: error
-      real(wp) :: outside, magnitude, scale
+      real(wp) :: outside, magnitude, scale, d
       integer :: i
       error = nan
       if (.not. ieee_is_finite(p)) return
@@ -508,8 +508,20 @@ contains
       if (.not. ieee_is_finite(magnitude)) return
       if (magnitude > huge(1.0_wp) - scale0) return
       scale = scale0 + magnitude
+      ! (p far from p0 + outside: their difference beyond the range has no balance,
+      ! a quotient beyond it is the largest double)
+      d = sum_in_range(p, -(p0 + outside))
+      if (.not. ieee_is_finite(d)) return
       error = 0.0_wp
-      if (scale > 0.0_wp) error = abs(p - (p0 + outside)) / scale
+      if (.not. scale > 0.0_wp) return
+      ! (separate tests: .or. does not spare huge * scale, an overflow for scale > 1)
+      if (scale >= 1.0_wp) then
+         error = abs(d) / scale
+      else if (abs(d) <= huge(1.0_wp) * scale) then
+         error = abs(d) / scale
+      else
+         error = huge(1.0_wp)
+      end if
    end function momentum_balance_error
 
    !> a + b, or +-Inf where it is beyond the range of doubles and NaN where it has no
