@@ -26,7 +26,8 @@ module hcimpact_scene_model
    public :: sweep_list, n_sweep_lists, sweep_names, sweep_unit, sweep_striker_speed, &
       & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
       & sweep_gravity, sweep_left_gap, sweep_right_gap, sweep_left_b, sweep_right_b, &
-      & sweep_left_stiffness, sweep_right_stiffness, sweep_t_end
+      & sweep_left_stiffness, sweep_right_stiffness, sweep_left_exponent, &
+      & sweep_right_exponent, sweep_t_end
    public :: unset_bits, is_unset
 
 
@@ -44,19 +45,19 @@ module hcimpact_scene_model
    !> they combine (the first varies slowest) and in which their columns stand: body 1's
    !> speed, the mass of one body, and for every pair the gap, the stiffness c, the
    !> exponent n, the damping b (or b from a restitution), then gravity, the gaps of
-   !> the left and the right wall to their end body, the walls' damping b and contact
-   !> constant c, and the end time
-   integer, parameter :: n_sweep_lists = 15
+   !> the left and the right wall to their end body, the walls' damping b, contact
+   !> constant c and exponent n, and the end time
+   integer, parameter :: n_sweep_lists = 17
    integer, parameter :: sweep_striker_speed = 1, sweep_mass = 2, sweep_gap = 3, &
       & sweep_stiffness = 4, sweep_exponent = 5, sweep_b = 6, sweep_restitution = 7, &
       & sweep_gravity = 8, sweep_left_gap = 9, sweep_right_gap = 10, sweep_left_b = 11, &
       & sweep_right_b = 12, sweep_left_stiffness = 13, sweep_right_stiffness = 14, &
-      & sweep_t_end = 15
+      & sweep_left_exponent = 15, sweep_right_exponent = 16, sweep_t_end = 17
    !> Their names in &system_sweep (their units: `sweep_unit`)
    character(len=*), parameter :: sweep_names(n_sweep_lists) = [character(len=15) :: &
       & "striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution", &
       & "gravity", "left_gap", "right_gap", "left_b", "right_b", "left_stiffness", &
-      & "right_stiffness", "t_end"]
+      & "right_stiffness", "left_exponent", "right_exponent", "t_end"]
 
    !> Most approach speeds a scene may list
    integer, parameter :: max_speeds = 1000

@@ -32,7 +32,8 @@ module hcimpact_scene_reader
       & out_contacts, out_final, out_motion, out_impact_sweep, n_sweep_lists, sweep_names, sweep_unit, &
       & sweep_striker_speed, sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, &
       & sweep_restitution, sweep_gravity, sweep_left_gap, sweep_right_gap, sweep_left_b, &
-      & sweep_right_b, sweep_left_stiffness, sweep_right_stiffness, sweep_t_end
+      & sweep_right_b, sweep_left_stiffness, sweep_right_stiffness, sweep_left_exponent, &
+      & sweep_right_exponent, sweep_t_end
    use hcimpact_scene_bodies, only : read_bodies, bodies_text_length, body_mass => mass, &
       & body_radius => radius, body_density => density, body_young => young, &
       & body_poisson => poisson, body_velocity => velocity, body_gap => gap, &
@@ -48,7 +49,8 @@ module hcimpact_scene_reader
       & vary_mass_body => mass_body, unset_body, vary_left_gap => left_gap, &
       & vary_right_gap => right_gap, vary_left_b => left_b, vary_right_b => right_b, &
       & vary_t_end => t_end, vary_striker_body => striker_body, &
-      & vary_left_stiffness => left_stiffness, vary_right_stiffness => right_stiffness
+      & vary_left_stiffness => left_stiffness, vary_right_stiffness => right_stiffness, &
+      & vary_left_exponent => left_exponent, vary_right_exponent => right_exponent
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, check_chain, &
       & max_chain_rtol, &
       & max_message, method_auto, method_exact, method_integrated, integrator_bdf, &
@@ -92,7 +94,8 @@ module hcimpact_scene_reader
       & "stiffness, exponent, b, restitution, at_speed, gap, young, poisson", &
       & "striker_speed, striker_body, mass, mass_body, gap, stiffness, exponent, b, " &
       & // "restitution, at_speed, gravity, left_gap, right_gap, left_b, right_b, " &
-      & // "left_stiffness, right_stiffness, t_end, combine", &
+      & // "left_stiffness, right_stiffness, left_exponent, right_exponent, t_end, " &
+      & // "combine", &
       & "those of hcimpact_mpi_chain (doc/mpi.md)", &
       & "mass, stiffness, exponent, b, speed, combine"]
    !> Names that take a list of values
@@ -2120,8 +2123,9 @@ contains
    !> striker_speed and gravity finite, masses, stiffnesses and exponents positive, gaps
    !> (of pairs and walls) and b (of pairs and walls) >= 0, end times > 0, restitutions
    !> in (0, 1] at the speed at_speed (> 0; default the speed of &bodies' restitution)
-   !> and turned into b here, b or restitution but not both, a wall's gap, b and c only
-   !> with that wall, striker_body and mass_body a body's index with their list;
+   !> and turned into b here, b or restitution but not both, a wall's gap, b, c and n
+   !> only with that wall (n other than 1.5 not with Hertz's c from the materials
+   !> unless c is varied too), striker_body and mass_body a body's index with their list;
    !> "product" (default) or "list" (the lists given of one length). A variation the
    !> library refuses (check_chain: an exponent out of its domain) gets its status in
    !> its row, as one that fails.
@@ -2154,10 +2158,11 @@ contains
             return
          end if
       end do
-      do k = sweep_left_gap, sweep_right_stiffness
-         ! (the walls' gaps, b and c, left and right)
+      do k = sweep_left_gap, sweep_right_exponent
+         ! (the walls' gaps, b, c and n, left and right)
          if (n(k) == 0) cycle
-         if (any(k == [sweep_left_gap, sweep_left_b, sweep_left_stiffness])) then
+         if (any(k == [sweep_left_gap, sweep_left_b, sweep_left_stiffness, &
+            & sweep_left_exponent])) then
             if (sys%left%present) cycle
             error = at(src, g_system_sweep, trim(sweep_names(k))) // trim(sweep_names(k)) &
                & // " is a value of the left wall: the system has none (&left_wall)"
@@ -2182,6 +2187,12 @@ contains
             return
          end if
       end if
+      call wall_hertz_exponents(src, sys%left, "left", n(sweep_left_exponent), &
+         & n(sweep_left_stiffness), vary_left_exponent, error)
+      if (allocated(error)) return
+      call wall_hertz_exponents(src, sys%right, "right", n(sweep_right_exponent), &
+         & n(sweep_right_stiffness), vary_right_exponent, error)
+      if (allocated(error)) return
       if (n(sweep_b) > 0 .and. n(sweep_restitution) > 0) then
          error = at(src, g_system_sweep, "restitution") // "vary b or restitution, not both" &
             & // " (each sets every pair's damping)"
@@ -2225,6 +2236,23 @@ contains
       end do
 
    end subroutine load_variations
+
+   !> A wall whose c is Hertz's constant from the materials (for n = 1.5) takes no other
+   !> exponent from the list `side`_exponent (n values) unless its c is varied too
+   !> (n_c values).
+   subroutine wall_hertz_exponents(src, wall, side, n, n_c, values, error)
+      type(scene_source), intent(in) :: src
+      type(wall_type), intent(in) :: wall
+      character(len=*), intent(in) :: side
+      integer, intent(in) :: n, n_c
+      real(wp), intent(in) :: values(:)
+      character(len=:), allocatable, intent(out) :: error
+      if (n == 0 .or. n_c > 0 .or. .not. allocated(wall%law_origin)) return
+      if (wall%law_origin == "given" .or. all(values(1:n) == 1.5_wp)) return
+      error = at(src, g_system_sweep, side // "_exponent") // "the " // side &
+         & // " wall's c is Hertz's constant from the materials, which is for n = 1.5:" &
+         & // " vary " // side // "_stiffness too, or give it in &" // side // "_wall"
+   end subroutine wall_hertz_exponents
 
    !> &system_sweep's index `name` (mass_body, striker_body: `value` as read, unset_body
    !> when not) of the body whose value the list `list` (n values) varies: 1 when not
@@ -2286,6 +2314,10 @@ contains
          values = vary_left_stiffness
       case ("right_stiffness")
          values = vary_right_stiffness
+      case ("left_exponent")
+         values = vary_left_exponent
+      case ("right_exponent")
+         values = vary_right_exponent
       case ("t_end")
          values = vary_t_end
       case ("speed")

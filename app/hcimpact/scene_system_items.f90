@@ -12,7 +12,8 @@ module hcimpact_scene_system_items
    use hcimpact_scene_model, only : system_type, nan, n_sweep_lists, sweep_striker_speed, &
       & sweep_mass, sweep_gap, sweep_stiffness, sweep_exponent, sweep_b, sweep_restitution, &
       & sweep_gravity, sweep_left_gap, sweep_right_gap, sweep_left_b, sweep_right_b, &
-      & sweep_left_stiffness, sweep_right_stiffness, sweep_t_end
+      & sweep_left_stiffness, sweep_right_stiffness, sweep_left_exponent, &
+      & sweep_right_exponent, sweep_t_end
    use hcimpact_scene_ode, only : ode_chain
    use hcimpact_scene_variations, only : variation_index, variation_count
    implicit none
@@ -67,7 +68,7 @@ contains
    !> The columns of every variation: the system with what the sweep varies replaced
    !> (body vary_striker_body's speed, body vary_mass_body's mass, every pair's gap,
    !> stiffness, exponent and damping, b itself or from a restitution, gravity, the
-   !> walls' gaps, damping and contact constants, the end time; the walls' n kept).
+   !> walls' gaps, damping, contact constants and exponents, the end time).
    pure function system_item_inputs(sys) result(inputs)
       type(system_type), intent(in) :: sys
       real(wp), allocatable :: inputs(:, :)
@@ -98,6 +99,10 @@ contains
             & values(sweep_left_stiffness)
          if (given(sweep_right_stiffness)) varied%right%law%stiffness = &
             & values(sweep_right_stiffness)
+         if (given(sweep_left_exponent)) varied%left%law%exponent = &
+            & values(sweep_left_exponent)
+         if (given(sweep_right_exponent)) varied%right%law%exponent = &
+            & values(sweep_right_exponent)
          if (given(sweep_t_end)) varied%t_end = values(sweep_t_end)
          inputs(:, k) = packed_system(varied)
       end do

@@ -177,7 +177,7 @@ contains
       character(len=*), parameter :: headings(n_sweep_lists) = [character(len=12) :: &
          & "v1 (m/s)", "m (kg)", "gap (m)", "c (N/m^n)", "n", "b (s/m)", "e", "g (m/s^2)", &
          & "gap L (m)", "gap R (m)", "b L (s/m)", "b R (s/m)", "c L (N/m^n)", "c R (N/m^n)", &
-         & "t_end (s)"]
+         & "n L", "n R", "t_end (s)"]
       character(len=200) :: line
       character(len=:), allocatable :: head
       real(wp) :: values(n_sweep_lists)

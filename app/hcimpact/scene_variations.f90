@@ -20,7 +20,7 @@ module hcimpact_scene_variations
       & variation_count
    public :: striker_speed, gap, b, combine, mass, stiffness, exponent, speed, restitution, &
       & gravity, at_speed, mass_body, unset_body, left_gap, right_gap, left_b, right_b, &
-      & left_stiffness, right_stiffness, t_end, striker_body
+      & left_stiffness, right_stiffness, left_exponent, right_exponent, t_end, striker_body
 
    !> Most values of one list
    integer, parameter :: max_variations = 1000
@@ -35,7 +35,8 @@ module hcimpact_scene_variations
    !> A system's sweep: the speeds of body 1 (m/s), the gaps of every pair (m), the
    !> damping of every pair (s/m), the restitutions of every pair at the speed at_speed
    !> (m/s), gravity (m/s^2), the gaps of the left and the right wall to their end body
-   !> (m), their damping (s/m) and contact constants (N/m^n), the end times (s), and
+   !> (m), their damping (s/m), contact constants (N/m^n) and exponents, the end times
+   !> (s), and
    !> (with stiffness and exponent
    !> below, every pair's) the masses of body mass_body (kg, `mass` below); the speeds
    !> are those of body striker_body (default 1)
@@ -43,7 +44,8 @@ module hcimpact_scene_variations
       & restitution(max_variations), gravity(max_variations), at_speed, &
       & left_gap(max_variations), right_gap(max_variations), left_b(max_variations), &
       & right_b(max_variations), left_stiffness(max_variations), &
-      & right_stiffness(max_variations), t_end(max_variations)
+      & right_stiffness(max_variations), left_exponent(max_variations), &
+      & right_exponent(max_variations), t_end(max_variations)
    integer :: mass_body, striker_body
    !> "product" (every combination) or "list" (the lists side by side)
    character(len=variations_text_length) :: combine
@@ -56,7 +58,7 @@ module hcimpact_scene_variations
 
    namelist /system_sweep/ striker_speed, striker_body, mass, mass_body, gap, stiffness, &
       & exponent, b, restitution, at_speed, gravity, left_gap, right_gap, left_b, right_b, &
-      & left_stiffness, right_stiffness, t_end, combine
+      & left_stiffness, right_stiffness, left_exponent, right_exponent, t_end, combine
    namelist /impact_sweep/ mass, stiffness, exponent, b, speed, combine
 
 contains
@@ -85,6 +87,8 @@ contains
       right_b = unset
       left_stiffness = unset
       right_stiffness = unset
+      left_exponent = unset
+      right_exponent = unset
       t_end = unset
       at_speed = unset
       mass_body = unset_body

@@ -11,7 +11,7 @@ holds the row's value (nan where the sweep does not vary it), and every row's fi
 velocities and status are, to the last bit, those of a scene of its own in which the
 row's values stand in &bodies (one body's velocity, one body's mass, every pair's gap,
 stiffness, exponent and b, or the restitution at its speed, gravity, the end time)
-and the walls' groups (their gaps, b and c), run for the output `final`. The varied
+and the walls' groups (their gaps, b, c and n), run for the output `final`. The varied
 scene goes through the sweep's code (the lists, the substitution, the restitution's
 damping); the scene of its own through the reader of &bodies alone.
 """
@@ -24,16 +24,17 @@ import sys
 
 NAMES = ["striker_speed", "mass", "gap", "stiffness", "exponent", "b", "restitution",
          "gravity", "left_gap", "right_gap", "left_b", "right_b", "left_stiffness",
-         "right_stiffness", "t_end"]
+         "right_stiffness", "left_exponent", "right_exponent", "t_end"]
 UNITS = ["m/s", "kg", "m", "N/m^n", "-", "s/m", "-", "m/s^2", "m", "m", "s/m", "s/m",
-         "N/m^n", "N/m^n", "s"]
+         "N/m^n", "N/m^n", "-", "-", "s"]
 
 # three balls falling onto a wall (the left one nearest), a cluster and isolated
 # contacts alike
 BASE = {"mass": [0.2, 0.1, 0.05], "velocity": [-1.0, -1.5, -2.0], "gap": 1e-3,
         "stiffness": 1e8, "exponent": 1.5, "b": 0.05, "gravity": -9.81,
         "t_end": 0.01, "left_gap": 2e-3, "left_b": 0.1, "right_b": 0.1,
-        "left_stiffness": 1e9, "right_stiffness": 1e9}
+        "left_stiffness": 1e9, "right_stiffness": 1e9, "left_exponent": 1.5,
+        "right_exponent": 1.5}
 
 SWEEPS = [
     # name, lists (in NAMES' order), combine, the bodies the sweep names (mass_body,
@@ -56,8 +57,9 @@ SWEEPS = [
     ("walls-damping-time", {"striker_speed": [-0.5, 2.0], "left_b": [0.0, 0.4],
                             "right_b": [0.0, 0.2], "t_end": [2e-3, 6e-3, 0.03]},
      "product", {"striker_body": 2}, {"right_gap": 1e-2, "velocity": [-1.0, -1.5, 1.0]}),
-    # the walls' contact constants, side by side
-    ("walls-stiffness", {"left_stiffness": [1e8, 3e9, 1e10], "right_stiffness": [5e8, 2e9, 4e9]},
+    # the walls' contact constants and exponents, side by side
+    ("walls-laws", {"left_stiffness": [1e8, 3e9, 1e10], "right_stiffness": [5e8, 2e9, 4e9],
+                    "left_exponent": [1.5, 1.25, 1.4], "right_exponent": [1.1, 1.5, 1.3]},
      "list", {}, {"right_gap": 1e-2, "velocity": [-1.0, -1.5, 1.0]}),
 ]
 AT_SPEED = 0.7
@@ -79,11 +81,11 @@ def scene_text(title, bodies, sweep=None, combine=None, chosen=None, outputs="fi
         text += f"  b = {fmt(bodies['b'])}\n"
     text += f"  gravity = {fmt(bodies['gravity'])}, t_end = {fmt(bodies['t_end'])}\n/\n"
     text += (f"&left_wall stiffness = {fmt(bodies['left_stiffness'])}, "
-             f"b = {fmt(bodies['left_b'])}, "
+             f"exponent = {fmt(bodies['left_exponent'])}, b = {fmt(bodies['left_b'])}, "
              f"gap = {fmt(bodies['left_gap'])} /\n")
     if "right_gap" in bodies:
         text += (f"&right_wall stiffness = {fmt(bodies['right_stiffness'])}, "
-                 f"b = {fmt(bodies['right_b'])}, "
+                 f"exponent = {fmt(bodies['right_exponent'])}, b = {fmt(bodies['right_b'])}, "
                  f"gap = {fmt(bodies['right_gap'])} /\n")
     if sweep:
         text += "&system_sweep\n"
