@@ -261,12 +261,9 @@ contains
       self%y(2:3 * m:3) = v_start - self%v_frame
 
       ! scales: the largest relative speed, the smallest maximum compression at it
-      if (engine%options%t_end > 0.0_wp) then
-         call region_scales(self%region, self%y, self%region%scale, weakest_force, &
-            & engine%options%t_end - engine%time)
-      else
-         call region_scales(self%region, self%y, self%region%scale, weakest_force)
-      end if
+      call region_scales(self%region, self%y, self%region%scale, weakest_force, &
+         & merge(engine%options%t_end - engine%time, huge(1.0_wp), &
+         & engine%options%t_end > 0.0_wp))
       ! forces below the normal range of doubles keep fewer bits than the tolerance
       ! needs (two bodies of 1 kg, c = 1e9 N/m^1.5, touching at 1e-270 m/s were
       ! integrated to 7e-8 relative with success, and at 1e-300 m/s ran to max_steps)

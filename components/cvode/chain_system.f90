@@ -40,7 +40,7 @@ module hcimpact_cvode_chain_system
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite
    use hcimpact_kinds, only : wp
    use hcimpact_force_element, only : contact_force_type, contact_force_pair
-   use hcimpact_chain_types, only : contact_law, kinetic_energy
+   use hcimpact_chain_types, only : contact_law, kinetic_energy, product_in_range
    use hcimpact_cvode_report, only : solver_report
    implicit none
    private
@@ -303,15 +303,7 @@ contains
    !> bodies that receive them times the speed's scale v_ref (huge beyond the range)
    pure real(wp) function wall_impulse_scale(mass, v_ref)
       real(wp), intent(in) :: mass(:), v_ref
-      real(wp) :: total
-      total = sum(mass)
-      wall_impulse_scale = huge(1.0_wp)
-      ! (huge / total overflows for a mass below 1 kg: the Debug build traps it)
-      if (total <= 1.0_wp) then
-         wall_impulse_scale = total * v_ref
-      else if (v_ref <= huge(1.0_wp) / total) then
-         wall_impulse_scale = total * v_ref
-      end if
+      wall_impulse_scale = min(product_in_range(sum(mass), v_ref), huge(1.0_wp))
    end function wall_impulse_scale
 
    !> The relative tolerance of the error weights for a user's rtol: a fraction of it
@@ -376,9 +368,9 @@ contains
       type(chain_region), intent(in) :: region
       real(wp), intent(in) :: y(:)
       real(wp), intent(out) :: scale(3), weakest_force
-      !> The time left to the end of the run (s; absent: the run ends when no contact
-      !> can happen again)
-      real(wp), intent(in), optional :: horizon
+      !> The time left to the end of the run (s; huge: the run ends when no contact can
+      !> happen again)
+      real(wp), intent(in) :: horizon
       ! exp of at most this is a double
       real(wp), parameter :: max_log = 709.0_wp
       real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total, lq, mu_max
@@ -453,12 +445,10 @@ contains
       ! (beyond 1e100 s, m/s or m/s^2 not bounded: the product stays a double; nor
       ! below 1e-150 s: CVODE's first step, x_ref / v_ref, times the time to its stop
       ! would underflow to 0, which CVODE takes for a stop behind the start)
-      if (present(horizon)) then
-         if (horizon > 1.0e-150_wp .and. horizon < 1.0e100_wp .and. v_ref < 1.0e100_wp &
-            & .and. abs(region%gravity) < 1.0e100_wp) then
-            x_max = 4.0_wp * horizon * (v_ref + abs(region%gravity) * horizon)
-            if (x_max > 0.0_wp) x_ref = min(x_ref, x_max)
-         end if
+      if (horizon > 1.0e-150_wp .and. horizon < 1.0e100_wp .and. v_ref < 1.0e100_wp &
+         & .and. abs(region%gravity) < 1.0e100_wp) then
+         x_max = 4.0_wp * horizon * (v_ref + abs(region%gravity) * horizon)
+         if (x_max > 0.0_wp) x_ref = min(x_ref, x_max)
       end if
       if (.not. (x_ref > 0.0_wp .and. x_ref < huge(1.0_wp))) x_ref = 1.0e-6_wp
       ! under gravity, at least the speed of a fall through x_ref: x_ref is then at least
@@ -524,17 +514,17 @@ contains
    !> weight, M g (N); none where M g is beyond the range of doubles.
    pure subroutine set_weight(region)
       type(chain_region), intent(inout) :: region
-      real(wp) :: total
+      real(wp) :: weight
       region%weight_side = 0
       region%weight = 0.0_wp
-      total = sum(region%mass)
-      if (.not. abs(region%gravity) <= huge(1.0_wp) / total) return
+      weight = product_in_range(sum(region%mass), region%gravity)
+      if (.not. ieee_is_finite(weight)) return
       if (region%gravity < 0.0_wp .and. region%kind(0) == slot_left_wall) then
          region%weight_side = 1
       else if (region%gravity > 0.0_wp .and. region%kind(region%m) == slot_right_wall) then
          region%weight_side = 2
       end if
-      if (region%weight_side > 0) region%weight = total * region%gravity
+      if (region%weight_side > 0) region%weight = weight
    end subroutine set_weight
 
    !> The impulse the wall on `side` (1 left, 2 right) gave the region over the time

@@ -27,7 +27,7 @@ program hcimpact_mpi_chain
    use hcimpact_status, only : hcimpact_ok
    use hcimpact_chain_types, only : chain_type, chain_options, chain_result, max_message, &
       & contact_record, energy_balance_error, momentum_balance_error, gravity_impulse, &
-      & sum_in_range
+      & momentum
    use hcimpact_cvode_halting, only : halting_suspend, halting_resume
    use hcimpact_cvode, only : chain_simulate
    use hcimpact_cvode_chain_system, only : chain_region, region_scales, region_size, &
@@ -157,8 +157,8 @@ contains
          & y_whole(:)
       integer, allocatable :: counts(:), displs(:)
       real(wp) :: dissipated_local, dissipated, energy0, energy_error, t0, t1, seconds, q0, &
-         & energy_end, weakest_force, v_frame, a_frame, shift, speed, e_grav, p, p0, &
-         & momentum_scale, momentum_error, walls_local(2), walls(2)
+         & energy_end, weakest_force, v_frame, a_frame, shift, speed, e_grav, &
+         & momentum_error, walls_local(2), walls(2)
       integer(int64) :: exchanges, halo_bytes, unconverged
       type(contact_record), allocatable :: contacts(:)
       integer :: rank, n_ranks, stat, k, m, n, r, first, size_r, i
@@ -295,20 +295,10 @@ contains
                   & // "elastic or gravitational energy, or their balance, beyond 1.8e308 J)"
             end if
             ! the momentum against p0 + M g t + J_left + J_right, as chain_simulate's
-            ! momentum_error (`momentum_balance_error`; every m v is a double where the
-            ! kinetic energies are, and sum m |v0| one by check_chain)
-            if (ok) then
-               p = 0.0_wp
-               p0 = 0.0_wp
-               momentum_scale = 0.0_wp
-               do i = 1, n
-                  p = sum_in_range(p, chain%mass(i) * v(i))
-                  p0 = p0 + chain%mass(i) * chain%velocity(i)
-                  momentum_scale = momentum_scale + chain%mass(i) * abs(chain%velocity(i))
-               end do
-               momentum_error = momentum_balance_error(p, p0, momentum_scale, &
-                  & [gravity_impulse(chain%mass, chain%gravity, options%t_end), walls])
-            end if
+            ! momentum_error
+            momentum_error = momentum_balance_error(momentum(chain%mass, v), chain%mass, &
+               & chain%velocity, [gravity_impulse(chain%mass, chain%gravity, options%t_end), &
+               & walls])
          else
             ok = .false.
             write(message, '(a, es11.3e3, a)') "by t = ", options%t_end, " s a position or a " &

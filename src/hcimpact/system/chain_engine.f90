@@ -55,7 +55,7 @@ module hcimpact_chain_engine
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
       & kinetic_energy, energy_balance_error, momentum_balance_error, sum_in_range, &
-      & gravity_impulse
+      & gravity_impulse, momentum, product_in_range
    implicit none
    private
 
@@ -1912,25 +1912,6 @@ contains
       end do
    end subroutine take_samples
 
-   !> a b for finite a and b, or +-Inf where it is beyond the range of doubles, without
-   !> raising the overflow (the rounding as a b's where it is a double)
-   elemental function product_in_range(a, b) result(y)
-      real(wp), intent(in) :: a, b
-      real(wp) :: y, f
-      if (a == 0.0_wp .or. b == 0.0_wp .or. exponent(a) + exponent(b) < maxexponent(1.0_wp)) &
-         & then
-         y = a * b
-      else
-         ! near or beyond the top: the product of the fractions, in [1/4, 1), scaled
-         f = fraction(a) * fraction(b)
-         if (exponent(a) + exponent(b) + exponent(f) > maxexponent(1.0_wp)) then
-            y = sign(ieee_value(1.0_wp, ieee_positive_inf), f)
-         else
-            y = scale(f, exponent(a) + exponent(b))
-         end if
-      end if
-   end function product_in_range
-
    !> The result from the final state of the engine.
    !> hcimpact_err_domain (and engine%message) where a final or sampled position or
    !> velocity, an energy of the result, the momentum or a term of the energy balance
@@ -1941,7 +1922,7 @@ contains
       type(chain_result), intent(inout) :: result
       integer, intent(out) :: stat
       integer :: i, s, nsamples
-      real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, p0, p, scale, x, in_progress, impulse
+      real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, p, x, in_progress, impulse
       real(wp) :: walls(2), xd, f
       real(wp), allocatable :: displacement(:)
       type(contact_law) :: law
@@ -1963,12 +1944,11 @@ contains
       ! run fails below), without raising the overflow on the way
       e_kin = 0.0_wp
       e_grav = 0.0_wp
-      p = 0.0_wp
+      p = momentum(engine%chain%mass, result%velocities)
       do i = 1, engine%n
          u = displacement(i)
          v = result%velocities(i)
          e_kin = sum_in_range(e_kin, kinetic_energy(engine%chain%mass(i), v))
-         p = sum_in_range(p, signed_product(v, [engine%chain%mass(i)]))
          ! -m g u, and the sum, without an overflow on the way (+-Inf beyond the range;
          ! the run then fails below)
          if (engine%chain%gravity /= 0.0_wp .and. u /= 0.0_wp) e_grav = sum_in_range(e_grav, &
@@ -1989,12 +1969,8 @@ contains
          e_el = sum_in_range(e_el, power_law_potential(law%stiffness, law%exponent, x))
       end do
       e_kin0 = 0.0_wp
-      p0 = 0.0_wp
-      scale = 0.0_wp
       do i = 1, engine%n
          e_kin0 = e_kin0 + kinetic_energy(engine%chain%mass(i), engine%chain%velocity(i))
-         p0 = p0 + engine%chain%mass(i) * engine%chain%velocity(i)
-         scale = scale + engine%chain%mass(i) * abs(engine%chain%velocity(i))
       end do
       result%initial_energy = e_kin0
       ! and what the contacts still in progress have dissipated so far (a region's,
@@ -2038,7 +2014,8 @@ contains
       ! J_right (NaN where their impulses are beyond the range of doubles: the run
       ! fails below for the walls', not for gravity's)
       impulse = gravity_impulse(engine%chain%mass, engine%chain%gravity, engine%time)
-      result%momentum_error = momentum_balance_error(p, p0, scale, [impulse, walls])
+      result%momentum_error = momentum_balance_error(p, engine%chain%mass, &
+         & engine%chain%velocity, [impulse, walls])
       result%rested = engine%rested
       result%rest_time = engine%rest_time
       result%n_contacts = engine%n_contacts

@@ -22,14 +22,14 @@ module hcimpact_chain_types
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_domain, hcimpact_err_size
    use hcimpact_contact, only : check_parameters
-   use hcimpact_power_force, only : product_of
+   use hcimpact_power_force, only : product_of, signed_product
    implicit none
    private
 
    public :: contact_law, chain_type, chain_options, contact_record, chain_result
    public :: chain_counters, chain_switch
    public :: check_chain, kinetic_energy, energy_balance_error, momentum_balance_error
-   public :: sum_in_range, gravity_impulse
+   public :: sum_in_range, product_in_range, gravity_impulse, momentum
    public :: method_auto, method_exact, method_integrated
    public :: integrator_bdf, integrator_adams
    public :: by_closed_forms, by_integration, by_both
@@ -482,22 +482,32 @@ contains
    end function energy_balance_error
 
    !> The momentum balance of a system as a relative error (`chain_result`%
-   !> momentum_error): the final momentum p against the initial one p0 plus the
-   !> impulses from outside (gravity's M g t, the walls'), over scale0 = sum m |v0|
-   !> plus the impulses' magnitudes (they count in the scale as the energy gravity puts
-   !> in counts in the energy's; not max(scale, tiny): momenta of subnormal size are
-   !> errors of their size). NaN where p or an impulse's sum is beyond the range of
-   !> doubles (no balance to form); nothing is raised on the way.
-   pure function momentum_balance_error(p, p0, scale0, impulses) result(error)
-      !> Final and initial momentum (N s), sum m |v0| (N s, finite, >= 0)
-      real(wp), intent(in) :: p, p0, scale0
+   !> momentum_error): the final momentum p (`momentum`) against the initial one
+   !> p0 = sum m v0 plus the impulses from outside (gravity's M g t, the walls'), over
+   !> sum m |v0| plus the impulses' magnitudes (they count in the scale as the energy
+   !> gravity puts in counts in the energy's; not max(scale, tiny): momenta of
+   !> subnormal size are errors of their size). NaN where p, an impulse's sum or the
+   !> difference is beyond the range of doubles (no balance to form); nothing is
+   !> raised on the way.
+   pure function momentum_balance_error(p, mass, velocity0, impulses) result(error)
+      !> Final momentum (N s)
+      real(wp), intent(in) :: p
+      !> The bodies' masses (kg) and initial velocities (m/s), as check_chain passed
+      !> them (sum m |v0| a double)
+      real(wp), intent(in) :: mass(:), velocity0(:)
       !> The impulses from outside (N s)
       real(wp), intent(in) :: impulses(:)
       real(wp) :: error
-      real(wp) :: outside, magnitude, scale, d
+      real(wp) :: p0, scale0, outside, magnitude, scale, d
       integer :: i
       error = nan
       if (.not. ieee_is_finite(p)) return
+      p0 = 0.0_wp
+      scale0 = 0.0_wp
+      do i = 1, size(mass)
+         p0 = p0 + mass(i) * velocity0(i)
+         scale0 = scale0 + mass(i) * abs(velocity0(i))
+      end do
       outside = 0.0_wp
       magnitude = 0.0_wp
       do i = 1, size(impulses)
@@ -545,6 +555,36 @@ contains
       end if
    end function sum_in_range
 
+   !> a b for finite a and b, or +-Inf where it is beyond the range of doubles, without
+   !> raising the overflow (the rounding as a b's where it is a double)
+   elemental function product_in_range(a, b) result(y)
+      real(wp), intent(in) :: a, b
+      real(wp) :: y, f
+      if (a == 0.0_wp .or. b == 0.0_wp .or. exponent(a) + exponent(b) < maxexponent(1.0_wp)) &
+         & then
+         y = a * b
+      else
+         ! near or beyond the top: the product of the fractions, in [1/4, 1), scaled
+         f = fraction(a) * fraction(b)
+         if (exponent(a) + exponent(b) + exponent(f) > maxexponent(1.0_wp)) then
+            y = sign(ieee_value(1.0_wp, ieee_positive_inf), f)
+         else
+            y = scale(f, exponent(a) + exponent(b))
+         end if
+      end if
+   end function product_in_range
+
+   !> The momentum sum m v (N s) of bodies, +-Inf where it is beyond the range of
+   !> doubles, without raising the overflow on the way
+   pure function momentum(mass, velocity) result(p)
+      real(wp), intent(in) :: mass(:), velocity(:)
+      real(wp) :: p
+      integer :: i
+      p = 0.0_wp
+      do i = 1, size(mass)
+         p = sum_in_range(p, signed_product(velocity(i), [mass(i)]))
+      end do
+   end function momentum
 
    !> The impulse of gravity g on bodies of the masses `mass` over the time t >= 0,
    !> M g t, without overflow on the way (the Debug build traps on it): +-Inf where it
