@@ -772,6 +772,19 @@ static void fuzz_chain(stream *s)
     for (i = 0; i < n; ++i) {
       fprintf(stderr, "  body %d: mass %.17g, velocity %.17g\n", i, masses[i], velocities[i]);
     }
+    for (i = 0; i + 1 < n; ++i) {
+      fprintf(stderr, "  pair %d: gap %.17g, law %.17g %.17g %.17g\n", i, gaps[i],
+              laws[i].stiffness, laws[i].exponent, laws[i].damping);
+    }
+    for (i = 0; i < 2; ++i) {
+      if (opt & (32 << i)) {
+        fprintf(stderr, "  wall %s: gap %.17g, law %.17g %.17g %.17g\n", i ? "right" : "left",
+                walls[i].gap, walls[i].stiffness, walls[i].exponent, walls[i].damping);
+      }
+    }
+    fprintf(stderr, "  gravity %.17g, t_end %.17g, rtol %.17g, method %d, integrator %d, "
+            "options %s\n", gravity, options.t_end, options.rtol, options.method,
+            options.integrator, null_options ? "NULL" : "given");
   }
   if (status == HCIMPACT_OK) {
     contract(isfinite(result.time) && result.time >= 0.0 && isfinite(result.initial_energy)

@@ -199,13 +199,19 @@ for artifact in "$artifacts"/crash-* "$artifacts"/timeout-* "$artifacts"/leak-*;
   [ -f "$artifact" ] || continue
   output=$("$build/fuzz_api" -timeout=60 "$artifact" 2>&1 || true)
   first=$(printf '%s\n' "$output" \
-    | grep -m1 -E "ERROR: AddressSanitizer|runtime error:|contract broken|deadly signal|SEGV|FPE|floating|timeout" \
+    | grep -m1 -E "ERROR: (Address|Leak)Sanitizer|runtime error:|contract broken|deadly signal|SEGV|FPE|floating|timeout" \
     | sed 's/^==[0-9]*==//' || true)
   if printf '%s\n' "$first" | grep -q "AddressSanitizer"; then
     # the kind (FPE, SEGV, ...) and where: frame #0 without its address
     kind=$(printf '%s\n' "$first" | sed -n 's/.*AddressSanitizer: \([A-Za-z-]*\).*/\1/p')
     where=$(printf '%s\n' "$output" | grep -m1 -E "^ *#0 " | sed 's/^ *#0 0x[0-9a-f]* in //; s/ (.*BuildId.*//' || true)
     first="AddressSanitizer: $kind in $where"
+  fi
+  if printf '%s\n' "$first" | grep -q "LeakSanitizer"; then
+    # where the first leaked block was allocated: the first frame in hcimpact's code
+    where=$(printf '%s\n' "$output" | grep -m1 -E "^ *#[0-9]+ .* in __hcimpact" \
+      | sed 's/^ *#[0-9]* 0x[0-9a-f]* in //; s/ (.*BuildId.*//' || true)
+    first="LeakSanitizer: leak allocated in ${where:-an unknown frame}"
   fi
   contact=$(printf '%s\n' "$output" | grep -m1 "last contact" | sed 's/^ *//' || true)
   printf '%s\t%s\t%s\n' "$(basename "$artifact")" "${first:-unclassified}" "$contact" >>"$triage"

@@ -746,7 +746,8 @@ contains
       if (s == 0) g = engine%gravity
       if (s == engine%n) g = -engine%gravity
       tau = first_zero(gap, rate, g)
-      if (tau < huge(1.0_wp)) t_next = engine%time + tau
+      ! (a time beyond the range of doubles is never)
+      if (tau <= huge(1.0_wp) - engine%time) t_next = engine%time + tau
    end function free_contact_time
 
    !> The first tau >= 0 at which gap + rate tau + g tau^2/2 reaches 0 while
@@ -754,14 +755,15 @@ contains
    pure function first_zero(gap, rate, g) result(tau)
       real(wp), intent(in) :: gap, rate, g
       real(wp) :: tau
-      real(wp) :: disc, q, r1, r2, w, sc
+      real(wp) :: disc, q, r1, r2, w, sc, gs, rs, gg
       tau = huge(1.0_wp)
       if (gap <= 0.0_wp .and. (rate < 0.0_wp .or. (rate == 0.0_wp .and. g < 0.0_wp))) then
          tau = 0.0_wp
          return
       end if
       if (g == 0.0_wp) then
-         if (rate < 0.0_wp .and. gap > 0.0_wp) tau = -gap / rate
+         ! (the quotient without the overflow: a gap of 1e300 m closing at 1e-10 m/s)
+         if (rate < 0.0_wp .and. gap > 0.0_wp) tau = quotient_or_huge(gap, -rate)
          return
       end if
       ! g tau^2/2 + rate tau + gap = 0 in the stable form: roots q/g and 2 gap/q. The
@@ -776,18 +778,31 @@ contains
       end if
       sc = max(abs(rate), w)
       if (.not. sc > 0.0_wp) return
-      disc = (rate / sc)**2 - sign(1.0_wp, g) * sign(1.0_wp, gap) * (w / sc)**2
+      ! q is up to 2.5 s and the tests below form g q / g: where s is beyond huge / 16
+      ! (speeds of 1e307 m/s) the same roots come from the equation divided by 32
+      ! (q overflowed to an infinity there, which the fuzzer found)
+      gs = gap
+      rs = rate
+      gg = g
+      if (sc > 0.0625_wp * huge(1.0_wp)) then
+         gs = gap / 32.0_wp
+         rs = rate / 32.0_wp
+         gg = g / 32.0_wp
+         w = w / 32.0_wp
+         sc = sc / 32.0_wp
+      end if
+      disc = (rs / sc)**2 - sign(1.0_wp, gg) * sign(1.0_wp, gs) * (w / sc)**2
       if (disc < 0.0_wp) return
-      q = -(rate + sign(sc * sqrt(disc), rate))
+      q = -(rs + sign(sc * sqrt(disc), rs))
       if (q == 0.0_wp) return
       ! a root beyond the range of doubles is never reached: huge, formed without
       ! the overflow (q / g for a gravity of 5e-324 trapped in the Debug build)
-      r1 = quotient_or_huge(q, g)
-      r2 = quotient_or_huge(gap, q)
+      r1 = quotient_or_huge(q, gg)
+      r2 = quotient_or_huge(gs, q)
       r2 = sign(2.0_wp * min(abs(r2), 0.5_wp * huge(1.0_wp)), r2)
       ! the smallest positive root where the gap decreases (g tau + rate < 0)
-      if (r1 > 0.0_wp .and. g * r1 + rate < 0.0_wp) tau = min(tau, r1)
-      if (r2 > 0.0_wp .and. g * r2 + rate < 0.0_wp) tau = min(tau, r2)
+      if (r1 > 0.0_wp .and. gg * r1 + rs < 0.0_wp) tau = min(tau, r1)
+      if (r2 > 0.0_wp .and. gg * r2 + rs < 0.0_wp) tau = min(tau, r2)
    end function first_zero
 
    !> a / b for b /= 0, or +-huge where the quotient may be beyond the range of doubles
@@ -799,7 +814,7 @@ contains
       real(wp) :: y
       if (a == 0.0_wp) then
          y = 0.0_wp
-      else if (exponent(a) - exponent(b) < maxexponent(1.0_wp)) then
+      else if (int(exponent(a), int64) - exponent(b) < maxexponent(1.0_wp)) then
          y = a / b
       else
          y = sign(huge(1.0_wp), a) * sign(1.0_wp, b)
@@ -1815,6 +1830,7 @@ contains
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: a, b
       real(wp), allocatable :: u(:), u_now(:), v_now(:)
+      real(wp) :: above_rest
       integer :: i
       allocate(u(b - a + 1), u_now(b - a + 1), v_now(b - a + 1))
       do i = a, b
@@ -1825,8 +1841,11 @@ contains
       ! what the region has above its equilibrium will all be dissipated, and the
       ! momentum it has left goes into the wall it rests on, which from now on holds
       ! its weight
-      engine%dissipated = engine%dissipated + region_energy(engine, a, b, u_now, v_now) &
+      ! (the rest state has the least energy: a difference below 0 is rounding)
+      above_rest = region_energy(engine, a, b, u_now, v_now) &
          & - region_energy(engine, a, b, u, 0.0_wp * v_now)
+      if (ieee_is_finite(above_rest)) above_rest = max(0.0_wp, above_rest)
+      engine%dissipated = engine%dissipated + above_rest
       engine%settle_side = merge(1, 2, engine%gravity < 0.0_wp)
       engine%settle_time = engine%time
       do i = a, b
