@@ -199,8 +199,9 @@ module hcimpact_scene_model
       !> side by side
       type(sweep_list) :: vary(n_sweep_lists)
       logical :: vary_product = .true.
-      !> The body whose mass the list `mass` varies, and whose velocity `striker_speed`
-      integer :: vary_mass_body = 1, vary_striker_body = 1
+      !> The bodies whose mass the list `mass` varies, and whose velocity
+      !> `striker_speed` (each value given to all of them; set with the sweep)
+      integer, allocatable :: vary_mass_body(:), vary_striker_body(:)
       !> The damping b (s/m) of each value of the list `restitution`, b = beta(e)/V at
       !> the speed `vary_at_speed` (m/s)
       real(wp), allocatable :: vary_restitution_b(:)

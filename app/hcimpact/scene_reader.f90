@@ -923,13 +923,9 @@ contains
             & .and. is_number(token)) then
             text = "too many values for " // owner // " (at most " // str(max_bodies) &
                & // " bodies)"
-         else if (len(owner) > 0 .and. gid == g_system_sweep .and. lower(owner) == "mass_body") then
-            text = "mass_body takes one whole number, the index of the body whose mass the" &
-               & // " list mass varies ('" // token // "' is not read)"
          else if (len(owner) > 0 .and. gid == g_system_sweep .and. &
-            & lower(owner) == "striker_body") then
-            text = "striker_body takes one whole number, the index of the body whose" &
-               & // " velocity the list striker_speed varies ('" // token // "' is not read)"
+            & any(lower(owner) == ["mass_body   ", "striker_body"])) then
+            text = body_list_text(lower(owner)) // " ('" // token // "' is not read)"
          else if (len(owner) > 0 .and. gid == g_system_sweep .and. lower(owner) == "at_speed") then
             text = "at_speed takes one value, the speed in m/s at which the restitutions" &
                & // " hold ('" // token // "' is one too many)"
@@ -970,6 +966,8 @@ contains
          end if
          token = trim(msg(p + len("Bad data for namelist object "):))
          text = "a value of " // token // " is not of the right kind: " // clip(adjustl(line))
+         if (gid == g_system_sweep .and. any(lower(token) == ["mass_body   ", "striker_body"])) &
+            & text = body_list_text(lower(token)) // ": " // clip(adjustl(line))
          return
       end if
       if (index(msg, "Integer overflow") > 0) then
@@ -2125,7 +2123,7 @@ contains
    !> in (0, 1] at the speed at_speed (> 0; default the speed of &bodies' restitution)
    !> and turned into b here, b or restitution but not both, a wall's gap, b, c and n
    !> only with that wall (n other than 1.5 not with Hertz's c from the materials
-   !> unless c is varied too), striker_body and mass_body a body's index with their list;
+   !> unless c is varied too), striker_body and mass_body bodies' indices with their list;
    !> "product" (default) or "list" (the lists given of one length). A variation the
    !> library refuses (check_chain: an exponent out of its domain) gets its status in
    !> its row, as one that fails.
@@ -2139,6 +2137,8 @@ contains
          allocate(sys%vary(k)%values(0))
       end do
       allocate(sys%vary_restitution_b(0))
+      sys%vary_mass_body = [1]
+      sys%vary_striker_body = [1]
       sys%vary_product = .true.
       call read_group(src, g_system_sweep, error)
       if (allocated(error)) return
@@ -2254,31 +2254,63 @@ contains
          & // " vary " // side // "_stiffness too, or give it in &" // side // "_wall"
    end subroutine wall_hertz_exponents
 
-   !> &system_sweep's index `name` (mass_body, striker_body: `value` as read, unset_body
-   !> when not) of the body whose value the list `list` (n values) varies: 1 when not
-   !> given, else a body's index and only with its list.
-   subroutine choose_body(src, name, value, list, n, n_bodies, body, error)
+   !> &system_sweep's indices `name` (mass_body, striker_body: `values` as read,
+   !> unset_body where not) of the bodies to which the list `list` (n values) gives
+   !> each of its values: body 1 when not given, else only with its list, distinct
+   !> indices of bodies in one run of values, or 0 alone for every body.
+   subroutine choose_body(src, name, values, list, n, n_bodies, bodies, error)
       type(scene_source), intent(in) :: src
       character(len=*), intent(in) :: name, list
-      integer, intent(in) :: value, n, n_bodies
-      integer, intent(out) :: body
+      integer, intent(in) :: values(:), n, n_bodies
+      integer, allocatable, intent(out) :: bodies(:)
       character(len=:), allocatable, intent(out) :: error
-      body = 1
-      if (value == unset_body .and. .not. given(src, g_system_sweep, name)) return
-      if (value == unset_body) then
+      integer :: count, i
+      bodies = [1]
+      count = 0
+      do while (count < size(values))
+         if (values(count + 1) == unset_body) exit
+         count = count + 1
+      end do
+      if (count == 0 .and. .not. given(src, g_system_sweep, name)) return
+      if (count == 0) then
          error = at(src, g_system_sweep, name) // name // " has no value: give the index" &
-            & // " of a body"
+            & // " of a body, several, or 0 for every body"
+      else if (any(values(count + 1:) /= unset_body)) then
+         error = at(src, g_system_sweep, name) // name // " has a gap in its list: give" &
+            & // " the indices one after the other"
       else if (n == 0) then
-         error = at(src, g_system_sweep, name) // name // " names the body whose " &
+         error = at(src, g_system_sweep, name) // name // " names the bodies whose " &
             & // trim(merge("mass    ", "velocity", list == "mass")) // " the list " // list &
             & // " varies: give " // list // " too"
-      else if (value < 1 .or. value > n_bodies) then
-         error = at(src, g_system_sweep, name) // name // " = " // str(value) &
+      else if (count == 1 .and. values(1) == 0) then
+         bodies = [(i, i = 1, n_bodies)]
+      else if (any(values(1:count) < 1 .or. values(1:count) > n_bodies)) then
+         i = findloc(values(1:count) < 1 .or. values(1:count) > n_bodies, .true., 1)
+         error = at(src, g_system_sweep, name) // name // " = " // str(values(i)) &
             & // ": the bodies are 1 to " // str(n_bodies)
+         if (values(i) == 0) error = error // " (0 alone: every body)"
       else
-         body = value
+         do i = 2, count
+            if (any(values(1:i - 1) == values(i))) then
+               error = at(src, g_system_sweep, name) // name // " names body " &
+                  & // str(values(i)) // " twice"
+               return
+            end if
+         end do
+         bodies = values(1:count)
       end if
    end subroutine choose_body
+
+   !> What &system_sweep's mass_body or striker_body (`name`) takes, for a value that
+   !> is not a whole number
+   pure function body_list_text(name) result(text)
+      character(len=*), intent(in) :: name
+      character(len=:), allocatable :: text
+      text = name // " takes whole numbers, the indices of the bodies whose " &
+         & // trim(merge("mass    ", "velocity", name == "mass_body")) // " the list " &
+         & // trim(merge("mass         ", "striker_speed", name == "mass_body")) &
+         & // " varies (0 alone: every body)"
+   end function body_list_text
 
    !> The values of the sweep list `name` as the namelist groups &system_sweep and
    !> &impact_sweep read it (the two share the lists of one name)

@@ -66,7 +66,7 @@ contains
    end subroutine item_variation
 
    !> The columns of every variation: the system with what the sweep varies replaced
-   !> (body vary_striker_body's speed, body vary_mass_body's mass, every pair's gap,
+   !> (the speed of the bodies vary_striker_body, the mass of vary_mass_body, every pair's gap,
    !> stiffness, exponent and damping, b itself or from a restitution, gravity, the
    !> walls' gaps, damping, contact constants and exponents, the end time).
    pure function system_item_inputs(sys) result(inputs)

@@ -156,17 +156,36 @@ contains
    end subroutine write_rows
 
    !> The name of the column of the sweep's list k: its name, the mass's with its
-   !> body (mass_2), the striker's speed with its body when that is not body 1
-   !> (striker_speed_3)
+   !> bodies (mass_2, mass_2_3, mass_all), the striker's speed with its bodies unless
+   !> that is body 1 alone (striker_speed_3)
    function column_name(sc, k) result(name)
       type(scene_type), intent(in) :: sc
       integer, intent(in) :: k
       character(len=:), allocatable :: name
       name = trim(sweep_names(k))
-      if (k == sweep_mass) name = name // "_" // str(sc%system%vary_mass_body)
-      if (k == sweep_striker_speed .and. sc%system%vary_striker_body /= 1) name = name &
-         & // "_" // str(sc%system%vary_striker_body)
+      if (k == sweep_mass) name = name // "_" // bodies_label(sc%system%vary_mass_body, &
+         & sc%system%n)
+      if (k == sweep_striker_speed) then
+         if (any(sc%system%vary_striker_body /= 1)) name = name // "_" &
+            & // bodies_label(sc%system%vary_striker_body, sc%system%n)
+      end if
    end function column_name
+
+   !> The bodies a sweep's list goes to, as a column names them: "all" for every body
+   !> of a system of several, else their indices joined by "_"
+   function bodies_label(bodies, n) result(label)
+      integer, intent(in) :: bodies(:), n
+      character(len=:), allocatable :: label
+      integer :: i
+      if (n > 1 .and. size(bodies) == n) then
+         label = "all"
+         return
+      end if
+      label = str(bodies(1))
+      do i = 2, size(bodies)
+         label = label // "_" // str(bodies(i))
+      end do
+   end function bodies_label
 
    !> The console: the first rows (variation, the values of the lists it varies,
    !> status, contacts, the energy balance, the last body's final velocity).
@@ -193,9 +212,9 @@ contains
       do j = 1, n_sweep_lists
          if (.not. varied(j)) cycle
          if (j == sweep_mass) then
-            head = head // pad13("m" // str(sc%system%vary_mass_body) // " (kg)")
+            head = head // pad13("m" // short_label(sc%system%vary_mass_body) // " (kg)")
          else if (j == sweep_striker_speed) then
-            head = head // pad13("v" // str(sc%system%vary_striker_body) // " (m/s)")
+            head = head // pad13("v" // short_label(sc%system%vary_striker_body) // " (m/s)")
          else
             head = head // pad13(trim(headings(j)))
          end if
@@ -223,6 +242,18 @@ contains
       call emit("")
    contains
       !> A text at the right of a field of 13 characters, after one blank at least
+      !> The bodies in a heading: one body's index (m2), else "_" and the column's
+      !> label (m_all, v_2_3), "_*" where that is longer than 6 characters (the file
+      !> has the whole name)
+      function short_label(bodies) result(label)
+         integer, intent(in) :: bodies(:)
+         character(len=:), allocatable :: label
+         label = bodies_label(bodies, n)
+         if (size(bodies) == 1) return
+         if (len(label) > 6) label = "*"
+         label = "_" // label
+      end function short_label
+
       pure function pad13(text) result(field)
          character(len=*), intent(in) :: text
          character(len=:), allocatable :: field

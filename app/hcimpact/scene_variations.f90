@@ -38,15 +38,16 @@ module hcimpact_scene_variations
    !> (m), their damping (s/m), contact constants (N/m^n) and exponents, the end times
    !> (s), and
    !> (with stiffness and exponent
-   !> below, every pair's) the masses of body mass_body (kg, `mass` below); the speeds
-   !> are those of body striker_body (default 1)
+   !> below, every pair's) the masses of the bodies mass_body (kg, `mass` below); the
+   !> speeds are those of the bodies striker_body (lists of indices, 0 alone: every
+   !> body; default body 1)
    real(wp) :: striker_speed(max_variations), gap(max_variations), b(max_variations), &
       & restitution(max_variations), gravity(max_variations), at_speed, &
       & left_gap(max_variations), right_gap(max_variations), left_b(max_variations), &
       & right_b(max_variations), left_stiffness(max_variations), &
       & right_stiffness(max_variations), left_exponent(max_variations), &
       & right_exponent(max_variations), t_end(max_variations)
-   integer :: mass_body, striker_body
+   integer :: mass_body(max_variations), striker_body(max_variations)
    !> "product" (every combination) or "list" (the lists side by side)
    character(len=variations_text_length) :: combine
 

@@ -9,7 +9,7 @@ and checks system_sweep.csv: its rows come in the order of the lists' product (t
 first list varying slowest) or side by side (combine = "list"), every parameter column
 holds the row's value (nan where the sweep does not vary it), and every row's final
 velocities and status are, to the last bit, those of a scene of its own in which the
-row's values stand in &bodies (one body's velocity, one body's mass, every pair's gap,
+row's values stand in &bodies (some bodies' velocities, some bodies' masses, every pair's gap,
 stiffness, exponent and b, or the restitution at its speed, gravity, the end time)
 and the walls' groups (their gaps, b, c and n), run for the output `final`. The varied
 scene goes through the sweep's code (the lists, the substitution, the restitution's
@@ -61,6 +61,9 @@ SWEEPS = [
     ("walls-laws", {"left_stiffness": [1e8, 3e9, 1e10], "right_stiffness": [5e8, 2e9, 4e9],
                     "left_exponent": [1.5, 1.25, 1.4], "right_exponent": [1.1, 1.5, 1.3]},
      "list", {}, {"right_gap": 1e-2, "velocity": [-1.0, -1.5, 1.0]}),
+    # every body's mass (0: all of them) and two bodies' speeds, each the row's value
+    ("several-bodies", {"striker_speed": [-0.5, 1.5], "mass": [0.3, 0.02, 0.1]}, "product",
+     {"mass_body": 0, "striker_body": [3, 2]}, {}),
 ]
 AT_SPEED = 0.7
 
@@ -94,9 +97,25 @@ def scene_text(title, bodies, sweep=None, combine=None, chosen=None, outputs="fi
         if "restitution" in sweep and "restitution" not in bodies:
             text += f"  at_speed = {fmt(AT_SPEED)}\n"
         for which, body in (chosen or {}).items():
-            text += f"  {which} = {body}\n"
+            text += f"  {which} = " + ", ".join(str(b) for b in bodies_list(body)) + "\n"
         text += f'  combine = "{combine}"\n/\n'
     return text
+
+
+def bodies_list(body):
+    """mass_body or striker_body as the scene gives it: an index or a list of them"""
+    return body if isinstance(body, list) else [body]
+
+
+def chosen_bodies(body, n):
+    """The bodies (from 1) a list goes to: 0 alone is every one of n"""
+    bodies = bodies_list(body)
+    return list(range(1, n + 1)) if bodies == [0] else bodies
+
+
+def column_label(bodies, n):
+    """How the sweep's column names the bodies: "all", or their indices joined by _"""
+    return "all" if n > 1 and len(bodies) == n else "_".join(str(b) for b in bodies)
 
 
 def run(program, path, out):
@@ -130,9 +149,10 @@ def main():
     failures = 0
     rows_checked = 0
     for name, sweep, combine, chosen, extra in SWEEPS:
-        mass_body = chosen.get("mass_body", 1)
-        striker_body = chosen.get("striker_body", 1)
         base = dict(BASE, **extra)
+        n_bodies = len(base["mass"])
+        mass_bodies = chosen_bodies(chosen.get("mass_body", 1), n_bodies)
+        striker_bodies = chosen_bodies(chosen.get("striker_body", 1), n_bodies)
         path = os.path.join(out_dir, f"{name}.nml")
         with open(path, "w") as f:
             f.write(scene_text(name, base, sweep, combine, chosen, "system_sweep"))
@@ -152,17 +172,19 @@ def main():
             for n, unit in zip(NAMES, UNITS):
                 column = n
                 if n == "mass":
-                    column = f"mass_{mass_body}"
-                elif n == "striker_speed" and striker_body != 1:
-                    column = f"striker_speed_{striker_body}"
+                    column = f"mass_{column_label(mass_bodies, n_bodies)}"
+                elif n == "striker_speed" and striker_bodies != [1]:
+                    column = f"striker_speed_{column_label(striker_bodies, n_bodies)}"
                 if not same_number(row[f"{column} [{unit}]"], values.get(n)):
                     problems.append(f"{n} = {row[f'{column} [{unit}]']}, expected {values.get(n)}")
             bodies = dict(base, mass=list(base["mass"]), velocity=list(base["velocity"]))
             for n, v in values.items():
                 if n == "striker_speed":
-                    bodies["velocity"][striker_body - 1] = v
+                    for i in striker_bodies:
+                        bodies["velocity"][i - 1] = v
                 elif n == "mass":
-                    bodies["mass"][mass_body - 1] = v
+                    for i in mass_bodies:
+                        bodies["mass"][i - 1] = v
                 else:
                     bodies[n] = v
             one = os.path.join(out_dir, f"{name}-{k}")
