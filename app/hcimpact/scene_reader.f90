@@ -46,7 +46,7 @@ module hcimpact_scene_reader
       & vary_b => b, vary_combine => combine, vary_mass => mass, &
       & vary_stiffness => stiffness, vary_exponent => exponent, vary_impact_speed => speed, &
       & vary_restitution => restitution, vary_gravity => gravity, vary_at_speed => at_speed, &
-      & vary_mass_body => mass_body, unset_body, vary_left_gap => left_gap, &
+      & vary_mass_body => mass_body, vary_left_gap => left_gap, &
       & vary_right_gap => right_gap, vary_left_b => left_b, vary_right_b => right_b, &
       & vary_t_end => t_end, vary_striker_body => striker_body, &
       & vary_left_stiffness => left_stiffness, vary_right_stiffness => right_stiffness, &
@@ -791,12 +791,18 @@ contains
       character(len=512) :: msg, first_msg
       integer :: ios, first, last, k, bad
 
+      character(len=scene_line_length), allocatable :: lines(:)
+
       call reset_variables()
       if (.not. src%groups(gid)%present) return
       first = src%groups(gid)%first
       last = src%groups(gid)%last
+      ! the compiler's reader takes a comma before a comment that ends the line, and the
+      ! end of the line, as two separators: a null value in the list ("mass_body = 2,
+      ! ! the second" and 3 on the next line read as 2, (none), 3)
+      lines = blank_comments(src%lines(first:last), keep_quoted=.true.)
       msg = ""
-      call read_records(gid, src%lines(first:last), ios, msg)
+      call read_records(gid, lines, ios, msg)
       if (ios == 0) then
          call check_repeated_names(src, gid, error)
          if (allocated(error)) call reset_variables()
@@ -806,7 +812,7 @@ contains
       ! the first prefix of the group (closed by an extra "/") that fails holds the fault
       bad = first
       do k = first, last
-         rec = [src%lines(first:k), repeat(" ", scene_line_length)]
+         rec = [lines(1:k - first + 1), repeat(" ", scene_line_length)]
          rec(size(rec)) = "/"
          msg = ""
          call read_records(gid, rec, ios, msg)
@@ -822,6 +828,33 @@ contains
       call reset_variables()
    end subroutine read_group
 
+   !> The lines of a group with its comments (from `!` outside quotes to the end of the
+   !> line) blanked, and its quoted text too unless keep_quoted (a quote may go on over
+   !> lines).
+   pure function blank_comments(lines, keep_quoted) result(bare)
+      character(len=*), intent(in) :: lines(:)
+      logical, intent(in) :: keep_quoted
+      character(len=len(lines)) :: bare(size(lines))
+      character(len=1) :: quote
+      integer :: l, i
+      bare = lines
+      quote = " "
+      do l = 1, size(bare)
+         do i = 1, len_trim(bare(l))
+            if (quote /= " ") then
+               if (bare(l)(i:i) == quote) quote = " "
+               if (.not. keep_quoted) bare(l)(i:i) = " "
+            else if (bare(l)(i:i) == '"' .or. bare(l)(i:i) == "'") then
+               quote = bare(l)(i:i)
+               if (.not. keep_quoted) bare(l)(i:i) = " "
+            else if (bare(l)(i:i) == "!") then
+               bare(l)(i:) = " "
+               exit
+            end if
+         end do
+      end do
+   end function blank_comments
+
    !> A name given twice in the group: the compiler's reader would keep the last value
    !> silently (b = 0.1d0, b = 0.2 gives b = 0.2). An indexed name, speeds(2) = 1,
    !> counts as its name.
@@ -830,28 +863,16 @@ contains
       integer, intent(in) :: gid
       character(len=:), allocatable, intent(out) :: error
       character(len=scene_line_length) :: bare
-      character(len=scene_line_length), allocatable :: names(:), more(:)
+      character(len=scene_line_length), allocatable :: names(:), more(:), bare_lines(:)
       integer, allocatable :: at_line(:), more_lines(:)
-      character(len=1) :: quote
       integer :: l, i, n, k, name_start, name_end
       allocate(names(16), at_line(16))
       n = 0
-      quote = " "
+      ! quoted text (which may go on over lines) and comments become blanks
+      bare_lines = blank_comments(src%lines(src%groups(gid)%first:src%groups(gid)%last), &
+         & keep_quoted=.false.)
       do l = src%groups(gid)%first, src%groups(gid)%last
-         ! quoted text (which may go on over lines) and comments become blanks
-         bare = src%lines(l)
-         do i = 1, len_trim(bare)
-            if (quote /= " ") then
-               if (bare(i:i) == quote) quote = " "
-               bare(i:i) = " "
-            else if (bare(i:i) == '"' .or. bare(i:i) == "'") then
-               quote = bare(i:i)
-               bare(i:i) = " "
-            else if (bare(i:i) == "!") then
-               bare(i:) = " "
-               exit
-            end if
-         end do
+         bare = bare_lines(l - src%groups(gid)%first + 1)
          ! each "=" assigns the name before it (and its index, if any)
          do i = 1, len_trim(bare)
             if (bare(i:i) /= "=") cycle
@@ -925,7 +946,12 @@ contains
                & // " bodies)"
          else if (len(owner) > 0 .and. gid == g_system_sweep .and. &
             & any(lower(owner) == ["mass_body   ", "striker_body"])) then
-            text = body_list_text(lower(owner)) // " ('" // token // "' is not read)"
+            if (is_number(token) .or. scan(token, "0123456789+-.") == 1) then
+               text = "too many values for " // owner // " (at most " // str(max_bodies) &
+                  & // " bodies)"
+            else
+               text = body_list_text(lower(owner)) // " ('" // token // "' is not read)"
+            end if
          else if (len(owner) > 0 .and. gid == g_system_sweep .and. lower(owner) == "at_speed") then
             text = "at_speed takes one value, the speed in m/s at which the restitutions" &
                & // " hold ('" // token // "' is one too many)"
@@ -2254,51 +2280,73 @@ contains
          & // " vary " // side // "_stiffness too, or give it in &" // side // "_wall"
    end subroutine wall_hertz_exponents
 
-   !> &system_sweep's indices `name` (mass_body, striker_body: `values` as read,
-   !> unset_body where not) of the bodies to which the list `list` (n values) gives
-   !> each of its values: body 1 when not given, else only with its list, distinct
-   !> indices of bodies in one run of values, or 0 alone for every body.
+   !> &system_sweep's indices `name` (mass_body, striker_body: `values` as read, unset
+   !> where not) of the bodies to which the list `list` (n values) gives each of its
+   !> values: body 1 when not given, else only with its list, distinct indices of
+   !> bodies (whole numbers, in any order) in one run of values, or 0 alone for every
+   !> body.
    subroutine choose_body(src, name, values, list, n, n_bodies, bodies, error)
       type(scene_source), intent(in) :: src
       character(len=*), intent(in) :: name, list
-      integer, intent(in) :: values(:), n, n_bodies
+      real(wp), intent(in) :: values(:)
+      integer, intent(in) :: n, n_bodies
       integer, allocatable, intent(out) :: bodies(:)
       character(len=:), allocatable, intent(out) :: error
       integer :: count, i
       bodies = [1]
       count = 0
       do while (count < size(values))
-         if (values(count + 1) == unset_body) exit
+         if (is_unset(values(count + 1))) exit
          count = count + 1
       end do
-      if (count == 0 .and. .not. given(src, g_system_sweep, name)) return
-      if (count == 0) then
+      if (count == 0 .and. all(is_unset(values)) .and. .not. given(src, g_system_sweep, name)) &
+         & return
+      if (count == 0 .and. all(is_unset(values))) then
          error = at(src, g_system_sweep, name) // name // " has no value: give the index" &
             & // " of a body, several, or 0 for every body"
-      else if (any(values(count + 1:) /= unset_body)) then
+         return
+      else if (.not. all(is_unset(values(count + 1:)))) then
          error = at(src, g_system_sweep, name) // name // " has a gap in its list: give" &
-            & // " the indices one after the other"
+            & // " the indices one after the other, from its first value on"
+         return
       else if (n == 0) then
          error = at(src, g_system_sweep, name) // name // " names the bodies whose " &
             & // trim(merge("mass    ", "velocity", list == "mass")) // " the list " // list &
             & // " varies: give " // list // " too"
-      else if (count == 1 .and. values(1) == 0) then
-         bodies = [(i, i = 1, n_bodies)]
-      else if (any(values(1:count) < 1 .or. values(1:count) > n_bodies)) then
-         i = findloc(values(1:count) < 1 .or. values(1:count) > n_bodies, .true., 1)
-         error = at(src, g_system_sweep, name) // name // " = " // str(values(i)) &
-            & // ": the bodies are 1 to " // str(n_bodies)
-         if (values(i) == 0) error = error // " (0 alone: every body)"
-      else
-         do i = 2, count
-            if (any(values(1:i - 1) == values(i))) then
-               error = at(src, g_system_sweep, name) // name // " names body " &
-                  & // str(values(i)) // " twice"
-               return
-            end if
-         end do
-         bodies = values(1:count)
+         return
       end if
+      do i = 1, count
+         ! (a whole number of the bodies' range, tested before it is converted: 1e300
+         ! or NaN is not one; the finite test first, a NaN compared would trap)
+         if (.not. ieee_is_finite(values(i))) then
+            error = at(src, g_system_sweep, name) // body_list_text(name) // ": " &
+               & // real_str(values(i), 6) // " is not one"
+            return
+         end if
+         if (values(i) /= aint(values(i))) then
+            error = at(src, g_system_sweep, name) // body_list_text(name) // ": " &
+               & // real_str(values(i), 6) // " is not one"
+            return
+         end if
+      end do
+      if (count == 1 .and. values(1) == 0.0_wp) then
+         bodies = [(i, i = 1, n_bodies)]
+         return
+      end if
+      do i = 1, count
+         if (values(i) < 1.0_wp .or. values(i) > real(n_bodies, wp)) then
+            error = at(src, g_system_sweep, name) // name // " = " // real_str(values(i), 10) &
+               & // ": the bodies are 1 to " // str(n_bodies)
+            if (values(i) == 0.0_wp) error = error // " (0 alone: every body)"
+            return
+         end if
+         if (any(values(1:i - 1) == values(i))) then
+            error = at(src, g_system_sweep, name) // name // " names body " &
+               & // str(nint(values(i))) // " twice"
+            return
+         end if
+      end do
+      bodies = nint(values(1:count))
    end subroutine choose_body
 
    !> What &system_sweep's mass_body or striker_body (`name`) takes, for a value that

@@ -43,6 +43,10 @@ contains
          & // " of &system_sweep"
       if (size(sc%system%vary(sweep_restitution)%values) > 0) text = text // " (b from" &
          & // " each restitution at " // real_str(sc%system%vary_at_speed, 6) // " m/s)"
+      if (size(sc%system%vary(sweep_mass)%values) > 0) text = text // "; the masses to " &
+         & // bodies_text(sc%system%vary_mass_body, sc%system%n)
+      if (size(sc%system%vary(sweep_striker_speed)%values) > 0) text = text &
+         & // "; the speeds to " // bodies_text(sc%system%vary_striker_body, sc%system%n)
       if (.not. any([(size(sc%system%vary(k)%values) > 0, k = 1, n_sweep_lists)])) &
          & text = "one run of the system (no &system_sweep)"
    end function system_sweep_method
@@ -125,16 +129,17 @@ contains
       real(wp), intent(in) :: outputs(:, :)
       type(results_type), intent(inout) :: res
       character(len=:), allocatable, intent(out) :: error
-      character(len=32), allocatable :: columns(:)
+      ! (the longest: striker_speed_ and a label of 24 characters, with its unit)
+      character(len=48), allocatable :: columns(:)
       type(csv_type) :: csv
       real(wp) :: values(n_sweep_lists)
       integer :: n, k, i
-      character(len=32), parameter :: results(9) = [character(len=32) :: "status [-]", &
+      character(len=48), parameter :: results(9) = [character(len=48) :: "status [-]", &
          & "time [s]", "contacts [-]", "closed_form_contacts [-]", "integrated_contacts [-]", &
          & "clusters [-]", "cvode_steps [-]", "energy_error [-]", "dissipated [J]"]
       n = sc%system%n
       allocate(columns(2 + n_sweep_lists + size(results) + n))
-      columns(1:2) = [character(len=32) :: "method", "variation [-]"]
+      columns(1:2) = [character(len=48) :: "method", "variation [-]"]
       do i = 1, n_sweep_lists
          columns(2 + i) = column_name(sc, i) // " [" // sweep_unit(trim(sweep_names(i))) // "]"
       end do
@@ -172,20 +177,55 @@ contains
    end function column_name
 
    !> The bodies a sweep's list goes to, as a column names them: "all" for every body
-   !> of a system of several, else their indices joined by "_"
+   !> of a system of several, else their indices in the order given joined by "_", a
+   !> run of consecutive ones as first-last (2-12_15); "<count>_bodies" where that is
+   !> longer than 24 characters (the log names them all: bodies_text)
    function bodies_label(bodies, n) result(label)
       integer, intent(in) :: bodies(:), n
       character(len=:), allocatable :: label
-      integer :: i
       if (n > 1 .and. size(bodies) == n) then
          label = "all"
-         return
+      else
+         label = index_runs(bodies, "_")
+         if (len(label) > 24) label = str(size(bodies)) // "_bodies"
       end if
-      label = str(bodies(1))
-      do i = 2, size(bodies)
-         label = label // "_" // str(bodies(i))
-      end do
    end function bodies_label
+
+   !> The bodies a sweep's list goes to, for the log: "every body", "body 3", or
+   !> "bodies 2-12, 15"
+   function bodies_text(bodies, n) result(text)
+      integer, intent(in) :: bodies(:), n
+      character(len=:), allocatable :: text
+      if (n > 1 .and. size(bodies) == n) then
+         text = "every body"
+      else if (size(bodies) == 1) then
+         text = "body " // str(bodies(1))
+      else
+         text = "bodies " // index_runs(bodies, ", ")
+      end if
+   end function bodies_text
+
+   !> Indices in their order, joined by `separator`, each run of consecutive ones
+   !> (k, k + 1, ...) as first-last
+   function index_runs(bodies, separator) result(text)
+      integer, intent(in) :: bodies(:)
+      character(len=*), intent(in) :: separator
+      character(len=:), allocatable :: text
+      integer :: i, j
+      text = ""
+      i = 1
+      do while (i <= size(bodies))
+         j = i
+         do while (j < size(bodies))
+            if (bodies(j + 1) /= bodies(j) + 1) exit
+            j = j + 1
+         end do
+         if (i > 1) text = text // separator
+         text = text // str(bodies(i))
+         if (j > i) text = text // "-" // str(bodies(j))
+         i = j + 1
+      end do
+   end function index_runs
 
    !> The console: the first rows (variation, the values of the lists it varies,
    !> status, contacts, the energy balance, the last body's final velocity).
@@ -241,10 +281,9 @@ contains
          & // " more in system_sweep.csv")
       call emit("")
    contains
-      !> A text at the right of a field of 13 characters, after one blank at least
       !> The bodies in a heading: one body's index (m2), else "_" and the column's
       !> label (m_all, v_2_3), "_*" where that is longer than 6 characters (the file
-      !> has the whole name)
+      !> and the log name them)
       function short_label(bodies) result(label)
          integer, intent(in) :: bodies(:)
          character(len=:), allocatable :: label
@@ -254,6 +293,7 @@ contains
          label = "_" // label
       end function short_label
 
+      !> A text at the right of a field of 13 characters, after one blank at least
       pure function pad13(text) result(field)
          character(len=*), intent(in) :: text
          character(len=:), allocatable :: field

@@ -12,14 +12,14 @@ module hcimpact_scene_variations
    use, intrinsic :: ieee_exceptions, only : ieee_get_halting_mode, ieee_set_halting_mode, &
       & ieee_set_flag, ieee_usual
    use hcimpact_kinds, only : wp
-   use hcimpact_scene_model, only : unset_bits
+   use hcimpact_scene_model, only : unset_bits, max_bodies
    implicit none
    private
 
    public :: read_variations, max_variations, variations_text_length, variation_index, &
       & variation_count
    public :: striker_speed, gap, b, combine, mass, stiffness, exponent, speed, restitution, &
-      & gravity, at_speed, mass_body, unset_body, left_gap, right_gap, left_b, right_b, &
+      & gravity, at_speed, mass_body, left_gap, right_gap, left_b, right_b, &
       & left_stiffness, right_stiffness, left_exponent, right_exponent, t_end, striker_body
 
    !> Most values of one list
@@ -29,9 +29,6 @@ module hcimpact_scene_variations
    !> The mark of a real not given (hcimpact_scene_model's unset_bits)
    real(wp), parameter :: unset = transfer(unset_bits, 1.0_wp)
 
-   !> The mark of an integer not given (a file that writes it is caught by the reader)
-   integer, parameter :: unset_body = -huge(1)
-
    !> A system's sweep: the speeds of body 1 (m/s), the gaps of every pair (m), the
    !> damping of every pair (s/m), the restitutions of every pair at the speed at_speed
    !> (m/s), gravity (m/s^2), the gaps of the left and the right wall to their end body
@@ -40,14 +37,15 @@ module hcimpact_scene_variations
    !> (with stiffness and exponent
    !> below, every pair's) the masses of the bodies mass_body (kg, `mass` below); the
    !> speeds are those of the bodies striker_body (lists of indices, 0 alone: every
-   !> body; default body 1)
+   !> body; default body 1; read as reals, so that "not given" is a mark no file can
+   !> write, and checked to be whole numbers by the reader)
    real(wp) :: striker_speed(max_variations), gap(max_variations), b(max_variations), &
       & restitution(max_variations), gravity(max_variations), at_speed, &
       & left_gap(max_variations), right_gap(max_variations), left_b(max_variations), &
       & right_b(max_variations), left_stiffness(max_variations), &
       & right_stiffness(max_variations), left_exponent(max_variations), &
       & right_exponent(max_variations), t_end(max_variations)
-   integer :: mass_body(max_variations), striker_body(max_variations)
+   real(wp) :: mass_body(max_bodies), striker_body(max_bodies)
    !> "product" (every combination) or "list" (the lists side by side)
    character(len=variations_text_length) :: combine
 
@@ -92,8 +90,8 @@ contains
       right_exponent = unset
       t_end = unset
       at_speed = unset
-      mass_body = unset_body
-      striker_body = unset_body
+      mass_body = unset
+      striker_body = unset
       combine = ""
       call ieee_get_halting_mode(ieee_usual, halting)
       call ieee_set_halting_mode(ieee_usual, .false.)

@@ -64,6 +64,9 @@ SWEEPS = [
     # every body's mass (0: all of them) and two bodies' speeds, each the row's value
     ("several-bodies", {"striker_speed": [-0.5, 1.5], "mass": [0.3, 0.02, 0.1]}, "product",
      {"mass_body": 0, "striker_body": [3, 2]}, {}),
+    # a run of bodies (column mass_1-2) and the striker's speed to bodies 3 and 1
+    ("bodies-run", {"striker_speed": [-0.5], "mass": [0.3, 0.02]}, "product",
+     {"mass_body": [1, 2], "striker_body": [3, 1]}, {}),
 ]
 AT_SPEED = 0.7
 
@@ -114,8 +117,19 @@ def chosen_bodies(body, n):
 
 
 def column_label(bodies, n):
-    """How the sweep's column names the bodies: "all", or their indices joined by _"""
-    return "all" if n > 1 and len(bodies) == n else "_".join(str(b) for b in bodies)
+    """How the sweep's column names the bodies: "all", or their indices in their order
+    joined by _, a run of consecutive ones as first-last, or "<count>_bodies" where that
+    is longer than 24 characters"""
+    if n > 1 and len(bodies) == n:
+        return "all"
+    runs = []
+    for b in bodies:
+        if runs and b == runs[-1][1] + 1:
+            runs[-1][1] = b
+        else:
+            runs.append([b, b])
+    label = "_".join(str(a) if a == b else f"{a}-{b}" for a, b in runs)
+    return label if len(label) <= 24 else f"{len(bodies)}_bodies"
 
 
 def run(program, path, out):
