@@ -16,6 +16,7 @@ module hcimpact_mpi_chain_scene
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_domain, hcimpact_err_size
    use hcimpact_chain_types, only : chain_type, chain_options, contact_law, check_chain, &
       & method_integrated, max_message
+   use hcimpact_scene_comments, only : blank_comments
    implicit none
    private
 
@@ -66,6 +67,7 @@ contains
       character(len=max_message), intent(out) :: message
       integer :: unit, ios
       character(len=200) :: msg
+      character(len=:), allocatable :: lines(:)
       ok = .false.
       message = ""
       open(newunit=unit, file=path, status="old", action="read", iostat=ios, iomsg=msg)
@@ -73,8 +75,13 @@ contains
          message = "cannot open the scene " // trim(path) // ": " // trim(msg)
          return
       end if
-      call read_namelist(scene, ios, msg, unit=unit)
+      call read_lines(unit, lines, ios, msg)
       close(unit)
+      if (ios /= 0) then
+         message = "cannot read the scene " // trim(path) // ": " // trim(msg)
+         return
+      end if
+      call read_chain_lines(lines, scene, ios, msg)
       if (ios /= 0) then
          message = "the scene " // trim(path) // " has no valid &mpi_chain namelist: " &
             & // trim(msg)
@@ -90,16 +97,64 @@ contains
       type(chain_scene), intent(out) :: scene
       integer, intent(out) :: ios
       character(len=*), intent(out) :: msg
-      call read_namelist(scene, ios, msg, lines=lines)
+      ! (a comma before a comment at the end of a line: hcimpact_scene_comments)
+      call read_namelist(scene, ios, msg, blank_comments(lines, keep_quoted=.true.))
    end subroutine read_chain_lines
 
-   !> The one namelist &mpi_chain, read from the unit or the lines given
-   subroutine read_namelist(scene, ios, msg, unit, lines)
+   !> Every line of the file open on `unit`, each as long as the longest
+   subroutine read_lines(unit, lines, ios, msg)
+      integer, intent(in) :: unit
+      character(len=:), allocatable, intent(out) :: lines(:)
+      integer, intent(out) :: ios
+      character(len=*), intent(inout) :: msg
+      type :: line_type
+         character(len=:), allocatable :: text
+      end type line_type
+      type(line_type), allocatable :: all(:), grown(:)
+      character(len=256) :: chunk
+      integer :: n, got, k, width
+      allocate(all(64))
+      n = 0
+      do
+         ! one line, in chunks (non-advancing reads end it with an end of record)
+         if (n == size(all)) then
+            allocate(grown(2 * n))
+            do k = 1, n
+               call move_alloc(all(k)%text, grown(k)%text)
+            end do
+            call move_alloc(grown, all)
+         end if
+         all(n + 1)%text = ""
+         do
+            read(unit, '(a)', advance="no", size=got, iostat=ios, iomsg=msg) chunk
+            all(n + 1)%text = all(n + 1)%text // chunk(1:got)
+            if (ios /= 0) exit
+         end do
+         if (is_iostat_end(ios)) then
+            if (len(all(n + 1)%text) > 0) n = n + 1
+            exit
+         end if
+         if (.not. is_iostat_eor(ios)) return
+         n = n + 1
+      end do
+      ios = 0
+      width = 1
+      do k = 1, n
+         width = max(width, len(all(k)%text))
+      end do
+      allocate(character(len=width) :: lines(max(n, 1)))
+      lines = ""
+      do k = 1, n
+         lines(k) = all(k)%text
+      end do
+   end subroutine read_lines
+
+   !> The one namelist &mpi_chain, read from the lines given
+   subroutine read_namelist(scene, ios, msg, lines)
       type(chain_scene), intent(out) :: scene
       integer, intent(out) :: ios
       character(len=*), intent(out) :: msg
-      integer, intent(in), optional :: unit
-      character(len=*), intent(in), optional :: lines(:)
+      character(len=*), intent(in) :: lines(:)
       integer :: n_beads
       integer(int64) :: max_steps
       real(wp) :: mass, stiffness, exponent, damping, gap, velocity, striker_speed, &
@@ -144,11 +199,7 @@ contains
       t_end = scene%t_end
       rtol = scene%rtol
       max_steps = scene%max_steps
-      if (present(unit)) then
-         read(unit, nml=mpi_chain, iostat=ios, iomsg=msg)
-      else
-         read(lines, nml=mpi_chain, iostat=ios, iomsg=msg)
-      end if
+      read(lines, nml=mpi_chain, iostat=ios, iomsg=msg)
       if (ios /= 0) return
       scene = chain_scene(n_beads, mass, stiffness, exponent, damping, gap, velocity, &
          & mass_pattern, velocity_pattern, stiffness_pattern, exponent_pattern, &

@@ -60,6 +60,7 @@ module hcimpact_scene_reader
    use hcimpact_scene_numbers, only : power_product, quotient_of, decimal_exponent
    use hcimpact_restitution_law, only : restitution_inverse
    use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_lines, scene_system
+   use hcimpact_scene_comments, only : blank_comments
    implicit none
    private
 
@@ -797,9 +798,7 @@ contains
       if (.not. src%groups(gid)%present) return
       first = src%groups(gid)%first
       last = src%groups(gid)%last
-      ! the compiler's reader takes a comma before a comment that ends the line, and the
-      ! end of the line, as two separators: a null value in the list ("mass_body = 2,
-      ! ! the second" and 3 on the next line read as 2, (none), 3)
+      ! (a comma before a comment at the end of a line: hcimpact_scene_comments)
       lines = blank_comments(src%lines(first:last), keep_quoted=.true.)
       msg = ""
       call read_records(gid, lines, ios, msg)
@@ -827,33 +826,6 @@ contains
          & // " (Fortran: " // trim(first_msg) // ")"
       call reset_variables()
    end subroutine read_group
-
-   !> The lines of a group with its comments (from `!` outside quotes to the end of the
-   !> line) blanked, and its quoted text too unless keep_quoted (a quote may go on over
-   !> lines).
-   pure function blank_comments(lines, keep_quoted) result(bare)
-      character(len=*), intent(in) :: lines(:)
-      logical, intent(in) :: keep_quoted
-      character(len=len(lines)) :: bare(size(lines))
-      character(len=1) :: quote
-      integer :: l, i
-      bare = lines
-      quote = " "
-      do l = 1, size(bare)
-         do i = 1, len_trim(bare(l))
-            if (quote /= " ") then
-               if (bare(l)(i:i) == quote) quote = " "
-               if (.not. keep_quoted) bare(l)(i:i) = " "
-            else if (bare(l)(i:i) == '"' .or. bare(l)(i:i) == "'") then
-               quote = bare(l)(i:i)
-               if (.not. keep_quoted) bare(l)(i:i) = " "
-            else if (bare(l)(i:i) == "!") then
-               bare(l)(i:) = " "
-               exit
-            end if
-         end do
-      end do
-   end function blank_comments
 
    !> A name given twice in the group: the compiler's reader would keep the last value
    !> silently (b = 0.1d0, b = 0.2 gives b = 0.2). An indexed name, speeds(2) = 1,
