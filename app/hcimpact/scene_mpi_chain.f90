@@ -16,7 +16,9 @@ module hcimpact_mpi_chain_scene
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_domain, hcimpact_err_size
    use hcimpact_chain_types, only : chain_type, chain_options, contact_law, check_chain, &
       & method_integrated, max_message
-   use hcimpact_scene_comments, only : blank_comments
+   use hcimpact_scene_model, only : scene_line_length
+   use hcimpact_scene_lines, only : blank_comments, read_text_lines
+   use hcimpact_scene_text, only : lower
    implicit none
    private
 
@@ -65,9 +67,11 @@ contains
       type(chain_scene), intent(out) :: scene
       logical, intent(out) :: ok
       character(len=max_message), intent(out) :: message
-      integer :: unit, ios
+      integer :: unit, ios, n, k
       character(len=200) :: msg
-      character(len=:), allocatable :: lines(:)
+      character(len=scene_line_length), allocatable :: lines(:), bare(:)
+      character(len=:), allocatable :: error
+      logical :: found
       ok = .false.
       message = ""
       open(newunit=unit, file=path, status="old", action="read", iostat=ios, iomsg=msg)
@@ -75,13 +79,25 @@ contains
          message = "cannot open the scene " // trim(path) // ": " // trim(msg)
          return
       end if
-      call read_lines(unit, lines, ios, msg)
+      ! (the limits of the scene runner's files: the same scene runs in both)
+      call read_text_lines(unit, trim(path), lines, n, error)
       close(unit)
-      if (ios /= 0) then
-         message = "cannot read the scene " // trim(path) // ": " // trim(msg)
+      if (allocated(error)) then
+         message = "cannot read the scene " // error
          return
       end if
-      call read_chain_lines(lines, scene, ios, msg)
+      ! the group there, outside comments and quotes: the compiler's reader, given no
+      ! group, ends without an error, and given no lines at all it never ends
+      bare = blank_comments(lines(1:n), keep_quoted=.false.)
+      found = .false.
+      do k = 1, n
+         if (index(lower(bare(k)), "&mpi_chain") > 0) found = .true.
+      end do
+      if (.not. found) then
+         message = "no &mpi_chain namelist in the scene " // trim(path)
+         return
+      end if
+      call read_chain_lines(lines(1:n), scene, ios, msg)
       if (ios /= 0) then
          message = "the scene " // trim(path) // " has no valid &mpi_chain namelist: " &
             & // trim(msg)
@@ -97,57 +113,9 @@ contains
       type(chain_scene), intent(out) :: scene
       integer, intent(out) :: ios
       character(len=*), intent(out) :: msg
-      ! (a comma before a comment at the end of a line: hcimpact_scene_comments)
+      ! (a comma before a comment at the end of a line: hcimpact_scene_lines)
       call read_namelist(scene, ios, msg, blank_comments(lines, keep_quoted=.true.))
    end subroutine read_chain_lines
-
-   !> Every line of the file open on `unit`, each as long as the longest
-   subroutine read_lines(unit, lines, ios, msg)
-      integer, intent(in) :: unit
-      character(len=:), allocatable, intent(out) :: lines(:)
-      integer, intent(out) :: ios
-      character(len=*), intent(inout) :: msg
-      type :: line_type
-         character(len=:), allocatable :: text
-      end type line_type
-      type(line_type), allocatable :: all(:), grown(:)
-      character(len=256) :: chunk
-      integer :: n, got, k, width
-      allocate(all(64))
-      n = 0
-      do
-         ! one line, in chunks (non-advancing reads end it with an end of record)
-         if (n == size(all)) then
-            allocate(grown(2 * n))
-            do k = 1, n
-               call move_alloc(all(k)%text, grown(k)%text)
-            end do
-            call move_alloc(grown, all)
-         end if
-         all(n + 1)%text = ""
-         do
-            read(unit, '(a)', advance="no", size=got, iostat=ios, iomsg=msg) chunk
-            all(n + 1)%text = all(n + 1)%text // chunk(1:got)
-            if (ios /= 0) exit
-         end do
-         if (is_iostat_end(ios)) then
-            if (len(all(n + 1)%text) > 0) n = n + 1
-            exit
-         end if
-         if (.not. is_iostat_eor(ios)) return
-         n = n + 1
-      end do
-      ios = 0
-      width = 1
-      do k = 1, n
-         width = max(width, len(all(k)%text))
-      end do
-      allocate(character(len=width) :: lines(max(n, 1)))
-      lines = ""
-      do k = 1, n
-         lines(k) = all(k)%text
-      end do
-   end subroutine read_lines
 
    !> The one namelist &mpi_chain, read from the lines given
    subroutine read_namelist(scene, ios, msg, lines)

@@ -60,7 +60,7 @@ module hcimpact_scene_reader
    use hcimpact_scene_numbers, only : power_product, quotient_of, decimal_exponent
    use hcimpact_restitution_law, only : restitution_inverse
    use hcimpact_mpi_chain_scene, only : chain_scene, read_chain_lines, scene_system
-   use hcimpact_scene_comments, only : blank_comments
+   use hcimpact_scene_lines, only : blank_comments, read_text_lines
    implicit none
    private
 
@@ -188,11 +188,11 @@ contains
       logical, intent(in), optional :: replace(n_outputs)
       !> Outputs wanted besides the scene's (command line)
       logical, intent(in), optional :: add(n_outputs)
-      character(len=scene_line_length), allocatable :: lines(:), more(:)
-      character(len=:), allocatable :: line, shown
+      character(len=scene_line_length), allocatable :: lines(:)
+      character(len=:), allocatable :: shown
       character(len=512) :: msg
-      integer :: unit, ios, n, column
-      logical :: exists, at_end
+      integer :: unit, ios, n
+      logical :: exists
 
       shown = printable(path)
       if (directory_exists(path)) then
@@ -210,45 +210,7 @@ contains
          error = shown // ": cannot open the scene file (" // trim(msg) // ")"
          return
       end if
-      allocate(lines(64))
-      n = 0
-      do
-         call read_line(unit, line, at_end, error)
-         if (allocated(error)) then
-            error = shown // ":" // str(n + 1) // ": " // error
-            exit
-         end if
-         if (at_end) exit
-         n = n + 1
-         ! the byte order mark some editors put first (U+FEFF in UTF-8) is no text
-         if (n == 1 .and. len(line) >= 3) then
-            if (iachar(line(1:1)) == 239 .and. iachar(line(2:2)) == 187 &
-               & .and. iachar(line(3:3)) == 191) line = line(4:)
-         end if
-         if (n > max_scene_lines) then
-            error = shown // ": more than " // str(max_scene_lines) // " lines: a scene file" &
-               & // " is a short text (is this the right file?)"
-            exit
-         end if
-         column = not_text(line)
-         if (column > 0) then
-            error = shown // ":" // str(n) // ": character " // str(column) // " is not text (" &
-               & // byte_name(line, column) // "): a scene file is plain text (UTF-8)"
-            exit
-         end if
-         if (len_trim(line) > scene_line_length) then
-            error = shown // ":" // str(n) // ": the line is longer than " &
-               & // str(scene_line_length) // " characters: split it (a list of values may" &
-               & // " go on over several lines)"
-            exit
-         end if
-         if (n > size(lines)) then
-            allocate(more(2 * size(lines)))
-            more(1:size(lines)) = lines
-            call move_alloc(more, lines)
-         end if
-         lines(n) = line
-      end do
+      call read_text_lines(unit, shown, lines, n, error)
       close(unit)
       if (allocated(error)) return
       if (all(len_trim(lines(1:n)) == 0)) then
@@ -258,95 +220,6 @@ contains
       end if
       call read_scene_lines(lines(1:n), shown, printable(stem(path)), sc, error, replace, add)
    end subroutine read_scene_file
-
-   !> The next line of the file, whole, or `at_end`. Read in pieces; reading stops
-   !> once the line has more than scene_line_length characters before its trailing
-   !> blanks (too long), or a million characters in all, so that a line without end
-   !> costs no more.
-   subroutine read_line(unit, line, at_end, error)
-      integer, intent(in) :: unit
-      character(len=:), allocatable, intent(out) :: line
-      logical, intent(out) :: at_end
-      character(len=:), allocatable, intent(out) :: error
-      integer, parameter :: max_read = 2**20
-      character(len=256) :: piece
-      character(len=512) :: msg
-      integer :: ios, got, total
-      line = ""
-      at_end = .false.
-      total = 0
-      do
-         got = 0
-         read(unit, '(a)', advance="no", iostat=ios, size=got, iomsg=msg) piece
-         line = line // piece(1:got)
-         total = total + got
-         if (is_iostat_eor(ios)) return
-         if (is_iostat_end(ios)) then
-            ! a last line without a newline ends with an end of record first
-            at_end = .true.
-            return
-         end if
-         if (ios /= 0) then
-            error = "cannot read the line (" // trim(msg) // ")"
-            return
-         end if
-         ! trailing blanks may follow a full line: only text beyond them is too long
-         if (len_trim(line) > scene_line_length) return
-         if (total > max_read) then
-            error = "the line has more than " // str(max_read) // " characters"
-            return
-         end if
-         if (len(line) > scene_line_length + len(piece)) line = line(1:scene_line_length + 1)
-      end do
-   end subroutine read_line
-
-   !> Position of the first character of `line` that is not text: an ASCII control
-   !> character other than the tab, a C1 control (U+0080 to U+009F), or a byte that
-   !> is not part of a UTF-8 sequence; 0 if there is none.
-   pure function not_text(line) result(column)
-      character(len=*), intent(in) :: line
-      integer :: column
-      integer :: i, c, follow, k
-      i = 1
-      do while (i <= len(line))
-         column = i
-         c = iachar(line(i:i))
-         if (c < 32 .and. c /= 9) return
-         if (c == 127) return
-         if (c < 128) then
-            i = i + 1
-            cycle
-         end if
-         ! the length of a UTF-8 sequence from its first byte
-         if (c >= 194 .and. c <= 223) then
-            follow = 1
-         else if (c >= 224 .and. c <= 239) then
-            follow = 2
-         else if (c >= 240 .and. c <= 244) then
-            follow = 3
-         else
-            return
-         end if
-         if (i + follow > len(line)) return
-         do k = 1, follow
-            if (iachar(line(i + k:i + k)) < 128 .or. iachar(line(i + k:i + k)) > 191) return
-         end do
-         ! C1 controls: U+0080 to U+009F, C2 80 to C2 9F
-         if (c == 194 .and. iachar(line(i + 1:i + 1)) <= 159) return
-         i = i + follow + 1
-      end do
-      column = 0
-   end function not_text
-
-   !> "byte 0x1B", for the character at `column`.
-   pure function byte_name(line, column) result(text)
-      character(len=*), intent(in) :: line
-      integer, intent(in) :: column
-      character(len=:), allocatable :: text
-      character(len=2) :: hex
-      write(hex, '(z2.2)') iachar(line(column:column))
-      text = "byte 0x" // hex
-   end function byte_name
 
    !> The built-in default scene (`default_scene_lines`).
    subroutine read_default_scene(sc, error, replace, add)
@@ -798,7 +671,7 @@ contains
       if (.not. src%groups(gid)%present) return
       first = src%groups(gid)%first
       last = src%groups(gid)%last
-      ! (a comma before a comment at the end of a line: hcimpact_scene_comments)
+      ! (a comma before a comment at the end of a line: hcimpact_scene_lines)
       lines = blank_comments(src%lines(first:last), keep_quoted=.true.)
       msg = ""
       call read_records(gid, lines, ios, msg)
@@ -1980,6 +1853,10 @@ contains
       sys%rtol = options%rtol
       sys%method = method_integrated
       sys%integrator = integrator_bdf
+      ! no variations (&system_sweep is refused above), but their empty lists: the
+      ! output system_sweep runs the chain once (it crashed on their absence)
+      call load_variations(src, sys, error)
+      if (allocated(error)) return
       call system_sampling(src, sc, error)
       if (allocated(error)) return
       sc%system = sys
@@ -2266,20 +2143,12 @@ contains
       character(len=:), allocatable, intent(out) :: error
       integer :: count, i
       bodies = [1]
-      count = 0
-      do while (count < size(values))
-         if (is_unset(values(count + 1))) exit
-         count = count + 1
-      end do
-      if (count == 0 .and. all(is_unset(values)) .and. .not. given(src, g_system_sweep, name)) &
-         & return
-      if (count == 0 .and. all(is_unset(values))) then
+      call count_list(src, g_system_sweep, name, values, count, error)
+      if (allocated(error)) return
+      if (count == 0 .and. .not. given(src, g_system_sweep, name)) return
+      if (count == 0) then
          error = at(src, g_system_sweep, name) // name // " has no value: give the index" &
             & // " of a body, several, or 0 for every body"
-         return
-      else if (.not. all(is_unset(values(count + 1:)))) then
-         error = at(src, g_system_sweep, name) // name // " has a gap in its list: give" &
-            & // " the indices one after the other, from its first value on"
          return
       else if (n == 0) then
          error = at(src, g_system_sweep, name) // name // " names the bodies whose " &
@@ -2292,12 +2161,12 @@ contains
          ! or NaN is not one; the finite test first, a NaN compared would trap)
          if (.not. ieee_is_finite(values(i))) then
             error = at(src, g_system_sweep, name) // body_list_text(name) // ": " &
-               & // real_str(values(i), 6) // " is not one"
+               & // real_str(values(i), 17) // " is not one"
             return
          end if
          if (values(i) /= aint(values(i))) then
             error = at(src, g_system_sweep, name) // body_list_text(name) // ": " &
-               & // real_str(values(i), 6) // " is not one"
+               & // real_str(values(i), 17) // " is not one"
             return
          end if
       end do

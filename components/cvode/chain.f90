@@ -34,7 +34,7 @@ module hcimpact_cvode_chain
       & hcimpact_err_no_convergence
    use hcimpact_force_element, only : contact_force_type
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
-      & contact_record, by_integration, integrator_adams, method_integrated
+      & contact_record, by_integration, integrator_adams, method_integrated, not_below_zero
    use hcimpact_chain_engine, only : chain_engine, cluster_integrator, run_engine, &
       & slot_gap0, slot_law, slot_exists, body_state_at, engine_record, capture_margin, &
       & advance_reached, advance_grow_left, advance_grow_right, advance_dissolved, &
@@ -1139,7 +1139,7 @@ contains
       e = self%contact(j)%earlier &
          & + (self%y(dissipation_index(self%region%m, j)) - self%contact(j)%e_base)
       ! (a NaN stays: the engine leaves it out and the balance reports it)
-      if (ieee_is_finite(e)) e = max(0.0_wp, e)
+      e = not_below_zero(e)
    end function dissipated_so_far
 
    !> Whether no contact of the region is active or closing (it can be dissolved).

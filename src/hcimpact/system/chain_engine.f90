@@ -55,6 +55,7 @@ module hcimpact_chain_engine
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
       & kinetic_energy, energy_balance_error, momentum_balance_error, sum_in_range, &
+      & not_below_zero, &
       & gravity_impulse, momentum, product_in_range
    implicit none
    private
@@ -808,11 +809,14 @@ contains
    !> a / b for b /= 0, or +-huge where the quotient may be beyond the range of doubles
    !> (from the binary exponents: also for some within a factor 2 of its top), without
    !> raising the overflow (gfortran's binary exponent of a subnormal is the value's,
-   !> which the bound needs)
+   !> which the bound needs); NaN for a NaN, +-huge or 0 for an infinity (whose binary
+   !> exponent is huge(0): the difference is formed in 64 bits)
    elemental function quotient_or_huge(a, b) result(y)
       real(wp), intent(in) :: a, b
       real(wp) :: y
-      if (a == 0.0_wp) then
+      if (ieee_is_nan(a) .or. ieee_is_nan(b)) then
+         y = a + b
+      else if (a == 0.0_wp) then
          y = 0.0_wp
       else if (int(exponent(a), int64) - exponent(b) < maxexponent(1.0_wp)) then
          y = a / b
@@ -1844,8 +1848,7 @@ contains
       ! (the rest state has the least energy: a difference below 0 is rounding)
       above_rest = region_energy(engine, a, b, u_now, v_now) &
          & - region_energy(engine, a, b, u, 0.0_wp * v_now)
-      if (ieee_is_finite(above_rest)) above_rest = max(0.0_wp, above_rest)
-      engine%dissipated = engine%dissipated + above_rest
+      engine%dissipated = engine%dissipated + not_below_zero(above_rest)
       engine%settle_side = merge(1, 2, engine%gravity < 0.0_wp)
       engine%settle_time = engine%time
       do i = a, b

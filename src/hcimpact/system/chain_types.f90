@@ -29,7 +29,7 @@ module hcimpact_chain_types
    public :: contact_law, chain_type, chain_options, contact_record, chain_result
    public :: chain_counters, chain_switch
    public :: check_chain, kinetic_energy, energy_balance_error, momentum_balance_error
-   public :: sum_in_range, product_in_range, gravity_impulse, momentum
+   public :: sum_in_range, product_in_range, gravity_impulse, momentum, not_below_zero
    public :: method_auto, method_exact, method_integrated
    public :: integrator_bdf, integrator_adams
    public :: by_closed_forms, by_integration, by_both
@@ -554,6 +554,17 @@ contains
          total = nan
       end if
    end function sum_in_range
+
+   !> An energy that cannot be negative (dissipated) where rounding or an integrator's
+   !> tolerance left it below 0: 0 there (also for -Inf), NaN kept, without comparing a
+   !> NaN (which would raise the invalid exception)
+   elemental function not_below_zero(x) result(y)
+      real(wp), intent(in) :: x
+      real(wp) :: y
+      y = x
+      if (ieee_is_nan(x)) return
+      if (x < 0.0_wp) y = 0.0_wp
+   end function not_below_zero
 
    !> a b, or +-Inf where it is beyond the range of doubles, without raising the
    !> overflow (the rounding as a b's where it is a double); an infinity times a
