@@ -773,6 +773,9 @@ contains
       character(len=*), intent(in) :: msg
       character(len=:), allocatable :: text
       character(len=*), parameter :: no_match = "Cannot match namelist object name "
+      ! &system_sweep's lists of bodies' indices (body_list_text)
+      character(len=*), parameter :: body_index_lists(2) = [character(len=12) :: &
+         & "mass_body", "striker_body"]
       character(len=:), allocatable :: token, owner
       integer :: p
 
@@ -790,7 +793,7 @@ contains
             text = "too many values for " // owner // " (at most " // str(max_bodies) &
                & // " bodies)"
          else if (len(owner) > 0 .and. gid == g_system_sweep .and. &
-            & any(lower(owner) == ["mass_body   ", "striker_body"])) then
+            & any(lower(owner) == body_index_lists)) then
             if (is_number(token) .or. scan(token, "0123456789+-.") == 1) then
                text = "too many values for " // owner // " (at most " // str(max_bodies) &
                   & // " bodies)"
@@ -837,7 +840,7 @@ contains
          end if
          token = trim(msg(p + len("Bad data for namelist object "):))
          text = "a value of " // token // " is not of the right kind: " // clip(adjustl(line))
-         if (gid == g_system_sweep .and. any(lower(token) == ["mass_body   ", "striker_body"])) &
+         if (gid == g_system_sweep .and. any(lower(token) == body_index_lists)) &
             & text = body_list_text(lower(token)) // ": " // clip(adjustl(line))
          return
       end if
@@ -2142,6 +2145,7 @@ contains
       integer, allocatable, intent(out) :: bodies(:)
       character(len=:), allocatable, intent(out) :: error
       integer :: count, i
+      logical :: whole
       bodies = [1]
       call count_list(src, g_system_sweep, name, values, count, error)
       if (allocated(error)) return
@@ -2157,14 +2161,11 @@ contains
          return
       end if
       do i = 1, count
-         ! (a whole number of the bodies' range, tested before it is converted: 1e300
-         ! or NaN is not one; the finite test first, a NaN compared would trap)
-         if (.not. ieee_is_finite(values(i))) then
-            error = at(src, g_system_sweep, name) // body_list_text(name) // ": " &
-               & // real_str(values(i), 17) // " is not one"
-            return
-         end if
-         if (values(i) /= aint(values(i))) then
+         ! (a whole number, tested before it is converted: NaN or Inf is not one; the
+         ! finite test first, a NaN compared would trap)
+         whole = ieee_is_finite(values(i))
+         if (whole) whole = values(i) == aint(values(i))
+         if (.not. whole) then
             error = at(src, g_system_sweep, name) // body_list_text(name) // ": " &
                & // real_str(values(i), 17) // " is not one"
             return
