@@ -217,7 +217,9 @@ typedef struct {
  *  HCIMPACT_ERR_DOMAIN (8)  a negative gap (bodies may touch, not overlap), gaps
  *                           or masses that add up beyond a quarter of the range,
  *                           method HCIMPACT_CHAIN_EXACT meeting a cluster, a
- *                           position or velocity beyond the range at the end, rtol
+ *                           position or velocity beyond the range at the end, a
+ *                           contact whose damping times approach speed is above
+ *                           1e40 (HCIMPACT_MAX_BETA, as for one impact), rtol
  *                           outside (0, 0.01], an unknown method or integrator,
  *                           negative limits, negative sample times, t_end
  *                           unset (<= 0) for a system that never ends (bodies

@@ -34,7 +34,8 @@ module hcimpact_cvode_chain
       & hcimpact_err_no_convergence
    use hcimpact_force_element, only : contact_force_type
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
-      & contact_record, by_integration, integrator_adams, method_integrated, not_below_zero
+      & contact_record, by_integration, integrator_adams, method_integrated, not_below_zero, &
+      & beyond_max_beta, say_beyond_max_beta
    use hcimpact_chain_engine, only : chain_engine, cluster_integrator, run_engine, &
       & slot_gap0, slot_law, slot_exists, body_state_at, engine_record, capture_margin, &
       & advance_reached, advance_grow_left, advance_grow_right, advance_dissolved, &
@@ -108,6 +109,12 @@ module hcimpact_cvode_chain
       logical :: wall_touched(2) = .false.
       !> Steps in a row that left the time where it was
       integer :: stalled = 0
+      !> A pair that touches (within the positions' tolerance) and closes with b V
+      !> beyond the model's domain (`beyond_max_beta`): its slot (-1 if none), the time
+      !> and the speed. CVODE crawls through such a contact with steps at the time's
+      !> resolution: its deformation stops on a scale below the positions' rounding.
+      integer :: beyond = -1
+      real(wp) :: beyond_time = 0.0_wp, beyond_speed = 0.0_wp
       !> Per end (1 left, 2 right): whether the boundary pair touched at the start,
       !> gap and relative speed exactly 0 (a pair of touching bodies left outside:
       !> closed_gap of hcimpact_chain_engine). The body outside flies freely and the
@@ -352,6 +359,7 @@ contains
       self%stepped = .false.
       self%due = advance_reached
       self%stalled = 0
+      self%beyond = -1
 
       setup: block
          where = "SUNContext_Create"
@@ -465,6 +473,14 @@ contains
             ! (self%y holds the state at the end of the step)
             if (self%next < self%tn) call move_to(self, self%next)
             call follow_contacts(self, engine, self%next, ended)
+            if (self%beyond >= 0) then
+               stat = hcimpact_err_domain
+               call say_beyond_max_beta(engine%message, self%first - 1 + self%beyond, &
+                  & self%beyond_time, self%region%law(self%beyond)%damping, &
+                  & self%beyond_speed)
+               what = advance_failed
+               exit run
+            end if
             if (self%due /= advance_reached) then
                ! a gap at the boundary closed here: the region grows
                what = self%due
@@ -541,6 +557,7 @@ contains
             stat = hcimpact_err_solver
             write(engine%message, '(a, es11.3e3, a)') "CVODE failed at t = ", tret(1), &
                & " s: " // cvode_flag_name(ierr) // report_detail(self%region%report)
+            call beyond_domain(self, engine, tret(1), stat)
             what = advance_failed
             exit run
          end if
@@ -567,6 +584,32 @@ contains
       end block run
       call halting_resume(halting)
    end subroutine region_advance
+
+   !> After CVODE failed at t (self%y its state there): where a contact of the region
+   !> is open or closing with b V beyond the model's domain (`beyond_max_beta`: the
+   !> corrector fails on such contacts), that is what stat and the message say
+   !> (hcimpact_err_domain), the first such pair from the left.
+   subroutine beyond_domain(self, engine, t, stat)
+      type(cvode_chain_integrator), intent(in) :: self
+      type(chain_engine), intent(inout) :: engine
+      real(wp), intent(in) :: t
+      integer, intent(inout) :: stat
+      real(wp) :: x, w
+      type(contact_force_type) :: e
+      integer :: j
+      do j = 0, self%region%m
+         if (.not. any(self%region%kind(j) == [slot_pair, slot_left_wall, slot_right_wall])) &
+            & cycle
+         call slot_state(self%region, j, t, self%y, x, w, e)
+         if (.not. (w > 0.0_wp .or. x >= 0.0_wp)) cycle
+         if (beyond_max_beta(self%region%law(j)%damping, w)) then
+            stat = hcimpact_err_domain
+            call say_beyond_max_beta(engine%message, self%first - 1 + j, t, &
+               & self%region%law(j)%damping, w)
+            return
+         end if
+      end do
+   end subroutine beyond_domain
 
    !> Whether the region holds the wall that gravity points to (a body that leaves it
    !> falls back).
@@ -806,6 +849,13 @@ contains
             cycle
          end select
          df = force_rate(self%region, j, dy, w, e)
+         if (self%beyond < 0 .and. w > 0.0_wp .and. x >= -self%atol(1)) then
+            if (beyond_max_beta(self%region%law(j)%damping, w)) then
+               self%beyond = j
+               self%beyond_time = t
+               self%beyond_speed = w
+            end if
+         end if
          if (.not. self%contact(j)%open) then
             if (x > 0.0_wp .and. h > 0.0_wp) then
                ! started in the step

@@ -261,12 +261,79 @@ static void fuzz_findings(void)
   }
 }
 
+/* A contact whose b V is above 1e40 (HCIMPACT_MAX_BETA) is outside the model's domain,
+   as for one impact: HCIMPACT_ERR_DOMAIN naming the pair, by the closed forms' path, the
+   integrated method and a cluster alike (CVODE's corrector failed on them, status 11). */
+static void beyond_max_beta(void)
+{
+  const double m1[1] = {1.0}, v1[1] = {-1.0};
+  const hcimpact_chain_wall wall = {1e9, 1.5, 1e41, 1.0};
+  const double m3[3] = {1.0, 1.0, 1.0}, v3[3] = {1.0, 0.0, 0.0}, gap3[2] = {0.0, 0.0};
+  const hcimpact_chain_law law3[2] = {{1e9, 1.5, 1e41}, {1e9, 1.5, 1e41}};
+  const hcimpact_chain_wall wall_below = {1e9, 1.5, 0.99e40, 1.0};
+  hcimpact_chain_options options = {0};
+  hcimpact_chain_result r;
+  double vf[3];
+  char message[256];
+  int stat, method;
+
+  for (method = HCIMPACT_CHAIN_AUTO; method <= HCIMPACT_CHAIN_INTEGRATED; ++method) {
+    options.method = method;
+    stat = hcimpact_chain_simulate(1, m1, v1, NULL, NULL, &wall, NULL, 0.0, &options, &r, NULL,
+                                   vf, 0, NULL, NULL, message, sizeof message);
+    check_status("b V = 1e41 on a wall", stat, HCIMPACT_ERR_DOMAIN, message);
+    check("b V = 1e41 on a wall: the message names pair 0 and the domain",
+          strstr(message, "pair 0 ") != NULL && strstr(message, "outside the model's domain"));
+  }
+  options.method = HCIMPACT_CHAIN_AUTO;
+  stat = hcimpact_chain_simulate(3, m3, v3, gap3, law3, NULL, NULL, 0.0, &options, &r, NULL, vf,
+                                 0, NULL, NULL, message, sizeof message);
+  check_status("b V = 1e41 in a cluster", stat, HCIMPACT_ERR_DOMAIN, message);
+  check("b V = 1e41 in a cluster: the message names pair 1", strstr(message, "pair 1 ") != NULL);
+  /* just below: a contact of the closed forms, the rebound about 1 / b */
+  stat = hcimpact_chain_simulate(1, m1, v1, NULL, NULL, &wall_below, NULL, 0.0, &options, &r,
+                                 NULL, vf, 0, NULL, NULL, message, sizeof message);
+  check_status("b V = 0.99e40 on a wall", stat, HCIMPACT_OK, message);
+  check("b V = 0.99e40 on a wall: rebound", vf[0] > 0.0 && vf[0] < 1e-30);
+}
+
+/* The next free contact under gravity where the speeds pass huge / 16 (1.1e307 m/s): its
+   equation is solved divided by 32 (unscaled, q overflows from huge / 2 on; found by the
+   fuzzer, whose input bench/fuzz/findings/chain-fixed-exponent-18d8635 takes this branch
+   with an infinite gap). Here the division's roots themselves are checked (a speed left
+   undivided put the contact at 1/32 of its time): a body of 1e-307 kg at 1.5e307 m/s
+   toward a wall 1e300 m away, gravity 1 m/s^2 away from the wall, meets the wall at
+   1e300 / 1.5e307 s (gravity's share is 1e-315 of the gap) and rebounds elastically. */
+static void fast_body_under_gravity(void)
+{
+  const double m[1] = {1e-307}, v[1] = {-1.5e307};
+  const hcimpact_chain_wall wall = {1e9, 1.5, 0.0, 1e300};
+  hcimpact_chain_result r;
+  hcimpact_chain_contact c[2];
+  double vf[1];
+  char message[256];
+  int stat;
+
+  stat = hcimpact_chain_simulate(1, m, v, NULL, NULL, &wall, NULL, 1.0, NULL, &r, NULL, vf, 2,
+                                 c, NULL, message, sizeof message);
+  check_status("1.5e307 m/s under gravity", stat, HCIMPACT_OK, message);
+  check("1.5e307 m/s under gravity: one contact", r.n_contacts == 1 && r.contacts_recorded == 1);
+  if (r.contacts_recorded == 1) {
+    check_close("1.5e307 m/s under gravity: the contact's start", c[0].t_start, 1e300 / 1.5e307,
+                4.0 * 2.220446049250313e-16);
+    check_close("1.5e307 m/s under gravity: approach", c[0].approach_speed, 1.5e307, 1e-15);
+  }
+  check_close("1.5e307 m/s under gravity: rebound", vf[0], 1.5e307, 1e-12);
+}
+
 int main(void)
 {
   two_bodies();
   cradle();
   bad_input();
   fuzz_findings();
+  beyond_max_beta();
+  fast_body_under_gravity();
   if (failures) {
     printf("%d checks failed\n", failures);
     return 1;

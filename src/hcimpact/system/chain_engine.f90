@@ -55,7 +55,7 @@ module hcimpact_chain_engine
       & chain_result, chain_counters, chain_switch, check_chain, method_auto, method_exact, &
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
       & kinetic_energy, energy_balance_error, momentum_balance_error, sum_in_range, &
-      & not_below_zero, &
+      & not_below_zero, beyond_max_beta, say_beyond_max_beta, &
       & gravity_impulse, momentum, product_in_range
    implicit none
    private
@@ -933,7 +933,8 @@ contains
       case (event_end)
          call end_exact(engine, s)
       case (event_start)
-         call start_contact(engine, s, why, neighbour)
+         call start_contact(engine, s, why, neighbour, stat)
+         if (stat /= hcimpact_ok) return
          if (len_trim(why) > 0) then
             call refuse_cluster(engine, why, have_integrator, stat)
             if (stat /= hcimpact_ok) return
@@ -951,14 +952,16 @@ contains
    end subroutine process_event
 
    !> A contact of slot s starts now: by the closed forms if it is isolated (why
-   !> empty), else why says what prevents it.
-   subroutine start_contact(engine, s, why, neighbour)
+   !> empty), else why says what prevents it; hcimpact_err_domain (stat, with the
+   !> engine's message) where its b V is beyond the model's domain.
+   subroutine start_contact(engine, s, why, neighbour, stat)
       type(chain_engine), intent(inout) :: engine
       integer, intent(in) :: s
       character(len=max_message), intent(out) :: why
       !> The neighbouring slot that may close during the contact (-1: none)
       integer, intent(out) :: neighbour
-      integer :: left, right, stat, side
+      integer, intent(out) :: stat
+      integer :: left, right, side, impact_stat
       real(wp) :: gap, rate, mass, ul, vl, ur, vr, total
       type(contact_law) :: law
       type(exact_contact) :: c
@@ -966,6 +969,7 @@ contains
 
       why = ""
       neighbour = -1
+      stat = hcimpact_ok
       call slot_bodies(engine, s, left, right)
       call slot_gap_at(engine, s, engine%time, gap, rate)
       ! touching a wall without speed, gravity pushing the body into it: a contact
@@ -979,6 +983,13 @@ contains
          return
       end if
       law = slot_law(engine, s)
+      ! (neither the closed forms nor CVODE compute it: said here, not as a cluster
+      ! whose integration fails)
+      if (beyond_max_beta(law%damping, rate)) then
+         stat = hcimpact_err_domain
+         call say_beyond_max_beta(engine%message, s, engine%time, law%damping, rate)
+         return
+      end if
       if (pressed) then
          write(why, '(a, i0, a)') "a body pressed on a wall (pair ", s, &
             & ") by gravity has no closed form"
@@ -1005,8 +1016,8 @@ contains
       c%t_start = engine%time
       c%contact = contact_type(mass=mass, stiffness=law%stiffness, exponent=law%exponent, &
          & damping=law%damping, velocity=-rate)
-      call scaled_impact(c, stat)
-      if (stat /= hcimpact_ok) then
+      call scaled_impact(c, impact_stat)
+      if (impact_stat /= hcimpact_ok) then
          write(why, '(a, i0, a)') "the closed forms cannot compute pair ", s, &
             & " (status of the one impact)"
          return

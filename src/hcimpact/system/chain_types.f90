@@ -21,7 +21,7 @@ module hcimpact_chain_types
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_mass, &
       & hcimpact_err_domain, hcimpact_err_size
-   use hcimpact_contact, only : check_parameters
+   use hcimpact_contact, only : check_parameters, max_beta
    use hcimpact_power_force, only : product_of, signed_product
    implicit none
    private
@@ -30,6 +30,7 @@ module hcimpact_chain_types
    public :: chain_counters, chain_switch
    public :: check_chain, kinetic_energy, energy_balance_error, momentum_balance_error
    public :: sum_in_range, product_in_range, gravity_impulse, momentum, not_below_zero
+   public :: beyond_max_beta, say_beyond_max_beta
    public :: method_auto, method_exact, method_integrated
    public :: integrator_bdf, integrator_adams
    public :: by_closed_forms, by_integration, by_both
@@ -565,6 +566,27 @@ contains
       if (ieee_is_nan(x)) return
       if (x < 0.0_wp) y = 0.0_wp
    end function not_below_zero
+
+   !> Whether a contact of damping b (s/m) at the relative speed w (m/s) has b |w|
+   !> above max_beta (1e40), beyond the model's domain: one impact refuses it
+   !> (hcimpact_err_domain), and an integrator meets a force that drops by 40 orders
+   !> of magnitude within the contact's first instant, where CVODE's corrector fails.
+   elemental logical function beyond_max_beta(damping, w)
+      real(wp), intent(in) :: damping, w
+      beyond_max_beta = product_in_range(damping, abs(w)) > max_beta
+   end function beyond_max_beta
+
+   !> The message of a system that meets such a contact (pair numbered as in the
+   !> contacts' records), at the time t.
+   pure subroutine say_beyond_max_beta(message, pair, t, damping, w)
+      character(len=*), intent(out) :: message
+      integer, intent(in) :: pair
+      real(wp), intent(in) :: t, damping, w
+      write(message, '(a, i0, a, es11.3e3, a, es10.3e3, a, es10.3e3, a)') "pair ", pair, &
+         & " at t = ", t, " s: b V = ", product_in_range(damping, abs(w)), &
+         & " (damping times approach speed) is above ", max_beta, &
+         & ", outside the model's domain (as for one impact)"
+   end subroutine say_beyond_max_beta
 
    !> a b, or +-Inf where it is beyond the range of doubles, without raising the
    !> overflow (the rounding as a b's where it is a double); an infinity times a
