@@ -6,7 +6,9 @@
 !> that ends the line, and the end of the line, as two separators, so that a list
 !> going on over lines with a comment after a comma reads a null value between
 !> ("mass = 0.1, ! the striker" and 0.2 on the next line gave 0.1, (none), 0.2):
-!> both readers blank the comments first.
+!> both readers blank the comments first. blank_comments is the one place that says
+!> where a comment starts: the scene runner's reader also finds its groups, the names
+!> given and the lines its messages name on the lines blanked by it.
 module hcimpact_scene_lines
    use hcimpact_scene_model, only : scene_line_length, max_scene_lines
    use hcimpact_scene_text, only : str
@@ -162,8 +164,9 @@ contains
    end function byte_name
 
    !> The lines with their comments (from `!` outside quotes to the end of the line)
-   !> blanked, and their quoted text too unless keep_quoted (a quote may go on over
-   !> lines).
+   !> blanked, and the text between quotes too unless keep_quoted (the quotes stay, so
+   !> that a name just before a quote is not taken for one before "="; a quote may go
+   !> on over lines). The one place that says where a comment starts.
    pure function blank_comments(lines, keep_quoted) result(bare)
       character(len=*), intent(in) :: lines(:)
       logical, intent(in) :: keep_quoted
@@ -175,11 +178,13 @@ contains
       do l = 1, size(bare)
          do i = 1, len_trim(bare(l))
             if (quote /= " ") then
-               if (bare(l)(i:i) == quote) quote = " "
-               if (.not. keep_quoted) bare(l)(i:i) = " "
+               if (bare(l)(i:i) == quote) then
+                  quote = " "
+               else if (.not. keep_quoted) then
+                  bare(l)(i:i) = " "
+               end if
             else if (bare(l)(i:i) == '"' .or. bare(l)(i:i) == "'") then
                quote = bare(l)(i:i)
-               if (.not. keep_quoted) bare(l)(i:i) = " "
             else if (bare(l)(i:i) == "!") then
                bare(l)(i:) = " "
                exit

@@ -137,7 +137,14 @@ module hcimpact_scene_reader
    !> The text of a scene and where its groups are
    type :: scene_source
       character(len=:), allocatable :: name
+      !> The lines as written (shown in messages)
       character(len=scene_line_length), allocatable :: lines(:)
+      !> The lines with their comments blanked (hcimpact_scene_lines' blank_comments):
+      !> what the compiler's reader is given
+      character(len=scene_line_length), allocatable :: code(:)
+      !> The lines with their comments and the text between quotes blanked (the quotes
+      !> stay): where names stand
+      character(len=scene_line_length), allocatable :: bare(:)
       type(group_place) :: groups(n_groups)
    end type scene_source
 
@@ -264,6 +271,10 @@ contains
       do i = 1, size(lines)
          src%lines(i) = lines(i)
       end do
+      ! where a comment starts is decided once, for the whole file (a quote may go on
+      ! over lines)
+      src%code = blank_comments(src%lines, keep_quoted=.true.)
+      src%bare = blank_comments(src%lines, keep_quoted=.false.)
       sc%name = name
       sc%source = source_name
       sc%text = src%lines
@@ -340,8 +351,9 @@ contains
       open_group = 0
       quote = " "
       quote_line = 0
-      do l = 1, size(src%lines)
-         line = src%lines(l)
+      do l = 1, size(src%code)
+         ! comments are blanks here; messages show the line as written
+         line = src%code(l)
          n = len_trim(line)
          i = 1
          line_has_text = .false.
@@ -352,14 +364,13 @@ contains
                i = i + 1
                cycle
             end if
-            if (ch == "!") exit
             if (open_group == 0) then
                if (ch == " " .or. ch == achar(9)) then
                   i = i + 1
                   cycle
                end if
                if (ch /= "&" .and. ch /= "$") then
-                  error = place(src, l) // "text outside a group: '" // clip(src%lines(l)(i:n)) &
+                  error = place(src, l) // "text outside a group: '" // clip(src%lines(l)(i:)) &
                      & // "' (a group starts with &name and ends with /; ! starts a comment)"
                   return
                end if
@@ -492,7 +503,7 @@ contains
       integer :: line
       integer :: l
       do l = src%groups(gid)%first, src%groups(gid)%last
-         if (name_position(src%lines(l), variable) > 0) then
+         if (name_position(src%bare(l), variable) > 0) then
             line = l
             return
          end if
@@ -500,8 +511,9 @@ contains
       line = src%groups(gid)%first
    end function variable_line
 
-   !> Position of `name` on the line as a name being assigned (followed by = or (),
-   !> outside quotes and comments; 0 if it is not there.
+   !> Position of `name` on the line as a name being assigned (followed by = or ();
+   !> 0 if it is not there. The line's comments and quoted text are blanks
+   !> (scene_source's bare).
    pure function name_position(line, name) result(pos)
       character(len=*), intent(in) :: line, name
       integer :: pos
@@ -510,9 +522,6 @@ contains
       logical :: before_ok
       low = lower(line)
       n = len_trim(low)
-      call blank_quotes(low)
-      i = index(low, "!")
-      if (i > 0) low(i:) = " "
       pos = 0
       i = 1
       do
@@ -537,25 +546,6 @@ contains
          if (i > n) return
       end do
    end function name_position
-
-   !> Replace quoted text by blanks.
-   pure subroutine blank_quotes(line)
-      character(len=*), intent(inout) :: line
-      character(len=1) :: quote
-      integer :: i
-      quote = " "
-      do i = 1, len(line)
-         if (quote /= " ") then
-            if (line(i:i) == quote) then
-               quote = " "
-            else
-               line(i:i) = " "
-            end if
-         else if (line(i:i) == '"' .or. line(i:i) == "'") then
-            quote = line(i:i)
-         end if
-      end do
-   end subroutine blank_quotes
 
    !> At most 40 characters of a text.
    pure function clip(text) result(out)
@@ -672,7 +662,7 @@ contains
       first = src%groups(gid)%first
       last = src%groups(gid)%last
       ! (a comma before a comment at the end of a line: hcimpact_scene_lines)
-      lines = blank_comments(src%lines(first:last), keep_quoted=.true.)
+      lines = src%code(first:last)
       msg = ""
       call read_records(gid, lines, ios, msg)
       if (ios == 0) then
@@ -695,7 +685,8 @@ contains
          end if
       end do
       error = place(src, bad) // "&" // trim(group_names(gid)) // ": " &
-         & // explain(src%lines(bad), group_text(src, first, bad), gid, trim(first_msg)) &
+         & // explain(src%lines(bad), src%bare(bad), group_text(src, first, bad), gid, &
+         & trim(first_msg)) &
          & // " (Fortran: " // trim(first_msg) // ")"
       call reset_variables()
    end subroutine read_group
@@ -708,16 +699,14 @@ contains
       integer, intent(in) :: gid
       character(len=:), allocatable, intent(out) :: error
       character(len=scene_line_length) :: bare
-      character(len=scene_line_length), allocatable :: names(:), more(:), bare_lines(:)
+      character(len=scene_line_length), allocatable :: names(:), more(:)
       integer, allocatable :: at_line(:), more_lines(:)
       integer :: l, i, n, k, name_start, name_end
       allocate(names(16), at_line(16))
       n = 0
-      ! quoted text (which may go on over lines) and comments become blanks
-      bare_lines = blank_comments(src%lines(src%groups(gid)%first:src%groups(gid)%last), &
-         & keep_quoted=.false.)
       do l = src%groups(gid)%first, src%groups(gid)%last
-         bare = bare_lines(l - src%groups(gid)%first + 1)
+         ! quoted text (which may go on over lines) and comments are blanks
+         bare = src%bare(l)
          ! each "=" assigns the name before it (and its index, if any)
          do i = 1, len_trim(bare)
             if (bare(i:i) /= "=") cycle
@@ -764,9 +753,11 @@ contains
    end subroutine name_before
 
    !> Our reading of a namelist error message on a line of group gid.
-   function explain(line, context, gid, msg) result(text)
-      !> The line at fault
+   function explain(line, bare, context, gid, msg) result(text)
+      !> The line at fault, as written (shown)
       character(len=*), intent(in) :: line
+      !> The same line with its comments and quoted text blanked (scene_source's bare)
+      character(len=*), intent(in) :: bare
       !> The group's text up to and including that line, without comments
       character(len=*), intent(in) :: context
       integer, intent(in) :: gid
@@ -782,7 +773,7 @@ contains
       p = index(msg, no_match)
       if (p > 0) then
          token = trim(msg(p + len(no_match):))
-         if (name_position(line, token) > 0) then
+         if (name_position(bare, token) > 0) then
             text = "unknown name '" // token // "' (&" // trim(group_names(gid)) // " takes " &
                & // trim(group_variables(gid)) // ")"
             return
@@ -832,7 +823,7 @@ contains
       p = index(msg, "Bad data for namelist object ")
       if (p > 0) then
          ! a list that reads on into the next line's name: that name is unknown
-         owner = unknown_name(line, gid)
+         owner = unknown_name(bare, gid)
          if (len(owner) > 0) then
             text = "unknown name '" // owner // "' (&" // trim(group_names(gid)) // " takes " &
                & // trim(group_variables(gid)) // ")"
@@ -874,7 +865,7 @@ contains
    end function explain
 
    !> The first name assigned on the line (name = ...) that group gid does not take, or
-   !> "".
+   !> "". The line's comments and quoted text are blanks (scene_source's bare).
    function unknown_name(line, gid) result(name)
       character(len=*), intent(in) :: line
       integer, intent(in) :: gid
@@ -884,9 +875,6 @@ contains
       integer :: i, first, last
       name = ""
       bare = lower(line)
-      call blank_quotes(bare)
-      i = index(bare, "!")
-      if (i > 0) bare(i:) = " "
       known = ", " // lower(group_variables(gid))
       do i = 1, len_trim(bare)
          if (bare(i:i) /= "=") cycle
@@ -899,22 +887,16 @@ contains
       end do
    end function unknown_name
 
-   !> Lines first..last of the source joined by blanks, comments and quoted text kept
-   !> apart from `!` comments, which are dropped.
+   !> Lines first..last of the source joined by blanks, quoted text kept and comments
+   !> dropped.
    function group_text(src, first, last) result(text)
       type(scene_source), intent(in) :: src
       integer, intent(in) :: first, last
       character(len=:), allocatable :: text
-      character(len=scene_line_length) :: line, bare
-      integer :: l, c
+      integer :: l
       text = ""
       do l = first, last
-         line = src%lines(l)
-         bare = line
-         call blank_quotes(bare)
-         c = index(bare, "!")
-         if (c > 0) line(c:) = " "
-         text = text // " " // trim(line)
+         text = text // " " // trim(src%code(l))
       end do
    end function group_text
 
@@ -995,7 +977,7 @@ contains
       yes = .false.
       if (.not. src%groups(gid)%present) return
       do l = src%groups(gid)%first, src%groups(gid)%last
-         yes = name_position(src%lines(l), name) > 0
+         yes = name_position(src%bare(l), name) > 0
          if (yes) return
       end do
    end function given
