@@ -54,7 +54,10 @@ function(hcimpact_debug_flags out_var)
   if(CMAKE_Fortran_COMPILER_ID STREQUAL "GNU")
     # -Wno-compare-reals: exact comparisons are deliberate in this library
     # (branch points, exactly representable results) and in its tests
-    set(flags -Wall -Wextra -Wno-compare-reals -fcheck=all -ffpe-trap=invalid,zero,overflow -fbacktrace)
+    # -Werror=character-truncation: a constant cut to its declared length (a list
+    # of names longer than its array's length lost its last names)
+    set(flags -Wall -Wextra -Wno-compare-reals -Werror=character-truncation -fcheck=all
+      -ffpe-trap=invalid,zero,overflow -fbacktrace)
   elseif(CMAKE_Fortran_COMPILER_ID MATCHES "^Intel")
     set(flags -warn all -check all -fpe0 -traceback)
   endif()

@@ -225,7 +225,10 @@ typedef struct {
  *                           unset (<= 0) for a system that never ends (bodies
  *                           between two walls without gravity, or an undamped
  *                           system falling onto a wall),
- *  HCIMPACT_ERR_SOLVER (11) CVODE failed (the message names its flag),
+ *  HCIMPACT_ERR_SOLVER (11) CVODE failed (the message names its flag), or an
+ *                           integration ended with its energy balance off by more
+ *                           than max(1, 1e4 rtol) of the system's energy (scales
+ *                           that CVODE does not resolve; "did not resolve"),
  *  HCIMPACT_ERR_NO_CONVERGENCE (9) more than max_events contacts or max_steps
  *                           steps (a ball that would bounce for ever: give t_end).
  *  After an error other than NULL and SIZE every real of *result is NaN, its counts

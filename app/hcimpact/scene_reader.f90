@@ -81,7 +81,7 @@ module hcimpact_scene_reader
       & "body1", "body2", "wall", "contact", "damping", "sampling", "bodies", "left_wall", &
       & "right_wall", "system_sweep", "mpi_chain", "impact_sweep"]
    !> The variables each group takes
-   character(len=*), parameter :: group_variables(n_groups) = [character(len=160) :: &
+   character(len=*), parameter :: group_variables(n_groups) = [character(len=256) :: &
       & "title, speeds, outputs", &
       & "mass, radius, density, young, poisson, flat", &
       & "mass, radius, density, young, poisson, flat", &

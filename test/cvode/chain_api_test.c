@@ -326,6 +326,115 @@ static void fast_body_under_gravity(void)
   check_close("1.5e307 m/s under gravity: rebound", vf[0], 1.5e307, 1e-12);
 }
 
+/* Found by a cross-check of the chain against hcimpact_impact (27 November): an elastic
+   pair of 1e-150 kg bodies at 3e-174 m/s, whose momentum 3e-324 kg m/s is subnormal
+   (one digit), ended with both velocities 1e-174 m/s off, and bodies of 1e-260 kg
+   ended half their gap (5e-71 m) away from where they met, both with success (the
+   centre of mass was formed from products of masses and speeds). */
+static void small_momenta(void)
+{
+  const double m[2] = {1e-150, 1e-150}, v[2] = {3.0000000000000002e-174, 0.0}, gap[1] = {0.0};
+  const double m2[2] = {9.9999999999999996e-261, 9.9999999999999996e-261};
+  const double v2[2] = {0.0, -9.9999999999999998e-46}, gap2[1] = {1e-70};
+  const hcimpact_chain_law law[1] = {{1.0, 1.0, 0.0}};
+  hcimpact_chain_result r;
+  double x[2], vf[2];
+  char message[256];
+  int stat;
+
+  stat = hcimpact_chain_simulate(2, m, v, gap, law, NULL, NULL, 0.0, NULL, &r, NULL, vf, 0, NULL,
+                                 NULL, message, sizeof message);
+  check_status("momenta of 3e-324", stat, HCIMPACT_OK, message);
+  check("momenta of 3e-324: the striker stops", fabs(vf[0]) <= 1e-16 * v[0]);
+  check_close("momenta of 3e-324: the other takes the speed", vf[1], v[0], 4.5e-16);
+  stat = hcimpact_chain_simulate(2, m2, v2, gap2, law, NULL, NULL, 0.0, NULL, &r, x, vf, 0, NULL,
+                                 NULL, message, sizeof message);
+  check_status("masses of 1e-260", stat, HCIMPACT_OK, message);
+  /* they meet at 0 at t = 1e-25 s and part within 1e-129 s at 1e-45 m/s */
+  check("masses of 1e-260: both end where they met", x[0] <= 0.0 && x[0] > -1e-150 &&
+        x[1] >= 0.0 && x[1] < 1e-150);
+  check_close("masses of 1e-260: the speeds exchanged", vf[0], v2[1], 4.5e-16);
+}
+
+/* Scales the closed forms refuse (the same cross-check): a body of 1e-300 kg on a wall of
+   c = 1e300 N/m (a contact of pi 1e-300 s, as the unit impact scaled) was integrated at
+   steps of 1e-300 s for hours; with c = 1e-300 N/m^2 at 1e-20 m/s (a peak force of 1e-327
+   N, below the doubles' normal range) CVODE returned a rebound 17 % short, with success. */
+static void scales_apart(void)
+{
+  const double m[1] = {1e-300}, v[1] = {-1.0}, v_slow[1] = {-9.9999999999999995e-21};
+  const hcimpact_chain_wall stiff = {1e300, 1.0, 0.0, 0.0}, damped = {1e300, 1.0, 1e20, 0.0};
+  const hcimpact_chain_wall faint = {1e-300, 2.0, 0.0, 0.0};
+  const hcimpact_contact unit = {1.0, 1.0, 1.0, 1e20, 1.0};
+  hcimpact_chain_options options = {0};
+  hcimpact_chain_result r;
+  hcimpact_chain_contact c[2];
+  hcimpact_outcome out;
+  double vf[1];
+  char message[256];
+  int stat;
+
+  stat = hcimpact_chain_simulate(1, m, v, NULL, NULL, &stiff, NULL, 0.0, NULL, &r, NULL, vf, 2,
+                                 c, NULL, message, sizeof message);
+  check_status("1e-300 kg on 1e300 N/m", stat, HCIMPACT_OK, message);
+  check("1e-300 kg on 1e300 N/m: closed forms", r.closed_form_contacts == 1 && r.steps == 0);
+  check_close("1e-300 kg on 1e300 N/m: rebound", vf[0], 1.0, 2.3e-16);
+  check_close("1e-300 kg on 1e300 N/m: duration", c[0].t_end, 3.141592653589793e-300, 1e-12);
+  check_close("1e-300 kg on 1e300 N/m: peak force", c[0].peak_force, 1.0, 1e-12);
+  stat = hcimpact_impact(&unit, &out);
+  check_status("the unit impact at b V = 1e20", stat, HCIMPACT_OK, "");
+  stat = hcimpact_chain_simulate(1, m, v, NULL, NULL, &damped, NULL, 0.0, NULL, &r, NULL, vf, 2,
+                                 c, NULL, message, sizeof message);
+  check_status("1e-300 kg on 1e300 N/m, b V = 1e20", stat, HCIMPACT_OK, message);
+  check_close("b V = 1e20: rebound", vf[0], -out.rebound_velocity, 2.3e-16);
+  check_close("b V = 1e20: duration", c[0].t_end, out.contact_time * 1e-300, 1e-12);
+  /* two bodies that meet 1e195 m away end one ulp of their positions (1e179 m) into each
+     other: no deformation (its elastic energy at 1 N/m, 1e358 J, failed the run) */
+  {
+    const double m2[2] = {9.9999999999999998e-201, 2.9999999999999999e-200};
+    const double v2[2] = {9.9999999999999997e+199, 0.0}, gap2[1] = {1e195};
+    const hcimpact_chain_law law2[1] = {{1.0, 1.0, 0.0}};
+    double vf2[2];
+    stat = hcimpact_chain_simulate(2, m2, v2, gap2, law2, NULL, NULL, 0.0, NULL, &r, NULL, vf2,
+                                   0, NULL, NULL, message, sizeof message);
+    check_status("an overlap of one ulp at 1e195 m", stat, HCIMPACT_OK, message);
+    check_close("an overlap of one ulp: velocity", vf2[1], 0.5 * v2[0], 4.5e-16);
+    check("an overlap of one ulp: energy kept", r.energy_error <= 1e-15);
+  }
+  /* 1e300 kg on a wall of 1e100 N/m at 1e-300 m/s: exact by the closed forms; CVODE does
+     not resolve it (it ended with 5e18 times the energy, and success) */
+  {
+    const double m3[1] = {1e300}, v3[1] = {-1e-300};
+    const hcimpact_chain_wall heavy = {1e100, 1.0, 0.0, 0.0};
+    stat = hcimpact_chain_simulate(1, m3, v3, NULL, NULL, &heavy, NULL, 0.0, NULL, &r, NULL, vf,
+                                   0, NULL, NULL, message, sizeof message);
+    check_status("1e300 kg at 1e-300 m/s", stat, HCIMPACT_OK, message);
+    check_close("1e300 kg at 1e-300 m/s: rebound", vf[0], 1e-300, 2.3e-16);
+    options.method = HCIMPACT_CHAIN_INTEGRATED;
+    stat = hcimpact_chain_simulate(1, m3, v3, NULL, NULL, &heavy, NULL, 0.0, &options, &r, NULL,
+                                   vf, 0, NULL, NULL, message, sizeof message);
+    if (stat == HCIMPACT_OK) {
+      check_close("1e300 kg at 1e-300 m/s, integrated: rebound", vf[0], 1e-300, 1e-6);
+    } else {
+      check_status("1e300 kg at 1e-300 m/s, integrated", stat, HCIMPACT_ERR_SOLVER, message);
+      check("1e300 kg at 1e-300 m/s, integrated: said",
+            strstr(message, "did not resolve the contacts") != NULL);
+    }
+    options.method = HCIMPACT_CHAIN_AUTO;
+  }
+  /* the closed forms, scaled, rebound it elastically; CVODE cannot resolve such forces */
+  stat = hcimpact_chain_simulate(1, m, v_slow, NULL, NULL, &faint, NULL, 0.0, NULL, &r, NULL,
+                                 vf, 0, NULL, NULL, message, sizeof message);
+  check_status("a peak force of 1e-327 N", stat, HCIMPACT_OK, message);
+  check_close("a peak force of 1e-327 N: rebound", vf[0], -v_slow[0], 2.3e-16);
+  options.method = HCIMPACT_CHAIN_INTEGRATED;
+  stat = hcimpact_chain_simulate(1, m, v_slow, NULL, NULL, &faint, NULL, 0.0, &options, &r, NULL,
+                                 vf, 0, NULL, NULL, message, sizeof message);
+  check_status("a peak force of 1e-327 N, integrated", stat, HCIMPACT_ERR_DOMAIN, message);
+  check("a peak force of 1e-327 N, integrated: said",
+        strstr(message, "below the normal range") != NULL);
+}
+
 int main(void)
 {
   two_bodies();
@@ -334,6 +443,8 @@ int main(void)
   fuzz_findings();
   beyond_max_beta();
   fast_body_under_gravity();
+  small_momenta();
+  scales_apart();
   if (failures) {
     printf("%d checks failed\n", failures);
     return 1;

@@ -45,7 +45,7 @@ module hcimpact_chain_engine
       & ieee_positive_inf
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_unavailable, &
-      & hcimpact_err_no_convergence, hcimpact_err_domain
+      & hcimpact_err_no_convergence, hcimpact_err_domain, hcimpact_err_solver
    use hcimpact_contact, only : contact_type, outcome_type
    use hcimpact_impact_model, only : impact, time_law
    use hcimpact_force_element, only : contact_force_type, contact_force_pair, &
@@ -571,6 +571,21 @@ contains
       end if
    end subroutine body_state_at
 
+   !> (m_l a_l + m_r a_r) / (m_l + m_r), the centre of mass's displacement or velocity,
+   !> with both masses scaled by the power of two that puts the larger in [1/2, 1):
+   !> unscaled, the products underflow for small masses and speeds (1e-150 kg at
+   !> 3e-174 m/s: a momentum of 3e-324 kg m/s, one digit, and both bodies of an
+   !> elastic pair ended 1e-174 m/s off, with success) and overflow for large ones.
+   pure real(wp) function mass_weighted(m_l, a_l, m_r, a_r) result(a)
+      real(wp), intent(in) :: m_l, a_l, m_r, a_r
+      real(wp) :: sl, sr
+      integer :: e
+      e = exponent(max(m_l, m_r))
+      sl = scale(m_l, -e)
+      sr = scale(m_r, -e)
+      a = (sl * a_l + sr * a_r) / (sl + sr)
+   end function mass_weighted
+
    !> The velocity of the left (or right) body of the exact pair contact s, its
    !> deformation rate being xd at tau after its start: that of the centre of mass
    !> plus (minus) m_R / M (m_L / M) times xd. Below the normal range the centre of
@@ -962,7 +977,7 @@ contains
       integer, intent(out) :: neighbour
       integer, intent(out) :: stat
       integer :: left, right, side, impact_stat
-      real(wp) :: gap, rate, mass, ul, vl, ur, vr, total
+      real(wp) :: gap, rate, mass, ul, vl, ur, vr
       type(contact_law) :: law
       type(exact_contact) :: c
       logical :: pressed
@@ -1037,9 +1052,8 @@ contains
       if (s > 0 .and. s < engine%n) then
          call body_state_at(engine, left, engine%time, ul, vl)
          call body_state_at(engine, right, engine%time, ur, vr)
-         total = engine%chain%mass(left) + engine%chain%mass(right)
-         c%ucm0 = (engine%chain%mass(left) * ul + engine%chain%mass(right) * ur) / total
-         c%vcm0 = (engine%chain%mass(left) * vl + engine%chain%mass(right) * vr) / total
+         c%ucm0 = mass_weighted(engine%chain%mass(left), ul, engine%chain%mass(right), ur)
+         c%vcm0 = mass_weighted(engine%chain%mass(left), vl, engine%chain%mass(right), vr)
          c%vl0 = vl
          c%vr0 = vr
       end if
@@ -1056,20 +1070,27 @@ contains
    end subroutine start_contact
 
    !> The outcome of the impact c%contact, and the impact its time law runs on. Where
-   !> the closed forms refuse it for its scale (an approach speed below about 1e-260
-   !> m/s: its peak force leaves the normal range), the impact is computed at 1 m/s
-   !> with the damping b V (the outcome depends on b V alone once the speed is scaled
-   !> out) and carried back exactly: with V the speed and p = 2 / (n + 1), compression
-   !> scales as V^p, velocity as V, time as V^(p - 1) and force as V^(n p). The peak
-   !> force then may be subnormal, or 0 where it is below the range. The velocities
-   !> are the closed forms'; the compression, the duration and the force carry the
-   !> rounding of p, amplified by |ln V| (about 1e-13 relative at 1e-300 m/s).
+   !> the closed forms refuse it for its scale, the same impact is computed in units
+   !> where it is a double and carried back (the outcome depends on b V alone once
+   !> the scales are taken out; p = 1 / (n + 1)):
+   !> - an approach speed V below 1 m/s (below about 1e-260 m/s its peak force leaves
+   !>   the normal range): at 1 m/s with the damping b V, compression scaled as
+   !>   V^(2p), velocity as V, time as V^((1 - n) p) and force as V^(2 n p), each a
+   !>   power of V (the compression, the duration and the force carry the rounding of
+   !>   the exponent, amplified by |ln V|: about 1e-13 relative at 1e-300 m/s);
+   !> - else, or where that is refused too: the unit impact (m = c = V = 1, b V),
+   !>   compression scaled by L = (m V^2 / c)^p, time by L / V, force by c L^n,
+   !>   from logarithms (1e-13 relative where they are near 700): masses and
+   !>   stiffnesses 600 decades apart (1e-300 kg on 1e300 N/m, a contact of 3e-300
+   !>   s) were refused, and integrated at steps of 1e-300 s for hours.
+   !> The velocities are the closed forms' in both. The peak force may be subnormal,
+   !> or 0 where it is below the range; a duration beyond the range is refused.
    subroutine scaled_impact(c, stat)
       type(exact_contact), intent(inout) :: c
       integer, intent(out) :: stat
-      type(contact_type) :: unit_speed
+      type(contact_type) :: unit
       type(outcome_type) :: o
-      real(wp) :: v, p, n
+      real(wp) :: v, n, lx, lt, lf
       ! (less a margin for the products with the unit impact's outcome)
       real(wp), parameter :: log_huge = 700.0_wp
       c%law_contact = c%contact
@@ -1078,39 +1099,68 @@ contains
       c%scale_t = 1.0_wp
       c%scale_f = 1.0_wp
       call impact(c%contact, c%outcome, stat)
+      if (stat /= hcimpact_err_domain) return
       v = c%contact%velocity
-      if (stat /= hcimpact_err_domain .or. .not. (v > 0.0_wp .and. v < 1.0_wp)) return
-      unit_speed = c%contact
-      unit_speed%velocity = 1.0_wp
-      unit_speed%damping = c%contact%damping * v
-      call impact(unit_speed, o, stat)
+      n = c%contact%exponent
+      ! (b V is at most max_beta here: start_contact refused more)
+      unit = c%contact
+      unit%velocity = 1.0_wp
+      unit%damping = c%contact%damping * v
+      if (v < 1.0_wp) then
+         call impact(unit, o, stat)
+         if (stat == hcimpact_ok) then
+            ! (the exponents each rounded once; each scale formed directly, as V^(2p)
+            ! underflows for n < 1 where the time scale does not)
+            lt = (1.0_wp - n) / (n + 1.0_wp) * log(v)
+            if (lt + log(o%contact_time) > log_huge) then
+               stat = hcimpact_err_domain
+               return
+            end if
+            call carry_back(c, unit, o, v, v**(2.0_wp / (n + 1.0_wp)), &
+               & v**((1.0_wp - n) / (n + 1.0_wp)), v**(2.0_wp * n / (n + 1.0_wp)))
+            return
+         end if
+      end if
+      unit%mass = 1.0_wp
+      unit%stiffness = 1.0_wp
+      call impact(unit, o, stat)
       if (stat /= hcimpact_ok) then
          stat = hcimpact_err_domain
          return
       end if
-      ! (the exponents p, p - 1 and n p each rounded once; each scale formed directly,
-      ! as V^p underflows for n < 1 where the time scale does not; a duration beyond
-      ! the range of doubles is refused)
-      n = c%contact%exponent
-      p = 2.0_wp / (n + 1.0_wp)
-      if ((1.0_wp - n) / (n + 1.0_wp) * log(v) + log(o%contact_time) > log_huge) then
+      lx = (log(c%contact%mass) + 2.0_wp * log(v) - log(c%contact%stiffness)) / (n + 1.0_wp)
+      lt = lx - log(v)
+      lf = log(c%contact%stiffness) + n * lx
+      if (lt + log(o%contact_time) > log_huge .or. lx + log(o%max_compression) > log_huge &
+         & .or. lf + log(o%peak_force) > log_huge) then
          stat = hcimpact_err_domain
          return
       end if
-      c%law_contact = unit_speed
-      c%scale_v = v
-      c%scale_x = v**p
-      c%scale_t = v**((1.0_wp - n) / (n + 1.0_wp))
-      c%scale_f = v**(2.0_wp * n / (n + 1.0_wp))
-      c%outcome = o
-      c%outcome%rebound_velocity = o%rebound_velocity * c%scale_v
-      c%outcome%max_compression = o%max_compression * c%scale_x
-      c%outcome%compression_at_peak_force = o%compression_at_peak_force * c%scale_x
-      c%outcome%peak_force = o%peak_force * c%scale_f
-      c%outcome%time_at_peak_force = o%time_at_peak_force * c%scale_t
-      c%outcome%compression_time = o%compression_time * c%scale_t
-      c%outcome%contact_time = o%contact_time * c%scale_t
+      call carry_back(c, unit, o, v, exp(max(-log_huge - 50.0_wp, lx)), &
+         & exp(max(-log_huge - 50.0_wp, lt)), exp(max(-log_huge - 50.0_wp, lf)))
    end subroutine scaled_impact
+
+   !> The outcome o of the impact `unit` in the units of c%contact: velocities times
+   !> sv, compressions times sx, times times st, forces times sf (`scaled_impact`).
+   pure subroutine carry_back(c, unit, o, sv, sx, st, sf)
+      type(exact_contact), intent(inout) :: c
+      type(contact_type), intent(in) :: unit
+      type(outcome_type), intent(in) :: o
+      real(wp), intent(in) :: sv, sx, st, sf
+      c%law_contact = unit
+      c%scale_v = sv
+      c%scale_x = sx
+      c%scale_t = st
+      c%scale_f = sf
+      c%outcome = o
+      c%outcome%rebound_velocity = o%rebound_velocity * sv
+      c%outcome%max_compression = o%max_compression * sx
+      c%outcome%compression_at_peak_force = o%compression_at_peak_force * sx
+      c%outcome%peak_force = o%peak_force * sf
+      c%outcome%time_at_peak_force = o%time_at_peak_force * st
+      c%outcome%compression_time = o%compression_time * st
+      c%outcome%contact_time = o%contact_time * st
+   end subroutine carry_back
 
    !> Whether slot s is inside a region or at its boundary (one of its bodies is
    !> integrated)
@@ -1956,7 +2006,7 @@ contains
       integer, intent(out) :: stat
       integer :: i, s, nsamples
       real(wp) :: u, v, e_kin0, e_kin, e_el, e_grav, p, x, in_progress, impulse
-      real(wp) :: walls(2), xd, f
+      real(wp) :: walls(2), xd, f, reach
       real(wp), allocatable :: displacement(:)
       type(contact_law) :: law
 
@@ -1994,11 +2044,20 @@ contains
          law = slot_law(engine, s)
          if (s == 0) then
             x = -(engine%chain%left_gap + (result%positions(1) - engine%q_initial(1)))
+            reach = max(engine%chain%left_gap, abs(result%positions(1)), &
+               & abs(engine%q_initial(1)))
          else if (s == engine%n) then
             x = (result%positions(s) - engine%q_initial(s)) - engine%chain%right_gap
+            reach = max(engine%chain%right_gap, abs(result%positions(s)), &
+               & abs(engine%q_initial(s)))
          else
             x = result%positions(s) - result%positions(s + 1)
+            reach = max(abs(result%positions(s)), abs(result%positions(s + 1)))
          end if
+         ! an overlap within the rounding of the positions it comes from is none: two
+         ! bodies of 1e-200 kg that met 1e196 m away ended one ulp (1e180 m) into each
+         ! other, whose elastic energy at c = 1 N/m left the range and failed the run
+         if (x <= 4.0_wp * spacing(reach)) x = min(x, 0.0_wp)
          e_el = sum_in_range(e_el, power_law_potential(law%stiffness, law%exponent, x))
       end do
       e_kin0 = 0.0_wp
@@ -2085,6 +2144,17 @@ contains
          stat = hcimpact_err_domain
          engine%message = "the impulses of the walls leave the range of doubles (beyond " &
             & // "1.8e308 N s)"
+      else if (engine%counters%clusters > 0 .and. result%energy_error > &
+         & max(1.0_wp, 1.0e4_wp * engine%options%rtol)) then
+         ! the integration went wrong without CVODE noticing (scales it does not resolve:
+         ! a body of 1e300 kg on a wall of 1e100 N/m at 1e-300 m/s, BDF at rtol 1e-6,
+         ! ended with 3.6 times its energy and success); the closed forms keep it to
+         ! rounding, an integration to a few hundred rtol
+         stat = hcimpact_err_solver
+         write(engine%message, '(a, es10.3e3, a, es10.3e3, a)') "the integration did not " &
+            & // "resolve the contacts: its energy balance is off by ", result%energy_error, &
+            & " of the system's energy at rtol ", engine%options%rtol, &
+            & " (scales beyond what CVODE resolves?)"
       end if
       ! (samples after t_end are NaN, not infinite; ieee_is_nan, not a comparison: a NaN
       ! compared traps in the Debug build)
