@@ -219,16 +219,18 @@ typedef struct {
  *                           method HCIMPACT_CHAIN_EXACT meeting a cluster, a
  *                           position or velocity beyond the range at the end, a
  *                           contact whose damping times approach speed is above
- *                           1e40 (HCIMPACT_MAX_BETA, as for one impact), rtol
+ *                           1e40 (HCIMPACT_MAX_BETA, as for one impact), a contact
+ *                           whose compression, duration or force leaves the range
+ *                           of doubles, rtol
  *                           outside (0, 0.01], an unknown method or integrator,
  *                           negative limits, negative sample times, t_end
  *                           unset (<= 0) for a system that never ends (bodies
  *                           between two walls without gravity, or an undamped
  *                           system falling onto a wall),
  *  HCIMPACT_ERR_SOLVER (11) CVODE failed (the message names its flag), or an
- *                           integration ended with its energy balance off by more
- *                           than max(1, 1e4 rtol) of the system's energy (scales
- *                           that CVODE does not resolve; "did not resolve"),
+ *                           integration ended with its energy or momentum balance
+ *                           off by more than max(1/2, 1e4 rtol) of its scale
+ *                           (scales that CVODE does not resolve; "did not resolve"),
  *  HCIMPACT_ERR_NO_CONVERGENCE (9) more than max_events contacts or max_steps
  *                           steps (a ball that would bounce for ever: give t_end).
  *  After an error other than NULL and SIZE every real of *result is NaN, its counts

@@ -401,6 +401,26 @@ static void scales_apart(void)
     check_close("an overlap of one ulp: velocity", vf2[1], 0.5 * v2[0], 4.5e-16);
     check("an overlap of one ulp: energy kept", r.energy_error <= 1e-15);
   }
+  /* the same where one body rests at 0 and the other, 4.3e-26 m away, strikes it: the
+     overlap is within the rounding of the striker's initial position, not of the final
+     positions (near 0); mirrored, the same speeds */
+  {
+    const double m4[2] = {2.3100573870691286e-289, 3.3367871291592019e-293};
+    const double m4r[2] = {3.3367871291592019e-293, 2.3100573870691286e-289};
+    const double v4[2] = {0.0, -51.403765492995504}, v4r[2] = {51.403765492995504, 0.0};
+    const double gap4[1] = {4.2709192487976837e-26};
+    const hcimpact_chain_law law4[1] = {{1.22628440837845e+245, 1.0, 0.0}};
+    double vf4[2], vf4r[2];
+    stat = hcimpact_chain_simulate(2, m4, v4, gap4, law4, NULL, NULL, 0.0, NULL, &r, NULL, vf4,
+                                   0, NULL, NULL, message, sizeof message);
+    check_status("an overlap within the initial positions' rounding", stat, HCIMPACT_OK, message);
+    stat = hcimpact_chain_simulate(2, m4r, v4r, gap4, law4, NULL, NULL, 0.0, NULL, &r, NULL,
+                                   vf4r, 0, NULL, NULL, message, sizeof message);
+    check_status("an overlap within the initial positions' rounding, mirrored", stat,
+                 HCIMPACT_OK, message);
+    check_close("mirrored: the light body", vf4[1], -vf4r[0], 4.5e-16);
+    check_close("mirrored: the heavy body", vf4[0], -vf4r[1], 4.5e-16);
+  }
   /* 1e300 kg on a wall of 1e100 N/m at 1e-300 m/s: exact by the closed forms; CVODE does
      not resolve it (it ended with 5e18 times the energy, and success) */
   {
@@ -421,6 +441,31 @@ static void scales_apart(void)
             strstr(message, "did not resolve the contacts") != NULL);
     }
     options.method = HCIMPACT_CHAIN_AUTO;
+  }
+  /* a compression of 1.2e300 m whose scale in the unit impact's units is e^767: refused
+     (it came out +Inf with success) */
+  {
+    const double m5[1] = {1.0}, v5[1] = {-1e150};
+    const hcimpact_chain_wall soft = {1e-100, 0.2, 1e-110, 0.0};
+    stat = hcimpact_chain_simulate(1, m5, v5, NULL, NULL, &soft, NULL, 0.0, NULL, &r, NULL, vf,
+                                   0, NULL, NULL, message, sizeof message);
+    check_status("a compression scale of e^767", stat, HCIMPACT_ERR_DOMAIN, message);
+    check("a compression scale of e^767: said",
+          strstr(message, "leaves the range of doubles") != NULL);
+  }
+  /* 1 kg at 1e-200 m/s on c = 1e-300 N/m^0.2: the powers of V underflow (V^(2/1.2) =
+     1e-333), the compression 3e-84 m came out 0; elastic, x_max = ((n + 1) m V^2 /
+     (2 c))^(1 / (n + 1)), formed here in long double */
+  {
+    const double m6[1] = {1.0}, v6[1] = {-1e-200};
+    const hcimpact_chain_wall loose = {1e-300, 0.2, 0.0, 0.0};
+    const double x_max = (double)expl((logl(1.2L) + 2.0L * logl(1e-200L) - logl(2e-300L)) / 1.2L);
+    stat = hcimpact_chain_simulate(1, m6, v6, NULL, NULL, &loose, NULL, 0.0, NULL, &r, NULL, vf,
+                                   2, c, NULL, message, sizeof message);
+    check_status("V^(2p) below the doubles", stat, HCIMPACT_OK, message);
+    if (stat == HCIMPACT_OK && r.contacts_recorded == 1) {
+      check_close("V^(2p) below the doubles: compression", c[0].max_deformation, x_max, 1e-12);
+    }
   }
   /* the closed forms, scaled, rebound it elastically; CVODE cannot resolve such forces */
   stat = hcimpact_chain_simulate(1, m, v_slow, NULL, NULL, &faint, NULL, 0.0, NULL, &r, NULL,

@@ -582,7 +582,7 @@ contains
       character(len=*), intent(out) :: message
       integer, intent(in) :: pair
       real(wp), intent(in) :: t, damping, w
-      write(message, '(a, i0, a, es11.3e3, a, es10.3e3, a, es10.3e3, a)') "pair ", pair, &
+      write(message, '(a, i0, a, es11.3e3, a, es23.16e3, a, es10.3e3, a)') "pair ", pair, &
          & " at t = ", t, " s: b V = ", product_in_range(damping, abs(w)), &
          & " (damping times approach speed) is above ", max_beta, &
          & ", outside the model's domain (as for one impact)"
