@@ -47,10 +47,11 @@
 !> records those that ended).
 module hcimpact_mpi_chain_contacts
    use, intrinsic :: iso_fortran_env, only : int64
-   use mpi_f08, only : MPI_Sendrecv, MPI_Gather, MPI_Gatherv, MPI_Bcast, &
+   use mpi_f08, only : MPI_Sendrecv, MPI_Gather, MPI_Gatherv, MPI_Bcast, MPI_Allgather, &
       & MPI_DOUBLE_PRECISION, MPI_INTEGER8, MPI_LOGICAL, MPI_STATUS_IGNORE
    use hcimpact_kinds, only : wp
-   use hcimpact_chain_types, only : contact_record, by_integration
+   use hcimpact_chain_types, only : contact_record, by_integration, beyond_max_beta, &
+      & say_beyond_max_beta
    use hcimpact_force_element, only : contact_force_type
    use hcimpact_cvode_chain_system, only : region_size, slot_state, force_rate, slot_none
    use hcimpact_mpi_chain_block, only : chain_block
@@ -58,7 +59,7 @@ module hcimpact_mpi_chain_contacts
    private
 
    public :: contact_tracker, tracker_start, tracker_step, exchange_coefficients
-   public :: max_order, sort_by_pair, gather_contacts
+   public :: max_order, sort_by_pair, gather_contacts, beyond_domain
 
    !> Doubles per contact in the gathering
    integer, parameter :: record_doubles = 8
@@ -110,6 +111,11 @@ module hcimpact_mpi_chain_contacts
       real(wp), allocatable :: y_region(:), dy_region(:)
       !> Locations done and locations that used all their evaluations
       integer(int64) :: locations = 0, unconverged = 0
+      !> The first owned pair met touching and closing with b V beyond the model's
+      !> domain (`beyond_max_beta`, as the serial chain refuses it): its number in the
+      !> contacts' records (-1: none), the time, its damping and its closing speed
+      integer :: beyond_pair = -1
+      real(wp) :: beyond_time = 0.0_wp, beyond_damping = 0.0_wp, beyond_speed = 0.0_wp
    end type contact_tracker
 
 contains
@@ -144,6 +150,7 @@ contains
          if (block%region%kind(j) == slot_none) cycle
          call probe_at(tracker, block, j, 0.0_wp, p)
          tracker%last(j) = p
+         call watch_domain(tracker, block, j, p, -tracker%x_tol)
          if (p%x >= 0.0_wp) tracker%contact(j) = open_contact(.true., 0.0_wp, &
             & max(p%w, 0.0_wp), p%e, 0.0_wp, 0.0_wp)
       end do
@@ -192,8 +199,56 @@ contains
          end if
          call follow(tracker, block, j, p0, pe)
          tracker%last(j) = pe
+         call watch_domain(tracker, block, j, pe, -tracker%x_tol)
       end do
    end subroutine tracker_step
+
+   !> Keep slot j's probe p as the first beyond the model's domain when the pair
+   !> touches there (x >= x_min) and closes with b V above `max_beta`
+   subroutine watch_domain(tracker, block, j, p, x_min)
+      type(contact_tracker), intent(inout) :: tracker
+      type(chain_block), intent(in) :: block
+      integer, intent(in) :: j
+      type(probe), intent(in) :: p
+      real(wp), intent(in) :: x_min
+      if (tracker%beyond_pair >= 0) return
+      if (.not. (p%w > 0.0_wp .and. p%x >= x_min)) return
+      if (.not. beyond_max_beta(block%region%law(j)%damping, p%w)) return
+      tracker%beyond_pair = tracker%pair_first + (j - tracker%j_first)
+      tracker%beyond_time = p%t
+      tracker%beyond_damping = block%region%law(j)%damping
+      tracker%beyond_speed = p%w
+   end subroutine watch_domain
+
+   !> Whether any rank met a pair beyond the model's domain (`watch_domain`); found
+   !> and the message (`say_beyond_max_beta`, the earliest such pair, the leftmost of
+   !> those at that time) the same on every rank. Collective (one MPI_Allgather).
+   subroutine beyond_domain(tracker, block, found, message)
+      type(contact_tracker), intent(in) :: tracker
+      type(chain_block), intent(in) :: block
+      logical, intent(out) :: found
+      character(len=*), intent(out) :: message
+      real(wp) :: mine(4), every(4, block%n_ranks)
+      integer :: r, first
+      mine = [real(tracker%beyond_pair, wp), tracker%beyond_time, tracker%beyond_damping, &
+         & tracker%beyond_speed]
+      call MPI_Allgather(mine, 4, MPI_DOUBLE_PRECISION, every, 4, MPI_DOUBLE_PRECISION, &
+         & block%comm)
+      ! (the ranks hold the pairs from left to right)
+      first = 0
+      do r = 1, block%n_ranks
+         if (every(1, r) < 0.0_wp) cycle
+         if (first == 0) then
+            first = r
+         else if (every(2, r) < every(2, first)) then
+            first = r
+         end if
+      end do
+      found = first > 0
+      message = ""
+      if (found) call say_beyond_max_beta(message, nint(every(1, first)), every(2, first), &
+         & every(3, first), every(4, first))
+   end subroutine beyond_domain
 
    !> Whether slot j may have an event in the step from p0 to p1 (its ends): a start
    !> or end, a maximum of the deformation inside, or of the force of an open contact.
@@ -245,6 +300,8 @@ contains
          call locate(tracker, block, j, of_deformation, p0, p1, pc)
          tracker%contact(j) = open_contact(.true., pc%t, max(pc%w, 0.0_wp), pc%e, &
             & max(p1%f, 0.0_wp), max(p1%x, 0.0_wp))
+         ! (its approach speed where it starts)
+         call watch_domain(tracker, block, j, pc, -huge(1.0_wp))
          return
       end if
       associate (c => tracker%contact(j))

@@ -37,7 +37,7 @@ program hcimpact_mpi_chain
       & part_region, region_energy
    use hcimpact_mpi_chain_cvode, only : chain_integration, integrate_chain, &
       & chain_counters_mpi
-   use hcimpact_mpi_chain_contacts, only : sort_by_pair, gather_contacts
+   use hcimpact_mpi_chain_contacts, only : sort_by_pair, gather_contacts, beyond_domain
    use hcimpact_mpi_chain_output, only : write_state, write_contacts, remove_file, &
       & summary_line
    implicit none
@@ -152,7 +152,7 @@ contains
       type(chain_integration), target :: run
       type(chain_counters_mpi) :: counters
       type(chain_region) :: whole
-      character(len=max_message) :: message
+      character(len=max_message) :: message, domain_message
       real(wp), allocatable :: y(:), local(:), u(:), v(:), positions(:), gathered(:), &
          & y_whole(:)
       integer, allocatable :: counts(:), displs(:)
@@ -162,7 +162,7 @@ contains
       integer(int64) :: exchanges, halo_bytes, unconverged
       type(contact_record), allocatable :: contacts(:)
       integer :: rank, n_ranks, stat, k, m, n, r, first, size_r, i
-      logical :: ok, all_ok, halting(3)
+      logical :: ok, all_ok, halting(3), beyond
 
       call MPI_Init()
       call MPI_Comm_rank(MPI_COMM_WORLD, rank)
@@ -219,6 +219,10 @@ contains
       t1 = MPI_Wtime()
       ! CVODE's failures are collective; should one rank fail alone, all still stop
       call MPI_Reduce(t1 - t0, seconds, 1, MPI_DOUBLE_PRECISION, MPI_MAX, 0, MPI_COMM_WORLD)
+      ! a pair met closing with b V beyond the model's domain on any rank fails the run
+      ! with that message, whether CVODE failed on it or not (as chain_simulate)
+      call beyond_domain(run%contacts, run%block, beyond, domain_message)
+      if (beyond) call fail_all(rank, exit_failure, domain_message)
       call MPI_Allreduce(ok, all_ok, 1, MPI_LOGICAL, MPI_LAND, MPI_COMM_WORLD)
       if (ok .and. .not. all_ok) message = "CVODE failed on another rank"
       if (.not. all_ok) call fail_all(rank, exit_failure, message)
