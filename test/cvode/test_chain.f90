@@ -104,7 +104,8 @@ contains
          & new_unittest("error-independent-of-size", test_size_independent), &
          & new_unittest("large-chain", test_large_chain), &
          & new_unittest("touching-chain-grows", test_touching_grows), &
-         & new_unittest("struck-chain-16", test_struck_chain_16) &
+         & new_unittest("struck-chain-16", test_struck_chain_16), &
+         & new_unittest("far-meetings", test_far_meetings) &
          & ]
    end subroutine collect_chain
 
@@ -1817,6 +1818,28 @@ contains
       bad%left_law%damping = 1.0_wp
       call expect(bad, o, hcimpact_err_domain, "damped between walls")
       if (allocated(error)) return
+      ! an elastic ball on an elastic floor under gravity, with a damped ceiling 100 m
+      ! above that it never reaches (or reaches a few times): bounces for ever (it was
+      ! accepted and ran into the limits: a day with the defaults)
+      block
+         type(chain_type) :: ball
+         ball = bad
+         ball%gravity = -9.81_wp
+         ball%left_law%damping = 0.0_wp
+         ball%right_law%damping = 0.5_wp
+         ball%right_gap = 100.0_wp
+         call expect(ball, o, hcimpact_err_domain, "a damped ceiling never reached")
+         if (allocated(error)) return
+         ball%velocity = 100.0_wp
+         call expect(ball, o, hcimpact_err_domain, "a damped ceiling reached")
+         if (allocated(error)) return
+         ! gravity the other way: the same with the walls' roles exchanged
+         ball%gravity = 9.81_wp
+         ball%right_law%damping = 0.0_wp
+         ball%left_law%damping = 0.5_wp
+         call expect(ball, o, hcimpact_err_domain, "a damped floor above")
+         if (allocated(error)) return
+      end block
       ! at rest between the walls: nothing happens, the run ends
       bad%velocity = 0.0_wp
       call run(error, bad, o, result, "at rest between walls")
@@ -1861,6 +1884,79 @@ contains
             & allocated(result%positions), what // ": a message and no result")
       end subroutine expect
    end subroutine test_bad_input
+
+   !> Meetings at the far end of the range of times: within a factor 2 of DBL_MAX (a gap
+   !> of 1.4e8 m closed at 1e-300 m/s, 1.4e308 s) the contact happens (it was lost:
+   !> success with no contact, the time 0); beyond DBL_MAX, without t_end, the run is
+   !> hcimpact_err_domain (it was success, "no contact can happen again"), and with
+   !> t_end it ends there. Also against a wall, under gravity toward it or away from it.
+   subroutine test_far_meetings(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: two, one
+      type(chain_result) :: result
+      type(chain_options) :: o
+      real(wp), parameter :: gaps(3) = [1.3e8_wp, 1.4e8_wp, 1.7e8_wp]
+      real(wp) :: gap
+      integer :: i, stat
+      two = steel_row(2, 1.0e-300_wp, 0.0_wp, 0.0_wp)
+      do i = 1, size(gaps)
+         gap = gaps(i)
+         two%gap = gap
+         call run(error, two, opts(method_auto, 1.0e-10_wp), result, "far meeting")
+         if (allocated(error)) return
+         call check(error, result%n_contacts == 1, "far meeting: one contact")
+         if (allocated(error)) return
+         call check(error, result%contacts(1)%t_start == gap / 1.0e-300_wp, &
+            & "far meeting: at gap / V, " // format_real(result%contacts(1)%t_start))
+         if (allocated(error)) return
+         call check(error, abs(result%velocities(2) - 1.0e-300_wp) <= 4.0_wp * &
+            & spacing(1.0e-300_wp) .and. abs(result%velocities(1)) <= 4.0_wp * &
+            & spacing(1.0e-300_wp), "far meeting: the velocities exchanged")
+         if (allocated(error)) return
+      end do
+      ! beyond the range of times: refused without t_end, nothing happens before 1e308 s
+      two%gap = 1.8e8_wp
+      call chain_simulate(two, result, stat, opts(method_auto, 1.0e-10_wp))
+      call check(error, stat, hcimpact_err_domain, "beyond the range: " // result%message)
+      if (allocated(error)) return
+      call run(error, two, opts(method_auto, 1.0e-10_wp, 1.0e308_wp), result, "to 1e308 s")
+      if (allocated(error)) return
+      call check(error, result%n_contacts == 0 .and. result%velocities(1) == 1.0e-300_wp, &
+         & "to 1e308 s: no contact")
+      if (allocated(error)) return
+      ! one body and a wall: closing at a constant speed, pulled by gravity towards it
+      ! (5e-324 m/s^2 over 1e300 m: 6e311 s), or faster than gravity turns it back
+      allocate(one%mass(1), one%velocity(1), one%gap(0), one%law(0))
+      one%mass = steel_mass
+      one%left_wall = .true.
+      one%left_law = contact_law(steel_wall, 1.5_wp, 0.0_wp)
+      one%right_law = one%left_law
+      one%left_gap = 1.0e10_wp
+      one%velocity = -1.0e-300_wp
+      call chain_simulate(one, result, stat, opts(method_auto, 1.0e-10_wp))
+      call check(error, stat, hcimpact_err_domain, "wall beyond the range: " // result%message)
+      if (allocated(error)) return
+      one%left_gap = 1.0e300_wp
+      one%velocity = 0.0_wp
+      one%gravity = -5.0e-324_wp
+      call chain_simulate(one, result, stat, opts(method_auto, 1.0e-10_wp))
+      call check(error, stat, hcimpact_err_domain, "falling beyond the range: " // &
+         & result%message)
+      if (allocated(error)) return
+      one%left_wall = .false.
+      one%right_wall = .true.
+      one%right_gap = 1.0e300_wp
+      one%velocity = 1.0e-9_wp
+      call chain_simulate(one, result, stat, opts(method_auto, 1.0e-10_wp))
+      call check(error, stat, hcimpact_err_domain, "rising beyond the range: " // &
+         & result%message)
+      if (allocated(error)) return
+      ! too slow to reach it against gravity: it never meets, and the run ends
+      one%velocity = 1.0e-15_wp
+      call run(error, one, opts(method_auto, 1.0e-10_wp), result, "turned back")
+      if (allocated(error)) return
+      call check(error, result%n_contacts == 0, "turned back: no contact")
+   end subroutine test_far_meetings
 
    !> The energies and the momentum of the result are doubles or the run fails: 1/2 m
    !> v^2 beyond DBL_MAX (m = 5.4e-20 kg at 7.5e168 m/s; two bodies of 1e300 kg at

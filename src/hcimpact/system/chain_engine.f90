@@ -351,7 +351,12 @@ contains
             end if
          end do
          t_next = min(t_event, t_sample, t_end, t_region)
-         if (t_next >= huge(1.0_wp)) exit main
+         if (t_next >= huge(1.0_wp)) then
+            ! nothing more within the range of times; a gap still bound to close meets
+            ! beyond it, where "no contact can happen again" would be false
+            if (until_rest) call meeting_beyond_range(engine, stat)
+            exit main
+         end if
          engine%time = max(engine%time, t_next)
          if (t_sample <= t_next) then
             call take_samples(engine)
@@ -766,6 +771,46 @@ contains
       if (tau <= huge(1.0_wp) - engine%time) t_next = engine%time + tau
    end function free_contact_time
 
+   !> Where the run ends without t_end because nothing more happens within the range
+   !> of doubles: a free gap that closes all the same (its meeting time is beyond
+   !> 1.8e308 s) makes it hcimpact_err_domain, naming the pair.
+   subroutine meeting_beyond_range(engine, stat)
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(inout) :: stat
+      real(wp) :: gap, rate, g
+      integer :: s
+      do s = 0, engine%n
+         if (.not. slot_exists(engine, s)) cycle
+         if (touches_region(engine, s)) cycle
+         if (engine%exact(s)%active) cycle
+         call slot_gap_at(engine, s, engine%time, gap, rate)
+         g = 0.0_wp
+         if (s == 0) g = engine%gravity
+         if (s == engine%n) g = -engine%gravity
+         if (.not. (gap > 0.0_wp .and. closes_ever(gap, rate, g))) cycle
+         stat = hcimpact_err_domain
+         write(engine%message, '(a, i0, a, es11.3e3, a)') "pair ", s, " closes at t = ", &
+            & engine%time, " s but meets beyond the range of doubles (after 1.8e308 s): " &
+            & // "give t_end"
+         return
+      end do
+   end subroutine meeting_beyond_range
+
+   !> Whether gap + rate tau + g tau^2/2 (gap > 0) reaches 0 at some tau > 0, however
+   !> late: closing at a constant rate, decelerated towards 0 by g, or closing faster
+   !> than g opens it (rate^2 >= 2 g gap, compared by logarithms: the products leave
+   !> the range of doubles).
+   pure logical function closes_ever(gap, rate, g)
+      real(wp), intent(in) :: gap, rate, g
+      if (g < 0.0_wp) then
+         closes_ever = .true.
+      else if (g == 0.0_wp .or. .not. rate < 0.0_wp) then
+         closes_ever = rate < 0.0_wp
+      else
+         closes_ever = 2.0_wp * log(abs(rate)) >= log(2.0_wp) + log(g) + log(gap)
+      end if
+   end function closes_ever
+
    !> The first tau >= 0 at which gap + rate tau + g tau^2/2 reaches 0 while
    !> decreasing (huge if never); a gap already closed and closing gives 0.
    pure function first_zero(gap, rate, g) result(tau)
@@ -835,6 +880,11 @@ contains
          y = 0.0_wp
       else if (int(exponent(a), int64) - exponent(b) < maxexponent(1.0_wp)) then
          y = a / b
+      else if (int(exponent(a), int64) - exponent(b) == maxexponent(1.0_wp) .and. &
+         & abs(fraction(a)) < abs(fraction(b))) then
+         ! within a factor 2 of the top: the quotient of the fractions (in (1/2, 1),
+         ! rounded once) times 2^maxexponent is a double (a meeting at 1.4e308 s was lost)
+         y = scale(fraction(a) / fraction(b), maxexponent(1.0_wp))
       else
          y = sign(huge(1.0_wp), a) * sign(1.0_wp, b)
       end if
