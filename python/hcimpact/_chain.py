@@ -54,6 +54,8 @@ _WALL_KEYS = ("stiffness", "exponent", "damping", "gap")
 # contacts recorded on the first try; a run with more is run again with room for all
 _FIRST_CAPACITY = 65536
 _INT_MAX = 2**31 - 1
+# max_steps and max_events are int64_t, which ctypes would wrap (2**64 + 5 into 5)
+_INT64_MAX = 2**63 - 1
 _ERR_DOMAIN, _ERR_SIZE = 8, 14
 
 
@@ -165,16 +167,17 @@ def _choice(value: Any, choices: dict, name: str) -> int:
 
 
 def _limit(value: Any, name: str) -> int:
-    """A positive limit (None: the library's default, passed as 0)."""
+    """A limit of the library, an int64_t in 1 .. 2**63 - 1 (None: the library's default,
+    passed as 0; a 0 given here is refused, not taken for the default)."""
     if value is None:
         return 0
     try:
         count = int(value) if not isinstance(value, (bool, np.bool_)) else None
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):
         count = None
-    if count is None or count != value or count < 1:
-        raise InputError(_ERR_DOMAIN, f"{name} must be a positive integer or None, not "
-                         f"{value!r}", _WHERE)
+    if count is None or count != value or not 1 <= count <= _INT64_MAX:
+        raise InputError(_ERR_DOMAIN, f"{name} must be a positive integer (at most "
+                         f"2**63 - 1, an int64_t) or None, not {value!r}", _WHERE)
     return count
 
 
@@ -209,8 +212,9 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
     - ``sample_times``: times (s, increasing, >= 0) at which to sample positions,
       velocities and the pairs' forces;
     - ``max_contacts``: record at most this many contacts (all are counted; None: all);
-      ``max_steps``, ``max_events``: the library's limits of steps and contacts (None:
-      1e8 each; beyond them a :class:`ComputationError`).
+      ``max_steps``, ``max_events``: the library's limits of steps and contacts,
+      integers in 1 .. 2**63 - 1 (None: 1e8 each; beyond them a
+      :class:`ComputationError`).
 
     Returns a :class:`ChainResult`. Bad input raises :class:`InputError` with the
     library's account ("gap 2 is negative ..."); CVODE's failure a

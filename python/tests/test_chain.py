@@ -150,6 +150,15 @@ def test_contact_list_and_its_capacity(monkeypatch):
     assert np.array_equal(again.contacts, full.contacts)
 
 
+def test_limits_up_to_int64_are_passed_as_they_are():
+    args = dict(masses=[0.1, 0.1], velocities=[1.0, 0.0], stiffness=PAIR)
+    default = hcimpact.chain(**args)
+    largest = hcimpact.chain(**args, max_steps=2**63 - 1, max_events=np.int64(2**63 - 1))
+    assert np.array_equal(largest.contacts, default.contacts)
+    with pytest.raises(hcimpact.ComputationError, match="max_events = 1 contacts"):
+        hcimpact.chain([0.1] * 3, [1.0, 0.0, -1.0], gaps=1e-4, stiffness=PAIR, max_events=1)
+
+
 def test_hertz_and_damping_helpers_take_arrays():
     radius = np.array([0.01, 0.02, 0.015])
     c = hcimpact.hertz_constant(2e11, 0.3, radius[:-1], 2e11, 0.3, radius[1:])
@@ -187,6 +196,13 @@ def test_hertz_and_damping_helpers_take_arrays():
     (dict(masses=[0.1], velocities=[1.0], max_events=2.5), "max_events must be a positive"),
     (dict(masses=[0.1], velocities=[1.0], max_contacts=-1), "must not be negative"),
     (dict(masses=[0.1], velocities=[1.0], max_contacts=2**40), "outside the range of a C int"),
+    # limits beyond int64_t (ctypes would pass 2**64 + 5 as 5), not numbers, not positive
+    (dict(masses=[0.1], velocities=[1.0], max_steps=2**64 + 5), "max_steps must be a positive"),
+    (dict(masses=[0.1], velocities=[1.0], max_events=2**64 + 1), "max_events must be a positive"),
+    (dict(masses=[0.1], velocities=[1.0], max_steps=2**63), "at most 2**63 - 1"),
+    (dict(masses=[0.1], velocities=[1.0], max_events=-2**64), "max_events must be a positive"),
+    (dict(masses=[0.1], velocities=[1.0], max_steps=math.inf), "max_steps must be a positive"),
+    (dict(masses=[0.1], velocities=[1.0], max_events=math.nan), "max_events must be a positive"),
 ])
 def test_bad_input_checked_here(kwargs, text):
     with pytest.raises(hcimpact.InputError) as info:
