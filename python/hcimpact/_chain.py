@@ -52,6 +52,7 @@ _INTEGRATORS = {"bdf": 1, "adams": 2}
 _METHOD_USED = {1: "exact", 2: "integrated", 3: "both"}
 _WALL_KEYS = ("stiffness", "exponent", "damping", "gap")
 # contacts recorded on the first try; a run with more is run again with room for all
+# of them (up to max_contacts)
 _FIRST_CAPACITY = 65536
 _INT_MAX = 2**31 - 1
 # max_steps and max_events are int64_t, which ctypes would wrap (2**64 + 5 into 5)
@@ -211,10 +212,10 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
       ``"adams"``;
     - ``sample_times``: times (s, increasing, >= 0) at which to sample positions,
       velocities and the pairs' forces;
-    - ``max_contacts``: record at most this many contacts (all are counted; None: all);
-      ``max_steps``, ``max_events``: the library's limits of steps and contacts,
-      integers in 1 .. 2**63 - 1 (None: 1e8 each; beyond them a
-      :class:`ComputationError`).
+    - ``max_contacts``: record at most this many contacts (all are counted; None: all;
+      the room allocated is that of the contacts made, not the cap); ``max_steps``,
+      ``max_events``: the library's limits of steps and contacts, integers in
+      1 .. 2**63 - 1 (None: 1e8 each; beyond them a :class:`ComputationError`).
 
     Returns a :class:`ChainResult`. Bad input raises :class:`InputError` with the
     library's account ("gap 2 is negative ..."); CVODE's failure a
@@ -288,13 +289,14 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
                           _MESSAGE_SIZE)
         return status, outcome, x, vf, records, message.value.decode(errors="replace")
 
-    capacity = (min(_FIRST_CAPACITY + 8 * n, _INT_MAX) if recorded_limit is None
-                else recorded_limit)
+    # max_contacts caps the list and is not allocated: the first try has room for
+    # _FIRST_CAPACITY + 8 n records, and a run that made more is made again with room
+    # for them up to the cap (the run is deterministic)
+    cap = _INT_MAX if recorded_limit is None else recorded_limit
+    capacity = min(_FIRST_CAPACITY + 8 * n, cap)
     status, outcome, x, vf, records, message = run(capacity)
-    if (status == 0 and recorded_limit is None and outcome.n_contacts > capacity
-            and capacity < _INT_MAX):
-        # the run is deterministic: again, with room for every contact
-        status, outcome, x, vf, records, message = run(int(min(outcome.n_contacts, _INT_MAX)))
+    if status == 0 and outcome.n_contacts > capacity and capacity < cap:
+        status, outcome, x, vf, records, message = run(int(min(outcome.n_contacts, cap)))
     if status != 0:
         _raise(status, _WHERE, detail=message)
     contacts = records[:outcome.contacts_recorded].copy()

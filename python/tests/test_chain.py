@@ -159,6 +159,28 @@ def test_limits_up_to_int64_are_passed_as_they_are():
         hcimpact.chain([0.1] * 3, [1.0, 0.0, -1.0], gaps=1e-4, stiffness=PAIR, max_events=1)
 
 
+def test_max_contacts_caps_the_list_without_allocating_it(monkeypatch):
+    # a ball between two walls 1 cm away: a contact every 20 ms, 50 in a second
+    wall = {"stiffness": PLATE, "gap": 0.01}
+    rattle = dict(masses=[0.1], velocities=[1.0], wall_left=wall, wall_right=wall, t_end=1.0)
+    full = hcimpact.chain(**rattle)
+    assert full.n_contacts == len(full.contacts) == 50
+    # a cap far above the contacts made: the list of those made (the cap, 2**31 - 1
+    # records of 64 bytes, was allocated: 128 GiB, a MemoryError)
+    one = hcimpact.chain([0.1, 0.1], [1.0, 0.0], stiffness=PAIR, max_contacts=2**31 - 1)
+    assert one.n_contacts == len(one.contacts) == 1
+    assert np.array_equal(hcimpact.chain(**rattle, max_contacts=2**31 - 1).contacts,
+                          full.contacts)
+    # more contacts than the first array holds (1 + 8 n = 9): run again with room for
+    # all of them up to the cap
+    monkeypatch.setattr(_chain, "_FIRST_CAPACITY", 1)
+    for cap, kept in ((20, 20), (None, 50), (2**31 - 1, 50), (50, 50), (9, 9), (5, 5),
+                      (0, 0)):
+        again = hcimpact.chain(**rattle, max_contacts=cap)
+        assert again.n_contacts == full.n_contacts
+        assert np.array_equal(again.contacts, full.contacts[:kept])
+
+
 def test_hertz_and_damping_helpers_take_arrays():
     radius = np.array([0.01, 0.02, 0.015])
     c = hcimpact.hertz_constant(2e11, 0.3, radius[:-1], 2e11, 0.3, radius[1:])
