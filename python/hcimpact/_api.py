@@ -79,16 +79,28 @@ def _ptr(a: np.ndarray) -> Any:
 
 
 def _real(x: Any, name: str, function: str) -> np.ndarray:
-    """x as float64 (a 0-d array for a scalar). Complex input is refused: NumPy would
-    drop the imaginary part with only a warning."""
-    if np.iscomplexobj(x):
-        raise InputError(_ERR_DOMAIN, f"{name} is complex; hcimpact works on real numbers",
-                         function)
+    """x as float64 (a 0-d array for a scalar): the one conversion of every argument.
+    Refused with an InputError naming the argument, where NumPy would change the value
+    or raise an exception of its own: complex input (NumPy drops the imaginary part with
+    only a warning), a masked array with masked entries (NumPy takes the values under
+    the mask), an integer beyond the range of doubles (OverflowError), a ragged list or
+    anything else that is not numbers (ValueError, TypeError)."""
+    if np.ma.is_masked(x):
+        raise InputError(_ERR_DOMAIN, f"{name} has masked entries, whose hidden values "
+                         "NumPy would pass on (give the array's .filled(value) or "
+                         ".compressed())", function)
     try:
-        return np.asarray(x, dtype=np.float64)
+        complex_input = np.iscomplexobj(x)
+        if not complex_input:
+            return np.asarray(x, dtype=np.float64)
+    except OverflowError:
+        raise InputError(_ERR_DOMAIN, f"{name} holds an integer beyond the range of doubles "
+                         "(about 1.8e308)", function) from None
     except (TypeError, ValueError) as exc:
         raise InputError(_ERR_DOMAIN, f"{name} is not a real number or array: {exc}",
                          function) from None
+    raise InputError(_ERR_DOMAIN, f"{name} is complex; hcimpact works on real numbers",
+                     function)
 
 
 def _scalar(x: Any, name: str, function: str) -> float:
@@ -114,7 +126,12 @@ def _c_int(x: Any, name: str, function: str, status: int = _ERR_SIZE) -> int:
 
 
 def _is_scalar(x: Any) -> bool:
-    return np.ndim(x) == 0
+    """Whether x is one value; what NumPy cannot give a shape (a ragged list) is not, and
+    _real then says what is wrong with it."""
+    try:
+        return np.ndim(x) == 0
+    except ValueError:
+        return False
 
 
 def _unary(name: str, x: Any) -> Any:

@@ -17,6 +17,7 @@ from typing import Any
 import numpy as np
 
 from . import _library
+from ._api import _broadcast, _real
 from ._types import error_class
 
 __all__ = ["ContactForce", "Force", "contact_force"]
@@ -95,11 +96,10 @@ def contact_force(x: Any, v: Any, stiffness: Any, exponent: Any = 1.5, damping: 
     """
     if errors not in ("raise", "nan"):
         raise ValueError(f"errors must be 'raise' or 'nan', not {errors!r}")
-    args = [np.asarray(a) for a in (stiffness, exponent, damping, x, v)]
-    for name, a in zip(("stiffness", "exponent", "damping", "x", "v"), args):
-        if a.dtype.kind not in "biuf":
-            raise TypeError(f"{name} must be real numbers, not {a.dtype}")
-    arrays = np.broadcast_arrays(*[a.astype(np.float64) for a in args])
+    where = "hcimpact_contact_force_array"
+    args = [_real(a, name, where) for a, name in zip(
+        (stiffness, exponent, damping, x, v), ("stiffness", "exponent", "damping", "x", "v"))]
+    arrays = _broadcast(args, where)
     shape = arrays[0].shape
     flat = [np.ascontiguousarray(a).reshape(-1) for a in arrays]
     n = flat[0].size
@@ -117,7 +117,7 @@ def contact_force(x: Any, v: Any, stiffness: Any, exponent: Any = 1.5, damping: 
         index = np.unravel_index(first, shape) if len(shape) > 1 else (first if shape else None)
         status = int(statuses[first])
         message = _library.load().hcimpact_status_message(status).decode()
-        raise error_class(status)(status, message, "hcimpact_contact_force_array", index)
+        raise error_class(status)(status, message, where, index)
     if shape == ():
         return ContactForce(*[float(out[0, j]) for j in range(len(FORCE_FIELDS))])
     return ContactForce(*[out[:, j].reshape(shape) for j in range(len(FORCE_FIELDS))])

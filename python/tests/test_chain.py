@@ -273,6 +273,30 @@ def test_bad_input_from_the_library(kwargs, name, text):
     assert text in str(info.value)
 
 
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(velocities=[10**400, 0.0]), "velocities"),
+    (dict(masses=[0.1, -10**400]), "masses"),
+    (dict(gaps=10**400), "gaps"),
+    (dict(stiffness=[10**400]), "stiffness"),
+    (dict(t_end=10**400), "t_end"),
+    (dict(gravity=10**400), "gravity"),
+    (dict(rtol=10**400), "rtol"),
+    (dict(wall_left={"stiffness": PLATE, "gap": 10**400}), "wall_left['gap']"),
+    (dict(sample_times=[0.0, 10**400]), "sample_times"),
+    (dict(masses=[[0.1], [0.1, 0.2]]), "masses"),
+    (dict(sample_times=[[0.0, 1.0], [2.0]]), "sample_times"),
+    (dict(masses=np.ma.masked_array([0.1, 0.1], mask=[False, True])), "masses"),
+    (dict(velocities=np.ma.masked_array([1.0, 0.0], mask=[True, False])), "velocities"),
+    (dict(gravity=np.ma.masked), "gravity"),
+])
+def test_arguments_numpy_cannot_convert_are_input_errors(kwargs, name):
+    # (were OverflowError, NumPy's ValueError; a masked mass was used as its hidden 0)
+    args = dict(masses=[0.1, 0.1], velocities=[1.0, 0.0], stiffness=PAIR)
+    with pytest.raises(hcimpact.InputError) as info:
+        hcimpact.chain(**dict(args, **kwargs))
+    assert name in str(info.value) and info.value.function == "hcimpact_chain_simulate"
+
+
 def test_without_contacts():
     r = hcimpact.chain([0.1], [3.0])
     assert r.n_contacts == 0 and len(r.contacts) == 0 and r.method_used == "exact"

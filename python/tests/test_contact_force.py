@@ -78,7 +78,7 @@ def test_bad_input():
         hcimpact.contact_force(1e-5, float("nan"), stiffness=1.0)
     with pytest.raises(hcimpact.InputError):
         hcimpact.contact_force(1e-5, 1.0, stiffness=1.0, exponent=1e-7)
-    with pytest.raises(TypeError):
+    with pytest.raises(hcimpact.InputError, match="complex"):
         hcimpact.contact_force(1e-5 + 1j, 1.0, stiffness=1.0)
     with pytest.raises(ValueError):
         hcimpact.contact_force(1e-5, 1.0, stiffness=1.0, errors="ignore")

@@ -37,6 +37,59 @@ def test_complex_input_is_refused():
         hcimpact.lambert_w0(np.array([1.0 + 0j]))
 
 
+# a Python int beyond the range of doubles (NumPy: OverflowError), a ragged list (NumPy:
+# ValueError), a masked array with a masked entry (NumPy: its hidden value, silently)
+HUGE = 10**400
+RAGGED = [[0.5], [0.5, 0.6]]
+MASKED = np.ma.masked_array([0.5, 0.6], mask=[False, True])
+CONVERSIONS = [
+    (lambda a: hcimpact.restitution(a), "the argument"),
+    (lambda a: hcimpact.lambert_w0(a), "the argument"),
+    (lambda a: hcimpact.u_minus_log1p(a), "u"),
+    (lambda a: hcimpact.impact(**dict(BALL, velocity=a)), "velocity"),
+    (lambda a: hcimpact.impact(**dict(BALL, mass=a), errors="nan"), "mass"),
+    (lambda a: hcimpact.time_law(a, **BALL), "t"),
+    (lambda a: hcimpact.velocity_at_depth(a, **BALL), "x"),
+    (lambda a: hcimpact.damping_for_restitution(a, 2.0), "e"),
+    (lambda a: hcimpact.hertz_constant(2e11, 0.3, a, 2e11, 0.3), "radius1"),
+    (lambda a: hcimpact.effective_mass(a), "mass1"),
+    (lambda a: hcimpact.two_body_velocities(0.1, 0.2, a, 0.0, 0.5), "velocity1"),
+    (lambda a: hcimpact.contact_force(a, 0.0, stiffness=1e10), "x"),
+    (lambda a: hcimpact.contact_force(1e-5, 0.0, stiffness=1e10, damping=a), "damping"),
+]
+
+
+@pytest.mark.parametrize("call, name", CONVERSIONS)
+@pytest.mark.parametrize("value", [HUGE, -HUGE, [0.5, HUGE], RAGGED, MASKED],
+                         ids=["huge", "-huge", "huge-element", "ragged", "masked"])
+def test_arguments_numpy_cannot_convert_are_input_errors(call, name, value):
+    with pytest.raises(hcimpact.InputError) as info:
+        call(value)
+    assert name in str(info.value) and info.value.status == 8   # HCIMPACT_ERR_DOMAIN
+
+
+def test_masked_arrays_without_masked_entries_are_their_values():
+    values = np.ma.masked_array([0.5, 0.6], mask=[False, False])
+    assert np.array_equal(hcimpact.restitution(values), hcimpact.restitution([0.5, 0.6]))
+    assert hcimpact.restitution(np.ma.masked_array(0.5)) == hcimpact.restitution(0.5)
+    with pytest.raises(hcimpact.InputError, match="masked"):
+        hcimpact.restitution(np.ma.masked)
+
+
+def test_contact_force_checks_as_the_others():
+    # it converted its arguments itself: TypeError for complex, NumPy's ValueError for
+    # shapes that do not broadcast
+    with pytest.raises(hcimpact.InputError, match="complex"):
+        hcimpact.contact_force(1e-5 + 1j, 1.0, stiffness=1.0)
+    with pytest.raises(hcimpact.InputError, match="do not broadcast"):
+        hcimpact.contact_force([1e-5, 2e-5], [1.0, 2.0, 3.0], stiffness=1.0)
+    with pytest.raises(hcimpact.InputError, match="x is not a real number"):
+        hcimpact.contact_force("small", 1.0, stiffness=1.0)
+    # large integers within the range of doubles are numbers
+    r = hcimpact.contact_force(1e-5, 0.0, stiffness=10**20)
+    assert r.force == hcimpact.contact_force(1e-5, 0.0, stiffness=1e20).force
+
+
 @pytest.mark.parametrize("branch", [1.0, 2.0, True, "Compression ", None])
 def test_branch_must_be_a_branch(branch):
     x_max = hcimpact.impact(**BALL).max_compression
