@@ -57,7 +57,12 @@ _FIRST_CAPACITY = 65536
 _INT_MAX = 2**31 - 1
 # max_steps and max_events are int64_t, which ctypes would wrap (2**64 + 5 into 5)
 _INT64_MAX = 2**63 - 1
-_ERR_DOMAIN, _ERR_SIZE = 8, 14
+_ERR_NOT_FINITE, _ERR_DOMAIN, _ERR_SIZE = 1, 8, 14
+# the rules of a pair's law as the library checks them (check_parameters): every value
+# finite, then stiffness, exponent, damping, each with its status
+_LAW_RULES = {"stiffness": (3, "> 0", lambda c: c > 0.0),
+              "exponent": (4, ">= 1e-6 (HCIMPACT_MIN_EXPONENT)", lambda n: n >= 1.0e-6),
+              "damping": (6, ">= 0", lambda b: b >= 0.0)}
 
 
 @dataclass(frozen=True, repr=False)
@@ -160,6 +165,31 @@ def _wall(wall: Any, side: str) -> ChainWall | None:
     return ChainWall(*[_scalar(values[key], f"{name}[{key!r}]", _WHERE) for key in _WALL_KEYS])
 
 
+def _law_of_no_pair(values: tuple) -> None:
+    """The law of a single body's pairs, which it has none of: the library reads no law,
+    but a bad one is the caller's error all the same. An array must be empty (one value
+    per pair, as gaps); a scalar is checked by the library's rules for a pair's law, with
+    its statuses (stiffness None: none given, as it may be for one body)."""
+    scalars = []
+    for value, name in values:
+        if value is None and name == "stiffness":
+            continue
+        law = _real(value, name, _WHERE)
+        if law.ndim == 0:
+            scalars.append((float(law), name))
+        else:
+            _vector(law, name, 0)
+    why = ("(a single body has no pair, but the law given for the pairs is checked all "
+           "the same)")
+    for value, name in scalars:
+        if not math.isfinite(value):
+            raise InputError(_ERR_NOT_FINITE, f"{name} = {value!r} is not finite {why}", _WHERE)
+    for value, name in scalars:
+        status, rule, holds = _LAW_RULES[name]
+        if not holds(value):
+            raise InputError(status, f"{name} = {value!r} must be {rule} {why}", _WHERE)
+
+
 def _choice(value: Any, choices: dict, name: str) -> int:
     if not isinstance(value, str) or value.lower() not in choices:
         raise InputError(_ERR_DOMAIN, f"{name} must be one of {', '.join(choices)}, not "
@@ -196,7 +226,8 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
     - ``gaps`` (m, >= 0): one per neighbouring pair, or a scalar for all; None: all
       touching (0, without preload);
     - ``stiffness`` c (N/m^n), ``exponent`` n, ``damping`` b (s/m) of the pairs' laws
-      f = c x^n (1 + b x'): a scalar, or one value per pair
+      f = c x^n (1 + b x'): a scalar, or one value per pair (a single body has none:
+      an array must be empty, a scalar is checked all the same; stiffness may be None)
       (:func:`hertz_constant` and :func:`damping_for_restitution` give them from
       materials and radii, and from a restitution at a speed; both take arrays);
     - ``wall_left``, ``wall_right``: None (no wall) or a dict with ``stiffness`` and
@@ -243,6 +274,9 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
                                            (damping, "damping"))):
             columns[:, j] = _vector(value, name, pairs)
         ctypes.memmove(laws, np.ascontiguousarray(columns).ctypes.data, columns.nbytes)
+    else:
+        _law_of_no_pair(((stiffness, "stiffness"), (exponent, "exponent"),
+                         (damping, "damping")))
     left, right = _wall(wall_left, "left"), _wall(wall_right, "right")
     options = ChainOptions()
     if t_end is not None:

@@ -297,6 +297,52 @@ def test_arguments_numpy_cannot_convert_are_input_errors(kwargs, name):
     assert name in str(info.value) and info.value.function == "hcimpact_chain_simulate"
 
 
+@pytest.mark.parametrize("kwargs, argument, name", [
+    (dict(stiffness="garbage"), "stiffness", "HCIMPACT_ERR_DOMAIN"),
+    (dict(stiffness=-PAIR), "stiffness", "HCIMPACT_ERR_STIFFNESS"),
+    (dict(stiffness=0.0), "stiffness", "HCIMPACT_ERR_STIFFNESS"),
+    (dict(stiffness=math.inf), "stiffness", "HCIMPACT_ERR_NOT_FINITE"),
+    (dict(stiffness=PAIR, exponent=math.nan), "exponent", "HCIMPACT_ERR_NOT_FINITE"),
+    (dict(stiffness=PAIR, exponent=1e-7), "exponent", "HCIMPACT_ERR_EXPONENT"),
+    (dict(stiffness=PAIR, exponent=None), "exponent", "HCIMPACT_ERR_NOT_FINITE"),
+    (dict(stiffness=PAIR, damping=-0.1), "damping", "HCIMPACT_ERR_DAMPING"),
+    (dict(stiffness=PAIR, damping=1j), "damping", "HCIMPACT_ERR_DOMAIN"),
+    # (finiteness first, as the library checks a law)
+    (dict(stiffness=-PAIR, damping=math.nan), "damping", "HCIMPACT_ERR_NOT_FINITE"),
+])
+def test_law_of_a_single_body_is_checked(kwargs, argument, name):
+    # one body has no pair and the library reads no law, but a bad law is the
+    # caller's error all the same: the status the library gives it between two bodies
+    with pytest.raises(hcimpact.InputError) as info:
+        hcimpact.chain([0.1], [1.0], **kwargs)
+    assert info.value.name == name and argument in str(info.value)
+    assert info.value.function == "hcimpact_chain_simulate"
+    with pytest.raises(hcimpact.InputError) as pair:
+        hcimpact.chain([0.1, 0.1], [1.0, 0.0], **kwargs)
+    assert pair.value.name == name
+
+
+@pytest.mark.parametrize("kwargs", [
+    dict(stiffness=[PAIR]), dict(stiffness=PAIR, exponent=[1.5]),
+    dict(stiffness=PAIR, damping=np.zeros(2)),
+])
+def test_law_arrays_of_a_single_body_are_empty(kwargs):
+    # one value per pair, as gaps: none for a single body
+    with pytest.raises(hcimpact.InputError, match="for a single body"):
+        hcimpact.chain([0.1], [1.0], **kwargs)
+    with pytest.raises(hcimpact.InputError, match="for a single body"):
+        hcimpact.chain([0.1], [1.0], gaps=[0.0])
+
+
+def test_law_of_a_single_body_may_be_given():
+    free = hcimpact.chain([0.1], [3.0], t_end=1.0)
+    for kwargs in (dict(stiffness=PAIR, exponent=1.0, damping=0.5), dict(stiffness=None),
+                   dict(stiffness=[], exponent=[], damping=np.empty(0)),
+                   dict(stiffness=np.float32(1e3), exponent=2, damping=0)):
+        r = hcimpact.chain([0.1], [3.0], t_end=1.0, **kwargs)
+        assert np.array_equal(r.positions, free.positions) and r.n_contacts == 0
+
+
 def test_without_contacts():
     r = hcimpact.chain([0.1], [3.0])
     assert r.n_contacts == 0 and len(r.contacts) == 0 and r.method_used == "exact"
