@@ -30,6 +30,7 @@ import numpy as np
 
 from . import _library
 from ._api import _MESSAGE_SIZE, _c_int, _component_function, _raise, _real, _scalar
+from ._force import contact_force
 from ._types import (CHAIN_COUNTS, ChainContact, ChainLaw, ChainOptions, ChainOutcome,
                      ChainSamples, ChainWall, InputError)
 
@@ -57,12 +58,7 @@ _FIRST_CAPACITY = 65536
 _INT_MAX = 2**31 - 1
 # max_steps and max_events are int64_t, which ctypes would wrap (2**64 + 5 into 5)
 _INT64_MAX = 2**63 - 1
-_ERR_NOT_FINITE, _ERR_DOMAIN, _ERR_SIZE = 1, 8, 14
-# the rules of a pair's law as the library checks them (check_parameters): every value
-# finite, then stiffness, exponent, damping, each with its status
-_LAW_RULES = {"stiffness": (3, "> 0", lambda c: c > 0.0),
-              "exponent": (4, ">= 1e-6 (HCIMPACT_MIN_EXPONENT)", lambda n: n >= 1.0e-6),
-              "damping": (6, ">= 0", lambda b: b >= 0.0)}
+_ERR_DOMAIN, _ERR_SIZE = 8, 14
 
 
 @dataclass(frozen=True, repr=False)
@@ -168,26 +164,28 @@ def _wall(wall: Any, side: str) -> ChainWall | None:
 def _law_of_no_pair(values: tuple) -> None:
     """The law of a single body's pairs, which it has none of: the library reads no law,
     but a bad one is the caller's error all the same. An array must be empty (one value
-    per pair, as gaps); a scalar is checked by the library's rules for a pair's law, with
-    its statuses (stiffness None: none given, as it may be for one body)."""
-    scalars = []
+    per pair, as gaps); scalars are checked by the library's own check of a law, that of
+    the contact-force element (:func:`contact_force`, statuses as for a pair's law),
+    stiffness None (none given, as it may be for one body) standing for a valid one."""
+    law = {}
     for value, name in values:
         if value is None and name == "stiffness":
             continue
-        law = _real(value, name, _WHERE)
-        if law.ndim == 0:
-            scalars.append((float(law), name))
+        converted = _real(value, name, _WHERE)
+        if converted.ndim == 0:
+            law[name] = float(converted)
         else:
-            _vector(law, name, 0)
-    why = ("(a single body has no pair, but the law given for the pairs is checked all "
-           "the same)")
-    for value, name in scalars:
-        if not math.isfinite(value):
-            raise InputError(_ERR_NOT_FINITE, f"{name} = {value!r} is not finite {why}", _WHERE)
-    for value, name in scalars:
-        status, rule, holds = _LAW_RULES[name]
-        if not holds(value):
-            raise InputError(status, f"{name} = {value!r} must be {rule} {why}", _WHERE)
+            _vector(converted, name, 0)
+    if not law:
+        return
+    given = ", ".join(f"{name} {value!r}" for name, value in law.items())
+    try:
+        contact_force(0.0, 0.0, law.get("stiffness", 1.0), law.get("exponent", 1.5),
+                      law.get("damping", 0.0))
+    except InputError as error:
+        raise InputError(error.status, f"the law of the pairs ({given}): {error.message} (a "
+                         "single body has no pair, but the law is checked all the same)",
+                         _WHERE) from None
 
 
 def _choice(value: Any, choices: dict, name: str) -> int:
