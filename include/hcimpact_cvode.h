@@ -71,7 +71,7 @@ HCIMPACT_API int hcimpact_simulate_message(const hcimpact_contact *contact, doub
 
 /** Methods of hcimpact_chain_options.method: decide per contact (the closed forms of
  *  one impact where contacts are isolated, CVODE for clusters of overlapping ones;
- *  the default, 0), the closed forms only (a cluster is HCIMPACT_ERR_UNAVAILABLE),
+ *  the default, 0), the closed forms only (a cluster is HCIMPACT_ERR_DOMAIN),
  *  or CVODE for the whole system from the start. */
 #define HCIMPACT_CHAIN_AUTO 0
 #define HCIMPACT_CHAIN_EXACT 1      /**< see HCIMPACT_CHAIN_AUTO */
@@ -133,9 +133,12 @@ typedef struct {
   double wall_impulse_left;     /**< impulse the left wall gave the system up to
                                      time, N s along the line (>= 0; 0 without it) */
   double wall_impulse_right;    /**< the right wall's (<= 0; 0 without it) */
-  int64_t n_contacts;           /**< every contact, also beyond contact_capacity */
+  int64_t n_contacts;           /**< every contact that ended, also beyond
+                                     contact_capacity */
   int64_t contacts_recorded;    /**< contacts written: min(n_contacts, capacity) */
-  int64_t closed_form_contacts; /**< contacts computed by the closed forms */
+  int64_t closed_form_contacts; /**< contacts computed by the closed forms, also one
+                                     still in progress at t_end (so it can exceed
+                                     n_contacts, which counts those that ended) */
   int64_t integrated_contacts;  /**< contacts computed (in part) by CVODE */
   int64_t steps;                /**< CVODE's steps, all clusters together */
   int64_t rhs_evals;            /**< right-hand side evaluations */
