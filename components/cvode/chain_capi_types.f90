@@ -50,7 +50,7 @@ module hcimpact_cvode_chain_capi_types
    type, bind(C) :: hcimpact_chain_options
       !> End time in s; <= 0: until no contact can happen again
       real(c_double) :: t_end
-      !> Relative tolerance of CVODE in (0, 1); 0: 1e-10
+      !> Relative tolerance of CVODE in (0, 0.01]; 0: 1e-10
       real(c_double) :: rtol
       !> Largest number of integration steps; 0: 1e8
       integer(c_int64_t) :: max_steps

@@ -14,8 +14,8 @@
 !> INFO = 0 success; -i the i-th argument is invalid (the first one found, in the
 !> order of the arguments; the real outputs are NaN, the counts 0); > 0 the library's
 !> status code (HCMSG gives its text; MSG says more): 9 more than MAXEVT contacts or
-!> MAXSTP steps, 11 CVODE failed, 8 a cluster with METHOD = 1 (exact only) or another
-!> argument outside the domain (MSG names it).
+!> MAXSTP steps, 11 CVODE failed, 8 a cluster with METHOD = 1 (exact only) or
+!> arguments each valid whose combination is outside the domain (MSG names it).
 subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt, maxc, &
       & ldc, cont, icon, msg, info)
    use, intrinsic :: iso_fortran_env, only : int64
@@ -23,28 +23,31 @@ subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt,
    use hcimpact_status, only : hcimpact_ok, status_message
    use hcimpact_contact, only : check_parameters
    use hcimpact_f77_support, only : law_info
-   use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result
+   use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
+      & check_rtol, sum_within_range, max_message
    use hcimpact_cvode_chain, only : chain_simulate
    use hcimpact_cvode_chain_capi_types, only : chain_options_from
    implicit none
    !> Number of bodies, N >= 1
    integer, intent(in) :: n
-   !> XM(N): masses in kg (> 0)
+   !> XM(N): masses in kg (> 0; together at most a quarter of the largest double)
    real(wp), intent(in) :: xm(*)
    !> V(N): initial velocities in m/s
    real(wp), intent(in) :: v(*)
-   !> GAP(N-1): gaps between neighbours in m (>= 0; 0: touching)
+   !> GAP(N-1): gaps between neighbours in m (>= 0; 0: touching; together at most a
+   !> quarter of the largest double)
    real(wp), intent(in) :: gap(*)
    !> PLAW(3, N-1): the law of pair I (bodies I and I+1): PLAW(1, I) = c in N/m**n
    !> (> 0), PLAW(2, I) = n (>= 1e-6), PLAW(3, I) = b in s/m (>= 0)
    real(wp), intent(in) :: plaw(3, *)
    !> WALL(4, 2): the left (column 1) and right (column 2) wall: c, n, b as in PLAW,
-   !> then the gap to the end body in m (>= 0); c = 0: no wall on that side
+   !> then the gap to the end body in m (>= 0); c = 0: no wall on that side (the rest
+   !> of that column is then not read)
    real(wp), intent(in) :: wall(4, 2)
    !> Constant acceleration along the line in m/s**2 (negative: to the left)
    real(wp), intent(in) :: grav
    !> OPTS(2): end time in s (<= 0: until no contact can happen again); CVODE's
-   !> relative tolerance in (0, 1) (0: 1e-10)
+   !> relative tolerance in (0, 0.01] (0: 1e-10)
    real(wp), intent(in) :: opts(2)
    !> IOPTS(4): method (0 auto, 1 exact only, 2 integrated); integrator (0 or 1 BDF,
    !> 2 Adams); most steps (0: 1e8); most contacts computed (0: 1e8)
@@ -105,13 +108,20 @@ subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt,
       chain%law(i) = contact_law(stiffness=plaw(1, i), exponent=plaw(2, i), &
          & damping=plaw(3, i))
    end do
+   ! an absent wall's column is not read: the library checks a wall gap even without
+   ! the wall, and a NaN left there failed the call
    chain%left_wall = wall(1, 1) /= 0.0_wp
-   chain%left_law = contact_law(stiffness=wall(1, 1), exponent=wall(2, 1), damping=wall(3, 1))
-   chain%left_gap = wall(4, 1)
+   if (chain%left_wall) then
+      chain%left_law = contact_law(stiffness=wall(1, 1), exponent=wall(2, 1), &
+         & damping=wall(3, 1))
+      chain%left_gap = wall(4, 1)
+   end if
    chain%right_wall = wall(1, 2) /= 0.0_wp
-   chain%right_law = contact_law(stiffness=wall(1, 2), exponent=wall(2, 2), &
-      & damping=wall(3, 2))
-   chain%right_gap = wall(4, 2)
+   if (chain%right_wall) then
+      chain%right_law = contact_law(stiffness=wall(1, 2), exponent=wall(2, 2), &
+         & damping=wall(3, 2))
+      chain%right_gap = wall(4, 2)
+   end if
    chain%gravity = grav
    options = chain_options_from(opts(1), opts(2), iopts(1), iopts(2), &
       & int(iopts(3), int64), int(iopts(4), int64))
@@ -148,12 +158,15 @@ contains
 
    !> The first invalid argument, in their order, and what is wrong with it. The
    !> library's validator (hcimpact_chain_types' check_chain, run again by
-   !> chain_simulate) decides; these checks use the library's rules for each field
-   !> (check_parameters, law_info) only to name the argument at fault.
+   !> chain_simulate) decides; these checks use the library's rules for each argument
+   !> (check_parameters, law_info, sum_within_range, check_rtol) only to name the
+   !> argument at fault, so that none passes here to fail there.
    subroutine check_arguments(info, msg)
       integer, intent(out) :: info
       character(len=*), intent(out) :: msg
-      integer :: i, side
+      type(chain_options) :: asked
+      character(len=max_message) :: why
+      integer :: i, side, stat
       info = -1
       if (n < 1) then
          msg = "N: a system needs at least one body"
@@ -162,29 +175,37 @@ contains
       info = -2
       do i = 1, n
          if (check_parameters(mass=xm(i)) /= hcimpact_ok) then
-            write(msg, '(a, i0, a)') "XM(", i, "): masses must be positive and finite"
+            call say(msg, "XM(", i, "): masses must be positive and finite")
             return
          end if
       end do
+      if (.not. sum_within_range(xm(1:n))) then
+         msg = "XM: the masses add up beyond a quarter of the range of doubles"
+         return
+      end if
       info = -3
       do i = 1, n
          if (.not. finite_value(v(i))) then
-            write(msg, '(a, i0, a)') "V(", i, ") is NaN or infinite"
+            call say(msg, "V(", i, ") is NaN or infinite")
             return
          end if
       end do
       info = -4
       do i = 1, n - 1
          if (.not. (finite_value(gap(i)) .and. gap(i) >= 0.0_wp)) then
-            write(msg, '(a, i0, a)') "GAP(", i, "): gaps must be finite and >= 0" &
-               & // " (touching: 0; bodies may not overlap at the start)"
+            call say(msg, "GAP(", i, "): gaps must be finite and >= 0" &
+               & // " (touching: 0; bodies may not overlap at the start)")
             return
          end if
       end do
+      if (.not. sum_within_range(gap(1:n - 1))) then
+         msg = "GAP: the gaps add up beyond a quarter of the range of doubles"
+         return
+      end if
       info = -5
       do i = 1, n - 1
          if (law_info(plaw(1, i), plaw(2, i), plaw(3, i)) /= 0) then
-            write(msg, '(a, i0, a)') "PLAW(:, ", i, "): c > 0, n >= 1e-6, b >= 0, all finite"
+            call say(msg, "PLAW(:, ", i, "): c > 0, n >= 1e-6, b >= 0, all finite")
             return
          end if
       end do
@@ -193,8 +214,8 @@ contains
          if (wall(1, side) == 0.0_wp) cycle
          if (law_info(wall(1, side), wall(2, side), wall(3, side)) /= 0 .or. &
             & .not. (finite_value(wall(4, side)) .and. wall(4, side) >= 0.0_wp)) then
-            write(msg, '(a, i0, a)') "WALL(:, ", side, "): c > 0 (0: no wall), n >= 1e-6," &
-               & // " b >= 0, gap >= 0, all finite"
+            call say(msg, "WALL(:, ", side, "): c > 0 (0: no wall), n >= 1e-6," &
+               & // " b >= 0, gap >= 0, all finite")
             return
          end if
       end do
@@ -204,9 +225,15 @@ contains
          return
       end if
       info = -8
-      if (.not. (finite_value(opts(1)) .and. finite_value(opts(2)) .and. opts(2) >= 0.0_wp &
-         & .and. opts(2) < 1.0_wp)) then
-         msg = "OPTS: the end time must be finite, the tolerance in (0, 1) (0: the default)"
+      if (.not. finite_value(opts(1))) then
+         msg = "OPTS(1): the end time is NaN or infinite"
+         return
+      end if
+      ! the tolerance as the library takes it (0: the default) against its own rule
+      asked = chain_options_from(opts(1), opts(2), 0, 0, 0_int64, 0_int64)
+      call check_rtol(asked%rtol, stat, why)
+      if (stat /= hcimpact_ok) then
+         msg = "OPTS(2): " // trim(why) // " (0: the default)"
          return
       end if
       info = -9
@@ -228,5 +255,18 @@ contains
       info = 0
       msg = "success"
    end subroutine check_arguments
+
+   !> MSG = head, the index i, tail: formed whole in a buffer long enough for any i,
+   !> then assigned, so that a shorter MSG is cut and a longer one blank-padded (an
+   !> internal write straight into the caller's MSG stopped the program with "End of
+   !> record" when the text was longer).
+   subroutine say(msg, head, i, tail)
+      character(len=*), intent(out) :: msg
+      character(len=*), intent(in) :: head, tail
+      integer, intent(in) :: i
+      character(len=len(head) + len(tail) + 11) :: text
+      write(text, '(a, i0, a)') head, i, tail
+      msg = text
+   end subroutine say
 
 end subroutine hcchn

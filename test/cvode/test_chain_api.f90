@@ -692,6 +692,9 @@ contains
       call good(); xm(3) = nan
       call run(-2, "XM(3) NaN")
       if (allocated(error)) return
+      call good(); xm(1) = 1.0e308_wp; xm(3) = 1.0e308_wp
+      call run(-2, "XM adding up beyond a quarter of the range")
+      if (allocated(error)) return
       call good(); v(1) = nan
       call run(-3, "V(1) NaN")
       if (allocated(error)) return
@@ -715,6 +718,9 @@ contains
       if (allocated(error)) return
       call good(); opts(2) = 1.5_wp
       call run(-8, "RTOL = 1.5")
+      if (allocated(error)) return
+      call good(); opts(2) = 0.02_wp
+      call run(-8, "RTOL = 0.02 (the library's domain is (0, 0.01])")
       if (allocated(error)) return
       call good(); opts(1) = nan
       call run(-8, "T_END NaN")

@@ -28,7 +28,8 @@ module hcimpact_chain_types
 
    public :: contact_law, chain_type, chain_options, contact_record, chain_result
    public :: chain_counters, chain_switch
-   public :: check_chain, kinetic_energy, energy_balance_error, momentum_balance_error
+   public :: check_chain, check_rtol, sum_within_range
+   public :: kinetic_energy, energy_balance_error, momentum_balance_error
    public :: sum_in_range, product_in_range, gravity_impulse, momentum, not_below_zero
    public :: beyond_max_beta, say_beyond_max_beta
    public :: method_auto, method_exact, method_integrated
@@ -336,11 +337,9 @@ contains
          message = "t_end or rtol is NaN or infinite"
          return
       end if
+      call check_rtol(options%rtol, stat, message)
+      if (stat /= hcimpact_ok) return
       stat = hcimpact_err_domain
-      if (.not. (options%rtol > 0.0_wp .and. options%rtol <= max_chain_rtol)) then
-         message = "rtol must lie in (0, 0.01]"
-         return
-      end if
       if (options%method < method_auto .or. options%method > method_integrated) then
          message = "method must be auto, exact or integrated"
          return
@@ -386,6 +385,31 @@ contains
       message = "success"
    end subroutine check_chain
 
+   !> Check a relative tolerance of a system (`chain_options`%rtol): the one rule of
+   !> its domain, (0, max_chain_rtol], for check_chain and for the interfaces that name
+   !> the argument at fault (HCCHN). hcimpact_ok, hcimpact_err_not_finite or
+   !> hcimpact_err_domain, with a message ("success" when nothing is wrong).
+   pure subroutine check_rtol(rtol, stat, message)
+      !> Relative tolerance
+      real(wp), intent(in) :: rtol
+      !> Status
+      integer, intent(out) :: stat
+      !> What is wrong
+      character(len=*), intent(out) :: message
+      stat = hcimpact_err_not_finite
+      if (.not. ieee_is_finite(rtol)) then
+         message = "rtol is NaN or infinite"
+         return
+      end if
+      stat = hcimpact_err_domain
+      if (.not. (rtol > 0.0_wp .and. rtol <= max_chain_rtol)) then
+         message = "rtol must lie in (0, 0.01]"
+         return
+      end if
+      stat = hcimpact_ok
+      message = "success"
+   end subroutine check_rtol
+
    !> Whether no end time would ever be reached by running "until no contact can happen
    !> again" (a valid chain): between two walls without gravity a body in motion hits
    !> them for ever (damping slows the bodies but never stops them), and under gravity
@@ -413,7 +437,8 @@ contains
    end function never_ends
 
    !> Whether values not negative add up to at most a quarter of the range of doubles,
-   !> found without forming a sum beyond it.
+   !> found without forming a sum beyond it: check_chain's rule for the masses and
+   !> the gaps (HCCHN applies it to XM and GAP to name the argument).
    pure logical function sum_within_range(values)
       real(wp), intent(in) :: values(:)
       real(wp), parameter :: limit = 0.25_wp * huge(1.0_wp)
