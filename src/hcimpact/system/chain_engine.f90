@@ -659,6 +659,16 @@ contains
       end if
    end subroutine contact_state
 
+   !> The acceleration of slot s's gap while its bodies fly freely: 0 between two
+   !> bodies, +-g against a wall.
+   pure real(wp) function gap_acceleration(engine, s)
+      type(chain_engine), intent(in) :: engine
+      integer, intent(in) :: s
+      gap_acceleration = 0.0_wp
+      if (s == 0) gap_acceleration = engine%gravity
+      if (s == engine%n) gap_acceleration = -engine%gravity
+   end function gap_acceleration
+
    !> The gap of slot s and its rate of change at the time t (both bodies known to the
    !> closed forms); huge for a missing wall.
    subroutine slot_gap_at(engine, s, t, gap, rate)
@@ -762,10 +772,7 @@ contains
       real(wp) :: gap, rate, g, tau
       t_next = huge(1.0_wp)
       call slot_gap_at(engine, s, engine%time, gap, rate)
-      ! the gap's acceleration: 0 between bodies, +-g against a wall
-      g = 0.0_wp
-      if (s == 0) g = engine%gravity
-      if (s == engine%n) g = -engine%gravity
+      g = gap_acceleration(engine, s)
       tau = first_zero(gap, rate, g)
       ! (a time beyond the range of doubles is never)
       if (tau <= huge(1.0_wp) - engine%time) t_next = engine%time + tau
@@ -784,9 +791,7 @@ contains
          if (touches_region(engine, s)) cycle
          if (engine%exact(s)%active) cycle
          call slot_gap_at(engine, s, engine%time, gap, rate)
-         g = 0.0_wp
-         if (s == 0) g = engine%gravity
-         if (s == engine%n) g = -engine%gravity
+         g = gap_acceleration(engine, s)
          if (.not. (gap > 0.0_wp .and. closes_ever(gap, rate, g))) cycle
          stat = hcimpact_err_domain
          write(engine%message, '(a, i0, a, es11.3e3, a)') "pair ", s, " closes at t = ", &
