@@ -214,7 +214,10 @@ typedef struct {
  *                           but the message),
  *  HCIMPACT_ERR_SIZE (14)   n < 1, contact_capacity < 0, samples->count < 0
  *                           (nothing written but the message); sample times that
- *                           decrease,
+ *                           decrease; out of memory: the system is too large for the
+ *                           memory available (the message begins "out of memory";
+ *                           the library's copies, the engine's arrays, a cluster's
+ *                           arrays or CVODE's; the outputs as after the errors below),
  *  HCIMPACT_ERR_NOT_FINITE (1), _MASS (2), _STIFFNESS (3), _EXPONENT (4),
  *  _DAMPING (6)             a NaN or infinite value, a mass or a law out of range,
  *  HCIMPACT_ERR_DOMAIN (8)  a negative gap (bodies may touch, not overlap), gaps
@@ -236,8 +239,8 @@ typedef struct {
  *                           (scales that CVODE does not resolve; "did not resolve"),
  *  HCIMPACT_ERR_NO_CONVERGENCE (9) more than max_events contacts or max_steps
  *                           steps (a ball that would bounce for ever: give t_end).
- *  After an error other than NULL and SIZE every real of *result is NaN, its counts
- *  0, and every output array NaN (the contacts are not written). */
+ *  After an error other than NULL and SIZE for a size every real of *result is NaN,
+ *  its counts 0, and every output array NaN (the contacts are not written). */
 HCIMPACT_API int hcimpact_chain_simulate(int n, const double *masses, const double *velocities,
                                          const double *gaps, const hcimpact_chain_law *laws,
                                          const hcimpact_chain_wall *left_wall,

@@ -31,7 +31,7 @@ module hcimpact_cvode_chain
    use hcimpact_cvode_halting, only : halting_suspend, halting_resume, callback_enter, &
       & callback_leave
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_solver, hcimpact_err_domain, &
-      & hcimpact_err_no_convergence
+      & hcimpact_err_no_convergence, hcimpact_err_size
    use hcimpact_force_element, only : contact_force_type
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
       & contact_record, by_integration, integrator_adams, method_integrated, not_below_zero, &
@@ -39,7 +39,7 @@ module hcimpact_cvode_chain
    use hcimpact_chain_engine, only : chain_engine, cluster_integrator, run_engine, &
       & slot_gap0, slot_law, slot_exists, body_state_at, engine_record, capture_margin, &
       & advance_reached, advance_grow_left, advance_grow_right, advance_dissolved, &
-      & advance_captured, advance_failed, advance_split, add_wall_impulse
+      & advance_captured, advance_failed, advance_split, add_wall_impulse, no_memory
    use hcimpact_cvode_chain_system, only : chain_region, region_size, region_rhs, &
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
       & impulse_index, set_weight, wall_impulse, wall_impulse_scale, &
@@ -54,7 +54,7 @@ module hcimpact_cvode_chain
       & FCVodeWFtolerances, FCVodeSetLinearSolver, FCVodeSetJacFn, &
       & FCVodeSetMaxNumSteps, FCVodeSetMaxHnilWarns, FCVodeSetInitStep, FCVode, &
       & FCVodeFree, FCVodeSetStopTime, FCVodeGetDky, FCVodeGetNumRhsEvals, &
-      & FCVodeGetNumJacEvals, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS
+      & FCVodeGetNumJacEvals, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS, CV_MEM_FAIL
    use fnvector_serial_mod, only : FN_VMake_Serial
    use fsunmatrix_band_mod, only : FSUNBandMatrixStorage, FSUNBandMatrix_Data, &
       & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
@@ -143,7 +143,8 @@ contains
    !> Errors: those of `check_chain` (size, not finite, mass, the laws, domain);
    !> hcimpact_err_domain for a cluster with method exact; hcimpact_err_solver
    !> when CVODE fails (the message names its flag); hcimpact_err_no_convergence for
-   !> more than options%max_events contacts (give t_end) or max_steps steps.
+   !> more than options%max_events contacts (give t_end) or max_steps steps;
+   !> hcimpact_err_size out of memory ("out of memory (what): ...").
    subroutine chain_simulate(chain, result, stat, options)
       !> The system
       type(chain_type), intent(in) :: chain
@@ -155,8 +156,12 @@ contains
       type(chain_options), intent(in), optional :: options
       type(cvode_chain_integrator) :: integrator
       type(chain_options) :: opts
-      if (present(options)) opts = options
-      call run_engine(chain, opts, result, stat, integrator)
+      ! (the options as given: a copy would allocate their sample times unchecked)
+      if (present(options)) then
+         call run_engine(chain, options, result, stat, integrator)
+      else
+         call run_engine(chain, opts, result, stat, integrator)
+      end if
       call release_all(integrator)
    end subroutine chain_simulate
 
@@ -180,6 +185,8 @@ contains
       logical, allocatable :: resting(:)
       real(c_double), pointer, contiguous :: y(:), atol(:)
       logical :: halting(3)
+      integer :: alloc_stat
+      real(c_double), allocatable :: probe(:)
 
       stat = hcimpact_ok
       call release_all(self)
@@ -187,15 +194,25 @@ contains
       ! hcimpact_cvode_halting): halting off while it runs, back on in the callbacks
       call halting_suspend(halting)
       m = self%last - self%first + 1
-      allocate(self%region)
+      ! (the region's arrays at once, checked: out of memory, nothing is half made)
+      n_state = region_size(m)
+      allocate(self%region, stat=alloc_stat)
+      if (alloc_stat == 0) allocate(self%region%mass(m), self%region%kind(0:m), &
+         & self%region%law(0:m), self%region%gap0(0:m), self%u_ref(m), v_start(m), &
+         & round_x(0:m), round_w(0:m), self%y(n_state), self%atol(n_state), &
+         & self%contact(0:m), self%history(0:m), resting(0:m), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call release_all(self)
+         call halting_resume(halting)
+         call no_memory(engine, "the arrays of a cluster")
+         stat = hcimpact_err_size
+         return
+      end if
       self%region%halting = halting
       self%region%m = m
       self%region%gravity = engine%gravity
-      allocate(self%region%mass(m), self%region%kind(0:m), self%region%law(0:m), &
-         & self%region%gap0(0:m))
-      self%region%mass = engine%chain%mass(self%first:self%last)
+      self%region%mass(:) = engine%chain%mass(self%first:self%last)
       ! the frame: the states at the start, every displacement from its value then
-      allocate(self%u_ref(m), v_start(m))
       do k = 1, m
          call body_state_at(engine, self%first + k - 1, engine%time, self%u_ref(k), &
             & v_start(k))
@@ -233,7 +250,6 @@ contains
       ! the gaps at zero displacements in the frame, and the bodies outside: their
       ! free flight from now, relative to their neighbour's reference and the frame;
       ! and per slot the rounding of the engine's states it comes from (`snap_touching`)
-      allocate(round_x(0:m), round_w(0:m))
       round_x = 0.0_wp
       round_w = 0.0_wp
       do j = 0, m
@@ -262,8 +278,6 @@ contains
             round_w(j) = spacing(max(abs(v_out), abs(v_start(k))))
          end select
       end do
-      n_state = region_size(m)
-      allocate(self%y(n_state), self%atol(n_state))
       self%y = 0.0_wp
       self%y(2:3 * m:3) = v_start - self%v_frame
 
@@ -304,7 +318,6 @@ contains
 
       ! the contacts in progress: handed over by the closed forms or an earlier region;
       ! and every slot's state now, the start of the first step's interpolants
-      allocate(self%contact(0:m), self%history(0:m), resting(0:m))
       resting = .false.
       self%wall_touched = .false.
       do j = 0, m
@@ -361,6 +374,19 @@ contains
       self%stalled = 0
       self%beyond = -1
 
+      ! SUNDIALS 6's N_VClone dereferences the clone it failed to allocate (CVodeInit
+      ! crashed out of memory): the memory of CVODE's vectors and band matrix, with a
+      ! factor 2 to spare, is tried first and given back
+      allocate(probe(2 * int(n_state, int64) * (24 + upper_band + lower_band)), &
+         & stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call release_all(self)
+         call halting_resume(halting)
+         call no_memory(engine, "CVODE's vectors and matrix")
+         stat = hcimpact_err_size
+         return
+      end if
+      deallocate(probe)
       setup: block
          where = "SUNContext_Create"
          ierr = context_create(self%ctx)
@@ -426,9 +452,15 @@ contains
          if (ierr /= CV_SUCCESS) exit setup
       end block setup
       if (ierr /= 0) then
-         stat = hcimpact_err_solver
-         engine%message = "CVODE setup failed in " // trim(where) // ": " &
-            & // cvode_flag_name(ierr) // report_detail(self%region%report)
+         ! (a context or a constructor that fails, or CV_MEM_FAIL: CVODE's memory)
+         if (ierr == -1 .or. ierr == CV_MEM_FAIL .or. where == "SUNContext_Create") then
+            stat = hcimpact_err_size
+            call no_memory(engine, "CVODE's vectors and matrix in " // trim(where))
+         else
+            stat = hcimpact_err_solver
+            engine%message = "CVODE setup failed in " // trim(where) // ": " &
+               & // cvode_flag_name(ierr) // report_detail(self%region%report)
+         end if
          call release_all(self)
          call halting_resume(halting)
          return
@@ -455,7 +487,7 @@ contains
       integer, intent(out) :: what, stat
       integer(c_int) :: ierr
       real(c_double) :: tret(1)
-      integer :: m
+      integer :: m, alloc_stat
       real(wp), allocatable :: u(:), v(:)
       logical :: ended, halting(3)
       ! steps in a row that did not advance the time, and how many are tolerated
@@ -473,6 +505,12 @@ contains
             ! (self%y holds the state at the end of the step)
             if (self%next < self%tn) call move_to(self, self%next)
             call follow_contacts(self, engine, self%next, ended)
+            if (self%out_of_memory) then
+               call no_memory(engine, "the work arrays of a cluster")
+               stat = hcimpact_err_size
+               what = advance_failed
+               exit run
+            end if
             if (self%beyond >= 0) then
                stat = hcimpact_err_domain
                call say_beyond_max_beta(engine%message, self%first - 1 + self%beyond, &
@@ -503,7 +541,13 @@ contains
             end if
             ! at rest on a wall under gravity, for good (reported once per region)
             if (engine%gravity /= 0.0_wp .and. .not. self%captured) then
-               allocate(u(m), v(m))
+               allocate(u(m), v(m), stat=alloc_stat)
+               if (alloc_stat /= 0) then
+                  call no_memory(engine, "the work arrays of a cluster")
+                  stat = hcimpact_err_size
+                  what = advance_failed
+                  exit run
+               end if
                call engine_frame(self, self%time, self%y, u, v)
                if (capture_margin(engine, self%first, self%last, u, v) < 0.0_wp) then
                   self%captured = .true.
@@ -522,6 +566,12 @@ contains
                if (split_parts(self)) then
                   what = advance_split
                   self%due = what
+                  exit run
+               end if
+               if (self%out_of_memory) then
+                  call no_memory(engine, "the work arrays of a cluster")
+                  stat = hcimpact_err_size
+                  what = advance_failed
                   exit run
                end if
             end if
@@ -639,7 +689,7 @@ contains
    !> array unless the free bodies are enough.
    logical function split_parts(self) result(split)
       type(cvode_chain_integrator), intent(inout) :: self
-      integer :: m, k, first, kept, n_free
+      integer :: m, k, first, kept, n_free, alloc_stat
       logical :: pressed, left_apart, right_apart
       logical, allocatable :: free(:)
       real(wp), allocatable :: u(:), v(:)
@@ -654,14 +704,25 @@ contains
          left_apart = right_apart
       end do
       if (n_free < max(1, m / 4)) return
-      allocate(free(m))
+      ! (out of memory: no split, self%out_of_memory)
+      allocate(free(m), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         self%out_of_memory = .true.
+         return
+      end if
       do k = 1, m
          free(k) = apart(k - 1) .and. apart(k)
       end do
       if (allocated(self%parts)) then
          if (size(self%parts, 2) < m) deallocate(self%parts)
       end if
-      if (.not. allocated(self%parts)) allocate(self%parts(2, m))
+      if (.not. allocated(self%parts)) then
+         allocate(self%parts(2, m), stat=alloc_stat)
+         if (alloc_stat /= 0) then
+            self%out_of_memory = .true.
+            return
+         end if
+      end if
       self%n_parts = 0
       kept = 0
       k = 1
@@ -685,7 +746,11 @@ contains
          kept = kept + (k - first)
       end do
       if (m - kept < max(1, m / 4)) return
-      allocate(u(m), v(m))
+      allocate(u(m), v(m), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         self%out_of_memory = .true.
+         return
+      end if
       call engine_frame(self, self%time, self%y, u, v)
       if (spacing(maxval(abs(u))) > self%atol(1) .or. spacing(maxval(abs(v))) &
          & > self%atol(2)) return
@@ -758,8 +823,14 @@ contains
       integer, intent(out) :: stat
       real(wp), allocatable :: dy(:)
       logical :: ok
+      integer :: alloc_stat
       stat = hcimpact_ok
-      allocate(dy(size(self%y)))
+      allocate(dy(size(self%y)), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call no_memory(engine, "the work arrays of a cluster")
+         stat = hcimpact_err_size
+         return
+      end if
       call region_rhs(self%region, self%time, self%y, dy, ok)
       if (.not. ok) then
          stat = hcimpact_err_solver
@@ -827,12 +898,18 @@ contains
       real(wp) :: x, w, df, h, t0, tc, wc, step_max, dense
       type(contact_force_type) :: e
       type(slot_history) :: last
-      integer :: j, m
+      integer :: j, m, alloc_stat
       logical :: ok
 
       ended = .false.
       m = self%region%m
-      allocate(dy(size(self%y)), xs(0:m), ws(0:m), elements(0:m))
+      ! (out of memory: nothing followed, self%out_of_memory, the run stops)
+      allocate(dy(size(self%y)), xs(0:m), ws(0:m), elements(0:m), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         self%out_of_memory = .true.
+         call no_memory(engine, "the work arrays of a cluster")
+         return
+      end if
       ! every slot's element once, with the accelerations its force rate needs
       call region_rhs(self%region, t, self%y, dy, ok, xs, ws, elements)
       do j = 0, m
@@ -1062,7 +1139,13 @@ contains
       real(wp), intent(in) :: t
       real(c_double), allocatable, target :: dky(:)
       logical :: ok
-      allocate(dky(size(self%y)))
+      integer :: alloc_stat
+      ! (out of memory: self%y kept, self%out_of_memory)
+      allocate(dky(size(self%y)), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         self%out_of_memory = .true.
+         return
+      end if
       call interpolate(self, t, dky, ok)
       if (ok) self%y = dky
    end subroutine move_to
@@ -1252,7 +1335,7 @@ contains
       real(wp), intent(in) :: t
       real(wp), intent(out) :: u(:), v(:)
       real(c_double), allocatable, target :: dky(:)
-      integer :: m
+      integer :: m, alloc_stat
       logical :: halting(3), ok
       m = self%region%m
       ! self%y holds the state at the end of the last step until its contacts are
@@ -1261,8 +1344,15 @@ contains
          call engine_frame(self, t, self%y, u, v)
          return
       end if
+      ! (out of memory: NaN, self%out_of_memory, which the engine turns into its status)
+      allocate(dky(region_size(m)), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         self%out_of_memory = .true.
+         u = nan
+         v = nan
+         return
+      end if
       call halting_suspend(halting)
-      allocate(dky(region_size(m)))
       call interpolate(self, t, dky, ok)
       if (ok) then
          call engine_frame(self, t, dky, u, v)
@@ -1303,6 +1393,7 @@ contains
       real(wp) :: t
       real(wp), allocatable :: u(:), v(:)
       logical :: ended, halting(3)
+      integer :: alloc_stat
       if (.not. associated(self%region)) return
       m = self%region%m
       call halting_suspend(halting)
@@ -1313,7 +1404,14 @@ contains
          if (t > self%time) call follow_contacts(self, engine, t, ended)
          self%stepped = .false.
       end if
-      allocate(u(m), v(m))
+      allocate(u(m), v(m), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         ! (the bodies keep their states before the region: the run stops)
+         call no_memory(engine, "the work arrays of a cluster")
+         call release_all(self)
+         call halting_resume(halting)
+         return
+      end if
       call engine_frame(self, self%time, self%y, u, v)
       do k = 1, m
          i = self%first + k - 1

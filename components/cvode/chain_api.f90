@@ -43,7 +43,8 @@ contains
    !> Statuses: HCIMPACT_ERR_NULL (a required pointer is NULL) and HCIMPACT_ERR_SIZE
    !> (n < 1, contact_capacity < 0, samples->count < 0): nothing is written but the
    !> message. Every other error: those of chain_simulate, with NaN in the result's
-   !> reals, 0 in its counts and NaN in the output arrays.
+   !> reals, 0 in its counts and NaN in the output arrays; so is HCIMPACT_ERR_SIZE out
+   !> of memory, also for the copies of the input made here.
    function c_chain_simulate(n, masses, velocities, gaps, laws, left_wall, right_wall, &
          & gravity, options, result, positions, final_velocities, contact_capacity, &
          & contacts, samples, message, message_size) result(stat) &
@@ -105,7 +106,7 @@ contains
       type(chain_type) :: chain
       type(chain_options) :: opts
       type(chain_result) :: fortran_result
-      integer :: status, count
+      integer :: status, count, i, alloc_stat
       integer(c_int64_t) :: recorded
 
       stat = int(hcimpact_err_null, c_int)
@@ -152,17 +153,28 @@ contains
          end if
       end if
 
+      ! the copies of the input, checked (out of memory: HCIMPACT_ERR_SIZE, every output
+      ! NaN as for the engine's own failure)
+      allocate(chain%mass(n), chain%velocity(n), chain%gap(n - 1), chain%law(n - 1), &
+         & opts%sample_times(count), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         status = hcimpact_err_size
+         text = "out of memory (the copies of the input): the system is too large for the " &
+            & // "memory available"
+         call fail_outputs()
+         return
+      end if
       call c_f_pointer(masses, c_mass, [n])
       call c_f_pointer(velocities, c_velocity, [n])
-      chain%mass = real(c_mass, wp)
-      chain%velocity = real(c_velocity, wp)
+      chain%mass(:) = real(c_mass, wp)
+      chain%velocity(:) = real(c_velocity, wp)
       if (n > 1) then
          call c_f_pointer(gaps, c_gap, [n - 1])
          call c_f_pointer(laws, c_laws, [n - 1])
-         chain%gap = real(c_gap, wp)
-         chain%law = to_law(c_laws)
-      else
-         allocate(chain%gap(0), chain%law(0))
+         chain%gap(:) = real(c_gap, wp)
+         do i = 1, n - 1
+            chain%law(i) = to_law(c_laws(i))
+         end do
       end if
       if (c_associated(left_wall)) then
          call c_f_pointer(left_wall, c_wall)
@@ -177,15 +189,18 @@ contains
          chain%right_gap = real(c_wall%gap, wp)
       end if
       chain%gravity = real(gravity, wp)
+      ! (the options field by field: an assignment would reallocate the sample times)
       if (c_associated(options)) then
          call c_f_pointer(options, c_options)
-         opts = to_options(c_options, int(contact_capacity))
+         call set_options(opts, to_options(c_options, int(contact_capacity)))
       else
          opts%max_contacts = int(contact_capacity)
       end if
       if (count > 0) then
          call c_f_pointer(c_samples%times, c_times, [count])
-         opts%sample_times = real(c_times, wp)
+         opts%sample_times(:) = real(c_times, wp)
+      else
+         deallocate(opts%sample_times)
       end if
 
       call chain_simulate(chain, fortran_result, status, opts)
@@ -193,8 +208,29 @@ contains
       text = trim(fortran_result%message)
       if (len(text) == 0) text = status_message(status)
 
-      call c_f_pointer(result, c_result)
       if (status /= hcimpact_ok) then
+         call fail_outputs()
+         return
+      end if
+      call c_f_pointer(result, c_result)
+      c_result = from_result(fortran_result)
+      call put(positions, fortran_result%positions)
+      call put(final_velocities, fortran_result%velocities)
+      recorded = c_result%contacts_recorded
+      if (recorded > 0) call put_contacts(contacts, fortran_result)
+      if (count > 0) then
+         ! (sample after sample, as the arrays are stored: no reshaped copy)
+         call put_samples(c_samples%positions, fortran_result%sample_positions)
+         call put_samples(c_samples%velocities, fortran_result%sample_velocities)
+         call put_samples(c_samples%forces, fortran_result%sample_forces)
+      end if
+
+   contains
+
+      !> A failed run: the status, NaN in the result's reals and every output array
+      subroutine fail_outputs()
+         stat = int(status, c_int)
+         call c_f_pointer(result, c_result)
          c_result = failed_result()
          call fill(positions, int(n, c_int64_t), nan)
          call fill(final_velocities, int(n, c_int64_t), nan)
@@ -203,22 +239,32 @@ contains
             call fill(c_samples%velocities, int(n, c_int64_t) * count, nan)
             call fill(c_samples%forces, (int(n, c_int64_t) + 1) * count, nan)
          end if
-         return
-      end if
-      c_result = from_result(fortran_result)
-      call put(positions, fortran_result%positions)
-      call put(final_velocities, fortran_result%velocities)
-      recorded = c_result%contacts_recorded
-      if (recorded > 0) call put_contacts(contacts, fortran_result)
-      if (count > 0) then
-         call put(c_samples%positions, reshape(fortran_result%sample_positions, &
-            & [size(fortran_result%sample_positions)]))
-         call put(c_samples%velocities, reshape(fortran_result%sample_velocities, &
-            & [size(fortran_result%sample_velocities)]))
-         call put(c_samples%forces, reshape(fortran_result%sample_forces, &
-            & [size(fortran_result%sample_forces)]))
-      end if
+      end subroutine fail_outputs
    end subroutine simulate_from_c
+
+   !> The scalar options of `from` into `to`, whose sample times stay
+   subroutine set_options(to, from)
+      type(chain_options), intent(inout) :: to
+      type(chain_options), intent(in) :: from
+      to%t_end = from%t_end
+      to%rtol = from%rtol
+      to%method = from%method
+      to%integrator = from%integrator
+      to%max_steps = from%max_steps
+      to%max_contacts = from%max_contacts
+      to%max_events = from%max_events
+   end subroutine set_options
+
+   !> Samples (one column a sample) into the caller's array at `where`, in the same
+   !> order (nothing for NULL).
+   subroutine put_samples(where, values)
+      type(c_ptr), intent(in) :: where
+      real(wp), intent(in) :: values(:, :)
+      real(c_double), pointer :: out(:, :)
+      if (.not. c_associated(where)) return
+      call c_f_pointer(where, out, shape(values))
+      out(:, :) = values
+   end subroutine put_samples
 
    !> values into the caller's array at `where` (nothing for NULL).
    subroutine put(where, values)
@@ -246,8 +292,11 @@ contains
       type(c_ptr), intent(in) :: where
       type(chain_result), intent(in) :: fortran_result
       type(hcimpact_chain_contact), pointer :: out(:)
+      integer :: i
       call c_f_pointer(where, out, [size(fortran_result%contacts)])
-      out = from_contact(fortran_result%contacts)
+      do i = 1, size(out)
+         out(i) = from_contact(fortran_result%contacts(i))
+      end do
    end subroutine put_contacts
 
 end module hcimpact_cvode_chain_api

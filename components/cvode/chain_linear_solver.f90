@@ -52,11 +52,23 @@ contains
       type(SUNLinearSolver), pointer :: solver
       type(SUNLinearSolver_Ops), pointer :: ops
       type(solver_state), pointer :: state
-      integer :: alloc_stat
+      integer :: alloc_stat, m
 
       solver => FSUNLinSolNewEmpty(ctx)
       if (.not. associated(solver)) return
       allocate(state, stat=alloc_stat)
+      ! the factors now, checked (not at the first setup, where out of memory CVODE
+      ! failed with CV_LSETUP_FAIL)
+      if (alloc_stat == 0) then
+         m = region%m
+         allocate(state%factor%uu(m), state%factor%uv(m), state%factor%vu(-1:1, m), &
+            & state%factor%lower(m), state%factor%pivot(m), state%factor%upper(m), &
+            & state%factor%ee(m + 1), stat=alloc_stat)
+         if (alloc_stat /= 0) then
+            deallocate(state)
+            alloc_stat = 1
+         end if
+      end if
       if (alloc_stat /= 0 .or. .not. c_associated(solver%ops)) then
          if (alloc_stat == 0) deallocate(state)
          call FSUNLinSolFreeEmpty(solver)

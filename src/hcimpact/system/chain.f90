@@ -34,8 +34,12 @@ contains
       !> How (without CVODE: method auto or exact)
       type(chain_options), intent(in), optional :: options
       type(chain_options) :: opts
-      if (present(options)) opts = options
-      call run_engine(chain, opts, result, stat)
+      ! (the options as given: a copy would allocate their sample times unchecked)
+      if (present(options)) then
+         call run_engine(chain, options, result, stat)
+      else
+         call run_engine(chain, opts, result, stat)
+      end if
    end subroutine chain_exact
 
 end module hcimpact_chain

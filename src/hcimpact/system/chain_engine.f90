@@ -45,7 +45,8 @@ module hcimpact_chain_engine
       & ieee_positive_inf
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_unavailable, &
-      & hcimpact_err_no_convergence, hcimpact_err_domain, hcimpact_err_solver
+      & hcimpact_err_no_convergence, hcimpact_err_domain, hcimpact_err_solver, &
+      & hcimpact_err_size
    use hcimpact_contact, only : contact_type, outcome_type
    use hcimpact_impact_model, only : impact, time_law
    use hcimpact_force_element, only : contact_force_type, contact_force_pair, &
@@ -61,7 +62,7 @@ module hcimpact_chain_engine
    private
 
    public :: chain_engine, cluster_integrator, run_engine
-   public :: slot_gap0, slot_law, slot_exists, body_state_at, engine_record
+   public :: slot_gap0, slot_law, slot_exists, body_state_at, engine_record, no_memory
    public :: capture_margin, rest_state, add_wall_impulse
    public :: advance_reached, advance_grow_left, advance_grow_right, advance_dissolved, &
       & advance_captured, advance_failed, advance_split
@@ -154,6 +155,9 @@ module hcimpact_chain_engine
       !> integrated (parts(:, 1 .. n_parts), in order, apart by bodies in free flight)
       integer, allocatable :: parts(:, :)
       integer :: n_parts = 0
+      !> An allocation of the integrator failed where it could not tell the engine
+      !> (`state_at`, `finish`): the engine stops with hcimpact_err_size
+      logical :: out_of_memory = .false.
    contains
       procedure(integrator_begin), deferred :: begin
       procedure(integrator_advance), deferred :: advance
@@ -215,6 +219,14 @@ module hcimpact_chain_engine
       !> Initial positions q_i(0) and the failure message
       real(wp), allocatable :: q_initial(:)
       character(len=max_message) :: message = "success"
+      !> An allocation failed (`no_memory`): the run stops with hcimpact_err_size at the
+      !> next pass of its loop, and what failed returned without a change it could
+      !> not complete
+      logical :: out_of_memory = .false.
+      !> Memory held for the way out: `no_memory` frees it, so that what gfortran
+      !> allocates unchecked while the engine is taken down (the finalisation of the
+      !> regions and of the engine: a few small blocks) finds room
+      real(wp), allocatable :: reserve(:)
    end type chain_engine
 
    abstract interface
@@ -285,7 +297,11 @@ contains
          result%message = "the integrated method needs the CVODE component"
          return
       end if
-      call setup(engine, chain, options)
+      call setup(engine, chain, options, stat)
+      if (stat /= hcimpact_ok) then
+         call fail(engine, result, stat)
+         return
+      end if
       until_rest = .not. options%t_end > 0.0_wp
       t_end = huge(1.0_wp)
       if (.not. until_rest) t_end = options%t_end
@@ -308,6 +324,11 @@ contains
       if (allocated(options%sample_times)) max_passes = max_passes &
          & + int(size(options%sample_times), int64)
       main: do
+         do k = 1, engine%n_regions
+            if (engine%regions(k)%integrator%out_of_memory) &
+               & call no_memory(engine, "the work arrays of a cluster")
+         end do
+         if (engine%out_of_memory) exit main
          passes = passes + 1_int64
          if (passes > max_passes) then
             stat = hcimpact_err_no_convergence
@@ -426,6 +447,7 @@ contains
       do while (engine%n_regions > 0)
          call close_region(engine, engine%n_regions)
       end do
+      if (engine%out_of_memory) stat = hcimpact_err_size
       if (stat /= hcimpact_ok) then
          call fail(engine, result, stat)
          return
@@ -433,7 +455,11 @@ contains
       if (.not. until_rest) engine%time = max(engine%time, t_end)
       ! samples after the end: nothing more happens (until_rest), or none (t_end)
       if (until_rest) call take_samples(engine, all=.true.)
-      call fill_result(engine, result, stat)
+      if (engine%out_of_memory) then
+         stat = hcimpact_err_size
+      else
+         call fill_result(engine, result, stat)
+      end if
       if (stat /= hcimpact_ok) then
          result = chain_result()
          call fail(engine, result, stat)
@@ -448,21 +474,63 @@ contains
    end function whole_at_rest
 
    !> Initial state: bodies at rest in their initial positions, the slots' events.
-   subroutine setup(engine, chain, options)
+   !> hcimpact_err_size (and engine%message) when the memory does not hold the arrays.
+   subroutine setup(engine, chain, options, stat)
       type(chain_engine), intent(out) :: engine
       type(chain_type), intent(in) :: chain
       type(chain_options), intent(in) :: options
-      integer :: n, i, nsamples
+      integer, intent(out) :: stat
+      integer :: n, i, nsamples, alloc_stat
 
       n = size(chain%mass)
       engine%n = n
-      engine%chain = chain
-      engine%options = options
+      nsamples = 0
+      if (allocated(options%sample_times)) nsamples = size(options%sample_times)
+      ! (the copies of the system and the options field by field: an assignment of the
+      ! types would allocate their arrays unchecked)
+      allocate(engine%chain%mass(n), engine%chain%velocity(n), &
+         & engine%chain%gap(n - 1), engine%chain%law(n - 1), &
+         & engine%options%sample_times(nsamples), stat=alloc_stat)
+      if (alloc_stat == 0) allocate(engine%body(n), engine%exact(0:n), &
+         & engine%event_time(0:n), engine%event_kind(0:n), engine%heap(n + 1), &
+         & engine%heap_pos(0:n), engine%q_initial(n), stat=alloc_stat)
+      if (alloc_stat == 0) allocate(engine%records(min(max(options%max_contacts, 0), 1024)), &
+         & engine%switches(16), stat=alloc_stat)
+      if (alloc_stat == 0) allocate(engine%sample_u(n, nsamples), &
+         & engine%sample_v(n, nsamples), engine%sample_f(0:n, nsamples), stat=alloc_stat)
+      ! (64 KiB)
+      if (alloc_stat == 0) allocate(engine%reserve(8192), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call no_memory(engine, "the system's arrays")
+         stat = hcimpact_err_size
+         return
+      end if
+      stat = hcimpact_ok
+      engine%chain%mass(:) = chain%mass
+      engine%chain%velocity(:) = chain%velocity
+      ! (a single body's gaps and laws may be missing, or of any size: none is read)
+      if (n > 1) then
+         engine%chain%gap(:) = chain%gap
+         engine%chain%law(:) = chain%law
+      end if
+      engine%chain%left_wall = chain%left_wall
+      engine%chain%right_wall = chain%right_wall
+      engine%chain%left_law = chain%left_law
+      engine%chain%right_law = chain%right_law
+      engine%chain%left_gap = chain%left_gap
+      engine%chain%right_gap = chain%right_gap
+      engine%chain%gravity = chain%gravity
+      engine%options%t_end = options%t_end
+      engine%options%rtol = options%rtol
+      engine%options%method = options%method
+      engine%options%integrator = options%integrator
+      engine%options%max_steps = options%max_steps
+      engine%options%max_contacts = options%max_contacts
+      engine%options%max_events = options%max_events
+      if (nsamples > 0) engine%options%sample_times(:) = options%sample_times
+      if (.not. allocated(options%sample_times)) deallocate(engine%options%sample_times)
       engine%gravity = chain%gravity
       engine%time = 0.0_wp
-      allocate(engine%body(n), engine%exact(0:n), engine%event_time(0:n), &
-         & engine%event_kind(0:n), engine%heap(n + 1), engine%heap_pos(0:n), &
-         & engine%q_initial(n))
       engine%q_initial(1) = 0.0_wp
       do i = 2, n
          engine%q_initial(i) = engine%q_initial(i - 1) + chain%gap(i - 1)
@@ -474,12 +542,6 @@ contains
       engine%event_kind = event_none
       engine%heap_pos = 0
       engine%heap_size = 0
-      allocate(engine%records(min(max(options%max_contacts, 0), 1024)))
-      allocate(engine%switches(16))
-      nsamples = 0
-      if (allocated(options%sample_times)) nsamples = size(options%sample_times)
-      allocate(engine%sample_u(n, nsamples), engine%sample_v(n, nsamples), &
-         & engine%sample_f(0:n, nsamples))
       ! (a sample time after t_end is never taken: NaN, not what the memory held)
       engine%sample_u = nan
       engine%sample_v = nan
@@ -1011,8 +1073,8 @@ contains
             call form_cluster(engine, s, why, neighbour, integrator)
          end if
       case (event_cluster)
-         write(why, '(a, i0, a)') "the gap of pair ", s, &
-            & " may close while a neighbouring contact goes on"
+         call compose(why, "the gap of pair ", s, &
+            & " may close while a neighbouring contact goes on")
          call refuse_cluster(engine, why, have_integrator, stat)
          if (stat /= hcimpact_ok) return
          call form_cluster(engine, s, why, -1, integrator)
@@ -1061,8 +1123,8 @@ contains
          return
       end if
       if (pressed) then
-         write(why, '(a, i0, a)') "a body pressed on a wall (pair ", s, &
-            & ") by gravity has no closed form"
+         call compose(why, "a body pressed on a wall (pair ", s, &
+            & ") by gravity has no closed form")
          return
       end if
       if (s == 0) then
@@ -1077,7 +1139,7 @@ contains
       do side = -1, 1, 2
          if (s + side >= 0 .and. s + side <= engine%n) then
             if (touches_region(engine, s + side)) then
-               write(why, '(a, i0, a)') "pair ", s, " starts next to an integrated cluster"
+               call compose(why, "pair ", s, " starts next to an integrated cluster")
                return
             end if
          end if
@@ -1098,8 +1160,8 @@ contains
          return
       end if
       if (impact_stat /= hcimpact_ok) then
-         write(why, '(a, i0, a)') "the closed forms cannot compute pair ", s, &
-            & " (status of the one impact)"
+         call compose(why, "the closed forms cannot compute pair ", s, &
+            & " (status of the one impact)")
          return
       end if
       ! against a wall under gravity: the closed forms (without gravity) only where
@@ -1108,8 +1170,8 @@ contains
       if ((s == 0 .or. s == engine%n) .and. engine%gravity /= 0.0_wp) then
          if (.not. abs(engine%gravity) * c%outcome%contact_time <= &
             & 0.125_wp * epsilon(1.0_wp) * abs(rate)) then
-            write(why, '(a, i0, a)') "a wall contact (pair ", s, &
-               & ") under gravity has no closed form"
+            call compose(why, "a wall contact (pair ", s, &
+               & ") under gravity has no closed form")
             return
          end if
       end if
@@ -1315,8 +1377,8 @@ contains
          if (t_touch < huge(1.0_wp)) then
             ok = .false.
             neighbour = other
-            write(why, '(a, i0, a, i0, a)') "pair ", other, " may touch while pair ", s, &
-               & " is in contact"
+            call compose(why, "pair ", other, " may touch while pair ", s, &
+               & " is in contact")
             return
          end if
       end do
@@ -1393,11 +1455,17 @@ contains
       type(chain_engine), intent(inout) :: engine
       type(contact_record), intent(in) :: r
       type(contact_record), allocatable :: grown(:)
+      integer :: alloc_stat
       engine%n_contacts = engine%n_contacts + 1
       if (ieee_is_finite(r%dissipated)) engine%dissipated = engine%dissipated + r%dissipated
       if (engine%n_records >= engine%options%max_contacts) return
       if (engine%n_records == size(engine%records)) then
-         allocate(grown(min(2 * max(size(engine%records), 8), engine%options%max_contacts)))
+         allocate(grown(min(2 * max(size(engine%records), 8), engine%options%max_contacts)), &
+            & stat=alloc_stat)
+         if (alloc_stat /= 0) then
+            call no_memory(engine, "the list of contacts")
+            return
+         end if
          grown(:engine%n_records) = engine%records(:engine%n_records)
          call move_alloc(grown, engine%records)
       end if
@@ -1448,7 +1516,7 @@ contains
       !> A first step for its integrator to try (s; grow_region), if any
       real(wp), intent(in), optional :: step_hint
       type(region_entry), allocatable :: grown(:)
-      integer :: a, b, i, s, k
+      integer :: a, b, i, s, k, alloc_stat
       real(wp) :: u, v, hint
       logical :: merged
 
@@ -1503,17 +1571,26 @@ contains
       do s = max(a - 1, 0), min(b, engine%n)
          if (engine%exact(s)%active) call hand_over(engine, s)
       end do
-      if (.not. allocated(engine%regions)) allocate(engine%regions(4))
-      if (engine%n_regions == size(engine%regions)) then
-         allocate(grown(2 * size(engine%regions)))
-         do k = 1, engine%n_regions
-            call move_alloc(engine%regions(k)%integrator, grown(k)%integrator)
-         end do
-         call move_alloc(grown, engine%regions)
+      ! (out of memory, the bodies stay free: nothing refers to a region not formed)
+      alloc_stat = 0
+      if (.not. allocated(engine%regions)) allocate(engine%regions(4), stat=alloc_stat)
+      if (alloc_stat == 0 .and. engine%n_regions == size(engine%regions)) then
+         allocate(grown(2 * size(engine%regions)), stat=alloc_stat)
+         if (alloc_stat == 0) then
+            do k = 1, engine%n_regions
+               call move_alloc(engine%regions(k)%integrator, grown(k)%integrator)
+            end do
+            call move_alloc(grown, engine%regions)
+         end if
       end if
-      engine%n_regions = engine%n_regions + 1
-      k = engine%n_regions
-      allocate(engine%regions(k)%integrator, mold=integrator)
+      k = engine%n_regions + 1
+      if (alloc_stat == 0) allocate(engine%regions(k)%integrator, mold=integrator, &
+         & stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call no_memory(engine, "a cluster's region")
+         return
+      end if
+      engine%n_regions = k
       ! (a new region has not begun, nor rested: a body falling onto a stack at rest
       ! joined it, and with the old region's flag the run ended as it landed)
       engine%regions(k)%integrator%first = a
@@ -1649,10 +1726,10 @@ contains
       b = engine%regions(k)%integrator%last
       more = max(1, (b - a + 1) / 4)
       if (left_side) then
-         write(why, '(a, i0, a)') "body ", a - 1, " touches the cluster"
+         call compose(why, "body ", a - 1, " touches the cluster")
          a = max(a - more, 1)
       else
-         write(why, '(a, i0, a)') "body ", b + 1, " touches the cluster"
+         call compose(why, "body ", b + 1, " touches the cluster")
          b = min(b + more, engine%n)
       end if
       call close_region(engine, k, h)
@@ -1672,22 +1749,28 @@ contains
       class(cluster_integrator), intent(in) :: integrator
       character(len=max_message) :: why
       integer, allocatable :: parts(:, :)
-      integer :: a, b, p, s
+      integer :: a, b, p, s, alloc_stat
       real(wp) :: h
       a = engine%regions(k)%integrator%first
       b = engine%regions(k)%integrator%last
-      parts = engine%regions(k)%integrator%parts(:, 1:engine%regions(k)%integrator%n_parts)
+      allocate(parts(2, engine%regions(k)%integrator%n_parts), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call no_memory(engine, "the parts of a cluster that splits")
+         return
+      end if
+      parts(:, :) = engine%regions(k)%integrator%parts(:, 1:engine%regions(k)%integrator%n_parts)
       call close_region(engine, k, h)
       if (size(parts, 2) == 0) then
-         write(why, '(a, i0, a, i0, a)') "the cluster of bodies ", a, " to ", b, &
-            & " splits into bodies apart from their neighbours: closed forms again"
+         call compose(why, "the cluster of bodies ", a, " to ", b, &
+            & " splits into bodies apart from their neighbours: closed forms again")
          call log_switch(engine, 0, 0, why)
       end if
       do p = 1, size(parts, 2)
-         write(why, '(a, i0, a, i0, a, i0, a, i0, a)') "the cluster of bodies ", a, " to ", &
+         call compose(why, "the cluster of bodies ", a, " to ", &
             & b, " splits: bodies ", parts(1, p), " to ", parts(2, p), &
-            & " go on integrated, bodies apart from their neighbours fly freely"
+            & " go on integrated, bodies apart from their neighbours fly freely")
          call form_region(engine, parts(1, p), parts(2, p), why, integrator, h)
+         if (engine%out_of_memory) return
       end do
       do s = max(a - 1, 0), min(b, engine%n)
          call schedule(engine, s)
@@ -1704,6 +1787,8 @@ contains
       real(wp), intent(out), optional :: step_for_growth
       integer :: i, n
       if (engine%regions(k)%integrator%begun) call engine%regions(k)%integrator%finish(engine)
+      if (engine%regions(k)%integrator%out_of_memory) &
+         & call no_memory(engine, "the work arrays of a cluster")
       if (present(step_for_growth)) step_for_growth = &
          & engine%regions(k)%integrator%step_for_growth
       do i = engine%regions(k)%integrator%first, engine%regions(k)%integrator%last
@@ -1730,8 +1815,8 @@ contains
       a = engine%regions(k)%integrator%first
       b = engine%regions(k)%integrator%last
       call close_region(engine, k)
-      write(why, '(a, i0, a, i0, a)') "the cluster of bodies ", a, " to ", b, &
-         & " has separated: closed forms again"
+      call compose(why, "the cluster of bodies ", a, " to ", b, &
+         & " has separated: closed forms again")
       call log_switch(engine, 0, 0, why)
       do s = max(a - 2, 0), min(b + 1, engine%n)
          call schedule(engine, s)
@@ -1744,8 +1829,13 @@ contains
       integer, intent(in) :: first, last
       character(len=*), intent(in) :: why
       type(chain_switch), allocatable :: grown(:)
+      integer :: alloc_stat
       if (engine%n_switches == size(engine%switches)) then
-         allocate(grown(2 * size(engine%switches)))
+         allocate(grown(2 * size(engine%switches)), stat=alloc_stat)
+         if (alloc_stat /= 0) then
+            call no_memory(engine, "the log of decisions")
+            return
+         end if
          grown(:engine%n_switches) = engine%switches
          call move_alloc(grown, engine%switches)
       end if
@@ -1883,11 +1973,13 @@ contains
       real(wp), allocatable :: u(:), v(:), u_rest(:), x_rest(:)
       real(wp) :: energy, bound, delta, tolerance, x_min
       type(contact_law) :: law
-      integer :: i, s, n
+      integer :: i, s, n, alloc_stat
       settled = .false.
       if (.not. whole_at_rest(it, engine%n)) return
       n = engine%n
-      allocate(u(n), v(n), u_rest(n), x_rest(0:n))
+      ! (out of memory: not settled, the integration goes on and fails itself)
+      allocate(u(n), v(n), u_rest(n), x_rest(0:n), stat=alloc_stat)
+      if (alloc_stat /= 0) return
       call it%state_at(engine, engine%time, u, v)
       call rest_state(engine, 1, n, u_rest, x_rest)
       energy = sum(kinetic_energy(engine%chain%mass, v))
@@ -2003,8 +2095,12 @@ contains
       integer, intent(in) :: a, b
       real(wp), allocatable :: u(:), u_now(:), v_now(:)
       real(wp) :: above_rest
-      integer :: i
-      allocate(u(b - a + 1), u_now(b - a + 1), v_now(b - a + 1))
+      integer :: i, alloc_stat
+      allocate(u(b - a + 1), u_now(b - a + 1), v_now(b - a + 1), stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call no_memory(engine, "the state at rest")
+         return
+      end if
       do i = a, b
          u_now(i - a + 1) = engine%body(i)%u0
          v_now(i - a + 1) = engine%body(i)%v0
@@ -2050,7 +2146,7 @@ contains
       logical, intent(in), optional :: all
       real(wp) :: ts, u, v
       real(wp), allocatable :: ur(:), vr(:)
-      integer :: k, i, s, r, a
+      integer :: k, i, s, r, a, alloc_stat
       type(contact_force_type) :: f
       type(contact_law) :: law
       logical :: every
@@ -2072,7 +2168,11 @@ contains
          do r = 1, engine%n_regions
             associate (it => engine%regions(r)%integrator)
                a = it%first
-               allocate(ur(it%last - a + 1), vr(it%last - a + 1))
+               allocate(ur(it%last - a + 1), vr(it%last - a + 1), stat=alloc_stat)
+               if (alloc_stat /= 0) then
+                  call no_memory(engine, "a sample")
+                  return
+               end if
                call it%state_at(engine, ts, ur, vr)
                engine%sample_u(a:it%last, k) = engine%q_initial(a:it%last) + ur
                engine%sample_v(a:it%last, k) = vr
@@ -2116,9 +2216,21 @@ contains
       real(wp) :: walls(2), xd, f, reach
       real(wp), allocatable :: displacement(:)
       type(contact_law) :: law
+      integer :: alloc_stat
 
       result%time = engine%time
-      allocate(result%positions(engine%n), result%velocities(engine%n), displacement(engine%n))
+      nsamples = size(engine%sample_u, 2)
+      allocate(result%positions(engine%n), result%velocities(engine%n), displacement(engine%n), &
+         & result%contacts(engine%n_records), result%sample_positions(engine%n, nsamples), &
+         & result%sample_velocities(engine%n, nsamples), &
+         & result%sample_forces(0:engine%n, nsamples), result%switches(engine%n_switches), &
+         & stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         ! (the caller clears the result)
+         call no_memory(engine, "the result")
+         stat = hcimpact_err_size
+         return
+      end if
       do i = 1, engine%n
          call body_state_at(engine, i, engine%time, displacement(i), result%velocities(i))
          result%positions(i) = sum_in_range(engine%q_initial(i), displacement(i))
@@ -2220,18 +2332,12 @@ contains
       result%rested = engine%rested
       result%rest_time = engine%rest_time
       result%n_contacts = engine%n_contacts
-      allocate(result%contacts(engine%n_records))
-      result%contacts = engine%records(:engine%n_records)
-      nsamples = size(engine%sample_u, 2)
-      allocate(result%sample_positions(engine%n, nsamples), &
-         & result%sample_velocities(engine%n, nsamples), &
-         & result%sample_forces(0:engine%n, nsamples))
-      result%sample_positions = engine%sample_u
-      result%sample_velocities = engine%sample_v
-      result%sample_forces = engine%sample_f
+      result%contacts(:) = engine%records(:engine%n_records)
+      result%sample_positions(:, :) = engine%sample_u
+      result%sample_velocities(:, :) = engine%sample_v
+      result%sample_forces(:, :) = engine%sample_f
       result%counters = engine%counters
-      allocate(result%switches(engine%n_switches))
-      result%switches = engine%switches(:engine%n_switches)
+      result%switches(:) = engine%switches(:engine%n_switches)
       ! a cluster still integrated at t_end has recorded no contact yet, but it was
       ! integrated all the same
       if (engine%counters%integrated_contacts == 0 .and. engine%counters%clusters == 0) then
@@ -2281,6 +2387,69 @@ contains
          & // "a velocity (final or sampled) leaves the range of doubles (beyond 1.8e308 " &
          & // "m or m/s)"
    end subroutine state_beyond_range
+
+   !> why = t1 i1 t2 i2 ... (the integers as with i0): a reason of the log of decisions
+   !> without an internal write, whose format libgfortran allocates unchecked (out of
+   !> memory the runtime stopped the program there)
+   subroutine compose(why, t1, i1, t2, i2, t3, i3, t4, i4, t5)
+      character(len=*), intent(out) :: why
+      character(len=*), intent(in) :: t1
+      integer, intent(in), optional :: i1, i2, i3, i4
+      character(len=*), intent(in), optional :: t2, t3, t4, t5
+      integer :: at
+      why = ""
+      at = 0
+      call put_text(t1)
+      if (present(i1)) call put_int(i1)
+      if (present(t2)) call put_text(t2)
+      if (present(i2)) call put_int(i2)
+      if (present(t3)) call put_text(t3)
+      if (present(i3)) call put_int(i3)
+      if (present(t4)) call put_text(t4)
+      if (present(i4)) call put_int(i4)
+      if (present(t5)) call put_text(t5)
+   contains
+      subroutine put_text(t)
+         character(len=*), intent(in) :: t
+         integer :: k
+         do k = 1, len(t)
+            if (at >= len(why)) return
+            at = at + 1
+            why(at:at) = t(k:k)
+         end do
+      end subroutine put_text
+      subroutine put_int(i)
+         integer, intent(in) :: i
+         character(len=12) :: digits
+         integer :: k, q
+         ! (from the last digit; huge(1) has 10, a sign one more)
+         digits = ""
+         k = len(digits)
+         q = abs(i)
+         do
+            digits(k:k) = achar(iachar("0") + mod(q, 10))
+            k = k - 1
+            q = q / 10
+            if (q == 0) exit
+         end do
+         if (i < 0) then
+            digits(k:k) = "-"
+            k = k - 1
+         end if
+         call put_text(digits(k + 1:))
+      end subroutine put_int
+   end subroutine compose
+
+   !> An allocation failed: the run stops with hcimpact_err_size, the message says what
+   !> did not fit (the first that failed).
+   subroutine no_memory(engine, what)
+      type(chain_engine), intent(inout) :: engine
+      character(len=*), intent(in) :: what
+      if (.not. engine%out_of_memory) engine%message = "out of memory (" // what // &
+         & "): the system is too large for the memory available"
+      engine%out_of_memory = .true.
+      if (allocated(engine%reserve)) deallocate(engine%reserve)
+   end subroutine no_memory
 
    !> A failed run: the message, nothing else.
    subroutine fail(engine, result, stat)

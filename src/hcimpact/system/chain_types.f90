@@ -439,13 +439,16 @@ contains
    !> Whether values not negative add up to at most a quarter of the range of doubles,
    !> found without forming a sum beyond it: check_chain's rule for the masses and
    !> the gaps (HCCHN applies it to XM and GAP to name the argument).
-   pure logical function sum_within_range(values)
+   pure logical function sum_within_range(values, start)
       real(wp), intent(in) :: values(:)
+      !> A sum so far (not negative, within the limit) that the values add to
+      real(wp), intent(in), optional :: start
       real(wp), parameter :: limit = 0.25_wp * huge(1.0_wp)
       real(wp) :: total
       integer :: i
       sum_within_range = .false.
       total = 0.0_wp
+      if (present(start)) total = start
       do i = 1, size(values)
          if (values(i) > limit - total) return
          total = total + values(i)
@@ -463,11 +466,11 @@ contains
       walls = 0.0_wp
       if (chain%left_wall) walls(1) = chain%left_gap
       if (chain%right_wall) walls(2) = chain%right_gap
-      if (size(chain%mass) > 1) then
-         extent_within_range = sum_within_range([walls, chain%gap])
-      else
-         extent_within_range = sum_within_range(walls)
-      end if
+      ! (the walls' gaps first, then the gaps: no array joined, which would be a
+      ! temporary of the system's size that gfortran allocates unchecked)
+      extent_within_range = sum_within_range(walls)
+      if (extent_within_range .and. size(chain%mass) > 1) extent_within_range = &
+         & sum_within_range(chain%gap, sum(walls))
    end function extent_within_range
 
    !> The status of a contact law (the library's one validator)
