@@ -202,10 +202,7 @@ contains
          & round_x(0:m), round_w(0:m), self%y(n_state), self%atol(n_state), &
          & self%contact(0:m), self%history(0:m), resting(0:m), stat=alloc_stat)
       if (alloc_stat /= 0) then
-         call release_all(self)
-         call halting_resume(halting)
-         call no_memory(engine, "the arrays of a cluster")
-         stat = hcimpact_err_size
+         call out_of_memory("the arrays of a cluster")
          return
       end if
       self%region%halting = halting
@@ -380,10 +377,7 @@ contains
       allocate(probe(2 * int(n_state, int64) * (24 + upper_band + lower_band)), &
          & stat=alloc_stat)
       if (alloc_stat /= 0) then
-         call release_all(self)
-         call halting_resume(halting)
-         call no_memory(engine, "CVODE's vectors and matrix")
-         stat = hcimpact_err_size
+         call out_of_memory("CVODE's vectors and matrix")
          return
       end if
       deallocate(probe)
@@ -473,6 +467,15 @@ contains
       smu = 0
       self%rhs_base = 0
       self%jac_base = 0
+   contains
+      !> An allocation of the setup failed: nothing of the region is kept
+      subroutine out_of_memory(what)
+         character(len=*), intent(in) :: what
+         call release_all(self)
+         call halting_resume(halting)
+         call no_memory(engine, what)
+         stat = hcimpact_err_size
+      end subroutine out_of_memory
    end subroutine region_begin
 
    !> At engine%time = self%next: follow the contacts over the last step up to next

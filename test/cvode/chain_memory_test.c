@@ -33,6 +33,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "../memory_limit.h"
+
 #include "hcimpact_cvode.h"
 
 enum { ROW_WITH_GAPS, TOUCHING_AUTO, TOUCHING_INTEGRATED, N_CASES };
@@ -41,17 +43,6 @@ static const char *case_names[N_CASES] = {"row with gaps, auto", "touching, auto
 
 /* what a child reports (its exit status minus 40) besides a status */
 enum { WRONG_MESSAGE = 50 };
-
-/* virtual memory of this process, bytes */
-static size_t address_space(void)
-{
-  unsigned long pages = 0;
-  FILE *statm = fopen("/proc/self/statm", "r");
-  if (statm == NULL) return 0;
-  if (fscanf(statm, "%lu", &pages) != 1) pages = 0;
-  fclose(statm);
-  return (size_t)pages * (size_t)sysconf(_SC_PAGESIZE);
-}
 
 typedef struct {
   int n;

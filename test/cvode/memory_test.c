@@ -20,18 +20,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "../memory_limit.h"
+
 int recorded_run(int max_steps);
-
-
-static size_t address_space(void)
-{
-  unsigned long pages = 0;
-  FILE *statm = fopen("/proc/self/statm", "r");
-  if (statm == NULL) return 0;
-  if (fscanf(statm, "%lu", &pages) != 1) pages = 0;
-  fclose(statm);
-  return (size_t)pages * (size_t)sysconf(_SC_PAGESIZE);
-}
 
 int main(int argc, char **argv)
 {

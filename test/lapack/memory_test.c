@@ -24,6 +24,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "../memory_limit.h"
+
 #include "hcimpact_lapack.h"
 
 enum { FIT_DAMPING, FIT_DAMPING_LINEAR, FIT_STATIC, FIT_ELASTIC, FIT_IMPACT, N_FITS };
@@ -34,17 +36,6 @@ typedef struct {
   int n;
   double *v, *e, *sigma, *x, *f, *t, *fm, *out;
 } data_t;
-
-/* virtual memory of this process, bytes */
-static size_t address_space(void)
-{
-  unsigned long pages = 0;
-  FILE *statm = fopen("/proc/self/statm", "r");
-  if (statm == NULL) return 0;
-  if (fscanf(statm, "%lu", &pages) != 1) pages = 0;
-  fclose(statm);
-  return (size_t)pages * (size_t)sysconf(_SC_PAGESIZE);
-}
 
 static double *array(int n)
 {
