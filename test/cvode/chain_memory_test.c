@@ -159,10 +159,7 @@ static int try_case(const data_t *d, int which)
     pid = fork();
     if (pid < 0) return 2;
     if (pid == 0) {
-      struct rlimit cap;
-      size_t used = address_space();
-      cap.rlim_cur = cap.rlim_max = (rlim_t)(used + headroom);
-      if (used == 0 || setrlimit(RLIMIT_AS, &cap) != 0) _exit(100);
+      if (cap_address_space(headroom) != 0) _exit(100);
       /* (40 + outcome: the Fortran runtime's own abort exits with 1 or 2) */
       _exit(40 + run_case(d, which));
     }
@@ -209,11 +206,7 @@ int main(int argc, char **argv)
        run under a debugger) */
     which = atoi(argv[2]);
     if (which < 0 || which >= N_CASES) return 2;
-    if (argc > 3) {
-      struct rlimit cap;
-      cap.rlim_cur = cap.rlim_max = (rlim_t)(address_space() + (size_t)atol(argv[3]) * 1024);
-      if (setrlimit(RLIMIT_AS, &cap) != 0) return 2;
-    }
+    if (argc > 3 && cap_address_space((size_t)atol(argv[3]) * 1024) != 0) return 2;
     return run_case(&d, which);
   }
   /* (no call without a cap first: the heap it leaves would serve the children) */

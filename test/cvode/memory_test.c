@@ -43,10 +43,7 @@ int main(int argc, char **argv)
     pid = fork();
     if (pid < 0) return 2;
     if (pid == 0) {
-      struct rlimit cap;
-      size_t used = address_space();
-      cap.rlim_cur = cap.rlim_max = (rlim_t)(used + headroom);
-      if (used == 0 || setrlimit(RLIMIT_AS, &cap) != 0) _exit(100);
+      if (cap_address_space(headroom) != 0) _exit(100);
       /* (40 + outcome: the Fortran runtime's own abort exits with 1 or 2) */
       _exit(40 + recorded_run(steps));
     }

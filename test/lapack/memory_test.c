@@ -105,10 +105,7 @@ static int capped_fit(int which, const data_t *d, size_t headroom, int *signal_n
   pid = fork();
   if (pid < 0) return -2;
   if (pid == 0) {
-    struct rlimit limit;
-    size_t used = address_space();
-    limit.rlim_cur = limit.rlim_max = (rlim_t)(used + headroom);
-    if (used == 0 || setrlimit(RLIMIT_AS, &limit) != 0) _exit(100);
+    if (cap_address_space(headroom) != 0) _exit(100);
     /* the outputs must stay as they are on HCIMPACT_ERR_SIZE */
     d->out[0] = 42.0;
     {
