@@ -508,12 +508,7 @@ contains
             ! (self%y holds the state at the end of the step)
             if (self%next < self%tn) call move_to(self, self%next)
             call follow_contacts(self, engine, self%next, ended)
-            if (self%out_of_memory) then
-               call no_memory(engine, "the work arrays of a cluster")
-               stat = hcimpact_err_size
-               what = advance_failed
-               exit run
-            end if
+            if (self%out_of_memory) exit run
             if (self%beyond >= 0) then
                stat = hcimpact_err_domain
                call say_beyond_max_beta(engine%message, self%first - 1 + self%beyond, &
@@ -545,12 +540,8 @@ contains
             ! at rest on a wall under gravity, for good (reported once per region)
             if (engine%gravity /= 0.0_wp .and. .not. self%captured) then
                allocate(u(m), v(m), stat=alloc_stat)
-               if (alloc_stat /= 0) then
-                  call no_memory(engine, "the work arrays of a cluster")
-                  stat = hcimpact_err_size
-                  what = advance_failed
-                  exit run
-               end if
+               if (alloc_stat /= 0) self%out_of_memory = .true.
+               if (self%out_of_memory) exit run
                call engine_frame(self, self%time, self%y, u, v)
                if (capture_margin(engine, self%first, self%last, u, v) < 0.0_wp) then
                   self%captured = .true.
@@ -571,12 +562,7 @@ contains
                   self%due = what
                   exit run
                end if
-               if (self%out_of_memory) then
-                  call no_memory(engine, "the work arrays of a cluster")
-                  stat = hcimpact_err_size
-                  what = advance_failed
-                  exit run
-               end if
+               if (self%out_of_memory) exit run
             end if
          end if
          if (.not. t_end > self%time) exit run
@@ -635,6 +621,12 @@ contains
          self%stepped = .true.
          call boundary_closing(self)
       end block run
+      ! (an allocation of the work arrays failed, here or in what was called)
+      if (self%out_of_memory) then
+         call no_memory(engine, "the work arrays of a cluster")
+         stat = hcimpact_err_size
+         what = advance_failed
+      end if
       call halting_resume(halting)
    end subroutine region_advance
 

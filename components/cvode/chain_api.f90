@@ -153,6 +153,13 @@ contains
          end if
       end if
 
+      ! the options first: their sample times are among the copies allocated below
+      if (c_associated(options)) then
+         call c_f_pointer(options, c_options)
+         opts = to_options(c_options, int(contact_capacity))
+      else
+         opts%max_contacts = int(contact_capacity)
+      end if
       ! the copies of the input, checked (out of memory: HCIMPACT_ERR_SIZE, every output
       ! NaN as for the engine's own failure)
       allocate(chain%mass(n), chain%velocity(n), chain%gap(n - 1), chain%law(n - 1), &
@@ -189,13 +196,6 @@ contains
          chain%right_gap = real(c_wall%gap, wp)
       end if
       chain%gravity = real(gravity, wp)
-      ! (the options field by field: an assignment would reallocate the sample times)
-      if (c_associated(options)) then
-         call c_f_pointer(options, c_options)
-         call set_options(opts, to_options(c_options, int(contact_capacity)))
-      else
-         opts%max_contacts = int(contact_capacity)
-      end if
       if (count > 0) then
          call c_f_pointer(c_samples%times, c_times, [count])
          opts%sample_times(:) = real(c_times, wp)
@@ -241,19 +241,6 @@ contains
          end if
       end subroutine fail_outputs
    end subroutine simulate_from_c
-
-   !> The scalar options of `from` into `to`, whose sample times stay
-   subroutine set_options(to, from)
-      type(chain_options), intent(inout) :: to
-      type(chain_options), intent(in) :: from
-      to%t_end = from%t_end
-      to%rtol = from%rtol
-      to%method = from%method
-      to%integrator = from%integrator
-      to%max_steps = from%max_steps
-      to%max_contacts = from%max_contacts
-      to%max_events = from%max_events
-   end subroutine set_options
 
    !> Samples (one column a sample) into the caller's array at `where`, in the same
    !> order (nothing for NULL).
