@@ -26,6 +26,7 @@ module test_cvode_chain
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
       & contact_record, method_auto, method_exact, method_integrated, by_closed_forms, by_integration, &
       & integrator_adams, integrator_bdf
+   use hcimpact_chain_types, only : least_contacts_to_rest
    use hcimpact_cvode_chain, only : chain_simulate
    implicit none
    private
@@ -105,7 +106,8 @@ contains
          & new_unittest("large-chain", test_large_chain), &
          & new_unittest("touching-chain-grows", test_touching_grows), &
          & new_unittest("struck-chain-16", test_struck_chain_16), &
-         & new_unittest("far-meetings", test_far_meetings) &
+         & new_unittest("far-meetings", test_far_meetings), &
+         & new_unittest("contacts-to-rest", test_contacts_to_rest) &
          & ]
    end subroutine collect_chain
 
@@ -2979,5 +2981,211 @@ contains
       if (allocated(error)) return
       call check(error, result%n_contacts >= 2, "10^5 touching beads: the wave's contacts")
    end subroutine test_large_chain
+
+   !> The lower bound on the contacts a ball needs to come to rest on a floor
+   !> (`least_contacts_to_rest`), and check_chain's refusal from it.
+   !> - It holds: a ball of 1 g dropped on a damped floor, run until it rests, takes at
+   !>   least as many contacts as the bound (8 to 16 times as many), over exponents
+   !>   0.5 to 2.5, damping 0.02 to 0.1 s/m, drops from touching to 2 cm (thrown up or
+   !>   down), gravity towards either end, without a wall on the other side or with a
+   !>   damped or elastic one close enough to be hit.
+   !> - The runs that could only end at max_events are refused at once (no step) with
+   !>   hcimpact_err_no_convergence: damping 1e-6 and 1e-300 s/m, gravity 5e-324 m/s^2
+   !>   (before: about a day to reach max_events = 1e8); max_events just below the
+   !>   bound is refused, just above it runs (and ends at max_events after it).
+   !> - It does not apply (0): two bodies, gravity away from the only wall, no
+   !>   gravity, a start too fast for it (b V of 100).
+   subroutine test_contacts_to_rest(error)
+      type(error_type), allocatable, intent(out) :: error
+      type(chain_type) :: chain
+      type(chain_result) :: result
+      type(chain_options) :: o
+      real(wp) :: least, smallest_ratio
+      integer :: stat, i_n, i_b, i_drop, side, other, applied
+      character(len=160) :: what
+      real(wp), parameter :: exponents(4) = [0.5_wp, 1.0_wp, 1.5_wp, 2.5_wp], &
+         & dampings(3) = [0.02_wp, 0.05_wp, 0.1_wp], drops(3) = [0.0_wp, 5.0e-3_wp, 2.0e-2_wp], &
+         & speeds(3) = [0.3_wp, 0.0_wp, -0.2_wp]
+
+      applied = 0
+      smallest_ratio = huge(1.0_wp)
+      do i_n = 1, size(exponents)
+         do i_b = 1, size(dampings)
+            do i_drop = 1, size(drops)
+               side = merge(1, -1, mod(i_n + i_b + i_drop, 2) == 0)
+               other = mod(i_n + 2 * i_b + i_drop, 3)
+               chain = bouncing_ball(exponents(i_n), dampings(i_b), drops(i_drop), &
+                  & speeds(i_drop), side, other)
+               write(what, '(a, g0, a, g0, a, g0, a, i0, a, i0)') "n ", exponents(i_n), &
+                  & ", b ", dampings(i_b), ", drop ", drops(i_drop), ", side ", side, &
+                  & ", other wall ", other
+               least = least_contacts_to_rest(chain)
+               call run(error, chain, opts(method_auto, 1.0e-8_wp), result, trim(what))
+               if (allocated(error)) return
+               call check(error, result%rested, trim(what) // ": not at rest")
+               if (allocated(error)) return
+               ! the contact in which it rests has not ended: one more than listed
+               call check(error, real(result%n_contacts + 1, wp) >= least, trim(what) // &
+                  & ": " // int_text(int(result%n_contacts) + 1) // " contacts, fewer than the " &
+                  & // "bound " // format_real(least))
+               if (allocated(error)) return
+               if (least >= 1.0_wp) applied = applied + 1
+               if (least > 0.0_wp) smallest_ratio = min(smallest_ratio, &
+                  & real(result%n_contacts + 1, wp) / least)
+            end do
+         end do
+      end do
+      ! the bound applies to every case here (b V below about 1/10), and is not loose
+      ! by more than 20 times (measured: 8.4 to 16)
+      call check(error, applied == 36 .and. smallest_ratio <= 20.0_wp, "the bound gave " &
+         & // "a contact or more in " // int_text(applied) // " of 36 cases, its " &
+         & // "tightest within " // format_real(smallest_ratio) // " times of the contacts")
+      if (allocated(error)) return
+
+      ! refused at once where it exceeds max_events
+      do i_b = 1, 3
+         chain = bouncing_ball(1.0_wp, 0.1_wp, 1.0_wp, 0.0_wp, -1, 0)
+         chain%left_law%stiffness = 1.0e10_wp
+         select case (i_b)
+         case (1)
+            chain%left_law%damping = 1.0e-6_wp
+         case (2)
+            chain%left_law%damping = 1.0e-300_wp
+         case (3)
+            chain%gravity = -5.0e-324_wp
+         end select
+         call chain_simulate(chain, result, stat, opts(method_auto, 1.0e-8_wp))
+         call check(error, stat == hcimpact_err_no_convergence .and. &
+            & index(result%message, "contacts to come to rest") > 0, &
+            & "hopeless case " // int_text(i_b) // ": " // trim(result%message))
+         if (allocated(error)) return
+      end do
+
+      ! the threshold: just below the bound refused before any step, just above run
+      chain = bouncing_ball(1.5_wp, 0.02_wp, 2.0e-2_wp, 0.0_wp, -1, 0)
+      least = least_contacts_to_rest(chain)
+      call check(error, least > 10.0_wp, "bound of the threshold case: " // &
+         & format_real(least))
+      if (allocated(error)) return
+      o = opts(method_auto, 1.0e-8_wp)
+      o%max_events = int(least, int64) - 1_int64
+      call chain_simulate(chain, result, stat, o)
+      call check(error, stat == hcimpact_err_no_convergence .and. &
+         & index(result%message, "contacts to come to rest") > 0, &
+         & "max_events below the bound: " // trim(result%message))
+      if (allocated(error)) return
+      o%max_events = int(least, int64) + 2_int64
+      call chain_simulate(chain, result, stat, o)
+      call check(error, stat == hcimpact_err_no_convergence .and. &
+         & index(result%message, "contacts and switches") > 0, &
+         & "max_events above the bound: " // trim(result%message))
+      if (allocated(error)) return
+      ! and with t_end there is no refusal
+      chain%left_law%damping = 1.0e-300_wp
+      o = opts(method_auto, 1.0e-8_wp, 0.2_wp)
+      call run(error, chain, o, result, "hopeless, with t_end")
+      if (allocated(error)) return
+
+      ! where it does not apply
+      chain = bouncing_ball(1.5_wp, 1.0e-12_wp, 1.0_wp, 0.0_wp, -1, 0)
+      call check(error, least_contacts_to_rest(chain) > 1.0e8_wp, "the ball of the cases below")
+      if (allocated(error)) return
+      chain%gravity = 0.0_wp
+      call check(error, least_contacts_to_rest(chain) == 0.0_wp, "no gravity")
+      if (allocated(error)) return
+      chain%gravity = 9.81_wp
+      call check(error, least_contacts_to_rest(chain) == 0.0_wp, "gravity away from the wall")
+      if (allocated(error)) return
+      chain%gravity = -9.81_wp
+      chain%velocity = -1.0e14_wp
+      call check(error, least_contacts_to_rest(chain) == 0.0_wp, "b V of 100")
+      if (allocated(error)) return
+      chain = steel_row(2, 0.0_wp, 1.0e-6_wp, 1.0e-3_wp)
+      chain%left_wall = .true.
+      chain%left_law = contact_law(steel_wall, 1.5_wp, 1.0e-6_wp)
+      chain%gravity = -9.81_wp
+      call check(error, least_contacts_to_rest(chain) == 0.0_wp, "two bodies")
+      if (allocated(error)) return
+      call extremes(error)
+   contains
+      !> Across the range of doubles (a Debug build traps overflow, invalid, division
+      !> by zero): finite, not negative, and 0 without damping of the floor's size
+      subroutine extremes(error)
+         type(error_type), allocatable, intent(out) :: error
+         real(wp), parameter :: masses(4) = [5.0e-324_wp, 1.0e-300_wp, 1.0_wp, 1.0e300_wp], &
+            & stiffnesses(3) = [5.0e-324_wp, 1.0_wp, 1.7e308_wp], &
+            & powers(4) = [1.0e-6_wp, 0.5_wp, 1.5_wp, 1.7e308_wp], &
+            & damps(3) = [5.0e-324_wp, 1.0e-6_wp, 1.7e308_wp], &
+            & pulls(4) = [5.0e-324_wp, 9.81_wp, 1.0e300_wp, 1.7e308_wp], &
+            & starts(4) = [0.0_wp, 5.0e-324_wp, 1.0_wp, 1.0e300_wp]
+         type(chain_type) :: ball
+         real(wp) :: bound
+         integer :: i1, i2, i3, i4, i5, i6
+         ball = bouncing_ball(1.5_wp, 1.0_wp, 0.0_wp, 0.0_wp, -1, 2)
+         do i1 = 1, 4
+            do i2 = 1, 3
+               do i3 = 1, 4
+                  do i4 = 1, 3
+                     do i5 = 1, 4
+                        do i6 = 1, 4
+                           ball%mass = masses(i1)
+                           ball%left_law = contact_law(stiffnesses(i2), powers(i3), damps(i4))
+                           ball%right_law = ball%left_law
+                           ball%gravity = -pulls(i5)
+                           ball%left_gap = starts(i6)
+                           ball%velocity = -starts(5 - i6)
+                           bound = least_contacts_to_rest(ball)
+                           if (.not. (bound >= 0.0_wp .and. bound <= huge(1.0_wp))) then
+                              call test_failed(error, "bound " // format_real(bound) // &
+                                 & " for mass " // format_real(masses(i1)) // ", c " // &
+                                 & format_real(stiffnesses(i2)) // ", n " // &
+                                 & format_real(powers(i3)) // ", b " // &
+                                 & format_real(damps(i4)) // ", g " // &
+                                 & format_real(pulls(i5)) // ", gap " // &
+                                 & format_real(starts(i6)))
+                              return
+                           end if
+                        end do
+                     end do
+                  end do
+               end do
+            end do
+         end do
+      end subroutine extremes
+
+      !> A ball of 1 g on a floor (exponent n, damping b, c where it rests 1 mm deep)
+      !> at `drop`
+      !> above it, thrown at `speed` away from it; the floor on the left (side -1,
+      !> gravity -9.81) or the right (side 1); `other`: 0 no wall on the other side, 1
+      !> an elastic one, 2 one with damping b, 5 mm above the ball
+      function bouncing_ball(n, b, drop, speed, side, other) result(ball)
+         real(wp), intent(in) :: n, b, drop, speed
+         integer, intent(in) :: side, other
+         type(chain_type) :: ball
+         type(contact_law) :: floor, roof
+         allocate(ball%mass(1), ball%velocity(1), ball%gap(0), ball%law(0))
+         ball%mass = 1.0e-3_wp
+         ball%velocity = -side * speed
+         ! (c such that the ball rests at x* = (W/c)^(1/n) = 1 mm)
+         floor = contact_law(9.81e-3_wp / 1.0e-3_wp**n, n, b)
+         roof = contact_law(floor%stiffness, n, merge(b, 0.0_wp, other == 2))
+         ball%gravity = 9.81_wp * side
+         if (side < 0) then
+            ball%left_wall = .true.
+            ball%left_law = floor
+            ball%left_gap = drop
+            ball%right_wall = other > 0
+            ball%right_law = roof
+            ball%right_gap = 5.0e-3_wp
+         else
+            ball%right_wall = .true.
+            ball%right_law = floor
+            ball%right_gap = drop
+            ball%left_wall = other > 0
+            ball%left_law = roof
+            ball%left_gap = 5.0e-3_wp
+         end if
+      end function bouncing_ball
+   end subroutine test_contacts_to_rest
 
 end module test_cvode_chain
