@@ -365,9 +365,10 @@ contains
          return
       end if
       if (.not. options%t_end > 0.0_wp) then
-         ! (a margin over the rounding of the bound's logarithms)
+         ! (margins over the rounding of the bound's logarithms, and for a first
+         ! contact in progress at the start, which is no event)
          least = least_contacts_to_rest(chain)
-         if (least > 1.000001_wp * real(options%max_events, wp)) then
+         if (least > 1.000001_wp * real(options%max_events, wp) + 2.0_wp) then
             stat = hcimpact_err_no_convergence
             write(message, '(a, es9.2e3, a, i0, a)') "t_end is unset, but the body needs at " &
                & // "least ", least, " contacts to come to rest on the wall, more than " &
