@@ -38,7 +38,7 @@ _API = (
     "status_message", "version", "version_number", "library_path", "array_threads",
     "COMPRESSION", "RESTITUTION", "DEFAULT_MIN_VELOCITY",
 )
-_TYPES = ("ImpactResult", "HcimpactError", "InputError", "ComputationError",
+_TYPES = ("ImpactResult", "HcimpactError", "InputError", "ComputationError", "OutOfMemoryError",
           "UnavailableError", "STATUS_NAMES")
 _LIBRARY = ("LibraryNotFoundError",)
 _FORCE = ("contact_force", "ContactForce")

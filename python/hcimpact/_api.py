@@ -8,7 +8,8 @@ Conventions (those of ``include/hcimpact.h``):
   array of the same shape, computed by one call of the C array form).
 - Functions that return a status in C raise an :class:`~hcimpact.HcimpactError`
   subclass on an error status: :class:`~hcimpact.InputError` (also a ``ValueError``),
-  :class:`~hcimpact.ComputationError`, :class:`~hcimpact.UnavailableError`.
+  :class:`~hcimpact.ComputationError`, :class:`~hcimpact.OutOfMemoryError` (also a
+  ``MemoryError``), :class:`~hcimpact.UnavailableError`.
 - SI units throughout: kg, m, s, N, Pa.
 """
 
@@ -25,7 +26,8 @@ import numpy as np
 
 from . import _library
 from ._types import (CONTACT_FIELDS, OUTCOME_FIELDS, Contact, ElasticLaw, ImpactResult,
-                     InputError, LawFunction, Outcome, UnavailableError, error_class)
+                     InputError, LawFunction, OutOfMemoryError, Outcome, UnavailableError,
+                     error_class)
 
 __all__ = [
     "lambert_w0", "lambert_wm1", "lambert_w0p1", "lambert_wm1p1",
@@ -68,10 +70,13 @@ def _lib() -> ctypes.CDLL:
 def _raise(status: int, function: str, index: Any = None, detail: str = "") -> None:
     """Raise the exception of a status; ``detail`` is the library's account of the
     failure when it gives one (the ODE solver's message), else the status text."""
+    kind = error_class(status, detail)
     message = _lib().hcimpact_status_message(status).decode()
-    if detail and detail != message:
+    if kind is OutOfMemoryError:
+        message = detail    # (status 14's text, "the wrong size", would mislead)
+    elif detail and detail != message:
         message = f"{message}: {detail}"
-    raise error_class(status)(status, message, function, index)
+    raise kind(status, message, function, index)
 
 
 def _ptr(a: np.ndarray) -> Any:

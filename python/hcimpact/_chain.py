@@ -248,8 +248,9 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
 
     Returns a :class:`ChainResult`. Bad input raises :class:`InputError` with the
     library's account ("gap 2 is negative ..."); CVODE's failure a
-    :class:`ComputationError`; a library without the CVODE component an
-    :class:`UnavailableError`.
+    :class:`ComputationError`; a system too large for the memory available an
+    :class:`OutOfMemoryError` (also a ``MemoryError``); a library without the CVODE
+    component an :class:`UnavailableError`.
     """
     function = _component_function(_WHERE, "cvode", "CVODE component (hcimpact_chain_simulate)")
     m = _vector(masses, "masses")

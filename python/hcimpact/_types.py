@@ -9,8 +9,8 @@ from typing import Any
 
 __all__ = [
     "Contact", "Outcome", "ImpactResult", "HcimpactError", "InputError", "ComputationError",
-    "UnavailableError", "STATUS_NAMES", "ChainLaw", "ChainWall", "ChainOptions",
-    "ChainOutcome", "ChainContact", "ChainSamples",
+    "OutOfMemoryError", "UnavailableError", "STATUS_NAMES", "ChainLaw", "ChainWall",
+    "ChainOptions", "ChainOutcome", "ChainContact", "ChainSamples",
 ]
 
 
@@ -190,7 +190,7 @@ class HcimpactError(Exception):
 
 class InputError(HcimpactError, ValueError):
     """An argument is invalid: NaN, infinite, or outside its domain (statuses 1-8, 10,
-    13, 14)."""
+    13, 14 but out of memory)."""
 
 
 class ComputationError(HcimpactError, ArithmeticError):
@@ -198,14 +198,28 @@ class ComputationError(HcimpactError, ArithmeticError):
     data cannot determine a fit (15)."""
 
 
+class OutOfMemoryError(HcimpactError, MemoryError):
+    """The memory available is too small for the computation (status 14 with a message
+    that begins "out of memory": a system of bodies too large for it). Also a
+    ``MemoryError``."""
+
+
 class UnavailableError(HcimpactError, RuntimeError):
     """The component (CVODE, LAPACK) is not part of this build or installation (12)."""
 
 
-def error_class(status: int) -> type[HcimpactError]:
-    """The exception type of a status code."""
+#: How the library's message of a status 14 begins when the memory ran out
+#: (hcimpact_chain_simulate, include/hcimpact_cvode.h)
+OUT_OF_MEMORY = "out of memory"
+
+
+def error_class(status: int, detail: str = "") -> type[HcimpactError]:
+    """The exception type of a status code; ``detail`` is the library's own message
+    of the failure, when it gives one (what tells out of memory from a wrong size)."""
     if status in (9, 11, 15):
         return ComputationError
     if status == 12:
         return UnavailableError
+    if status == 14 and detail.startswith(OUT_OF_MEMORY):
+        return OutOfMemoryError
     return InputError
