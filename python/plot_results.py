@@ -6,7 +6,8 @@
 
 Works from any directory and without the hcimpact shared library: it loads
 python/hcimpact/plot.py by its path, so the package's __init__ (which may load the
-library) is never imported. Needs NumPy and Matplotlib. --help for the options.
+library) is never imported. Needs NumPy and Matplotlib (without them: one line saying
+which is missing and how to install it, exit status 3). --help for the options.
 """
 import importlib.util
 import os

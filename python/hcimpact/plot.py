@@ -66,17 +66,38 @@ class NotApplicable(Exception):
     bodies has no wave to draw): skipped with the reason."""
 
 
+class MissingPackage(ImportError):
+    """NumPy or Matplotlib cannot be imported: the message says which and how to
+    install it (one line)."""
+
+
 def _load():
-    """Import NumPy and Matplotlib (the Agg backend: files only, no display)."""
+    """Import NumPy and Matplotlib (the Agg backend: files only, no display); a
+    MissingPackage error naming the one that cannot be imported."""
     global np, matplotlib
     if np is None:
-        import numpy
+        try:
+            import numpy
+        except ImportError as exc:
+            raise _missing("NumPy", "numpy", exc) from exc
         np = numpy
     if matplotlib is None:
-        import matplotlib as mpl
-        mpl.use("Agg")
-        import matplotlib.ticker  # noqa: F401 (used as matplotlib.ticker)
+        try:
+            import matplotlib as mpl
+            mpl.use("Agg")
+            import matplotlib.pyplot  # noqa: F401 (the figures' module, imported here)
+            import matplotlib.ticker  # noqa: F401 (used as matplotlib.ticker)
+        except ImportError as exc:
+            raise _missing("Matplotlib", "matplotlib", exc) from exc
         matplotlib = mpl
+
+
+def _missing(package, name, exc):
+    """The MissingPackage error of `package` (pip's name `name`), from the ImportError."""
+    why = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+    return MissingPackage(f"the figures need {package}, which this Python cannot import "
+                          f"({why}): pip install {name} (for this Python: "
+                          f"{sys.executable} -m pip install {name})", name=name)
 
 
 # ----------------------------------------------------------------------------------
@@ -816,7 +837,11 @@ def main(argv=None):
     if args.figures:
         figures = {int(x) for x in args.figures.split(",") if x.strip()}
     try:
+        _load()
         written = plot_results(args.results, args.output, figures, args.dpi, args.format)
+    except MissingPackage as exc:
+        print(f"plot_results: error: {exc}", file=sys.stderr)
+        return 3
     except (FileNotFoundError, ValueError, KeyError) as exc:
         print(f"plot_results: error: {exc}", file=sys.stderr)
         return 2
