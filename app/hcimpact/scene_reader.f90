@@ -1950,7 +1950,8 @@ contains
       end if
    end subroutine pair_damping
 
-   !> A text choice of &bodies (method, integrator): its code, `codes(1)` when not given.
+   !> A text choice of &bodies (method, integrator): its code, `codes(1)` when not given;
+   !> an empty value given (method = "") is refused as an unknown one is.
    subroutine choose(src, name, text, words, codes, code, error)
       type(scene_source), intent(in) :: src
       character(len=*), intent(in) :: name, text
@@ -1965,7 +1966,12 @@ contains
             & // str(bodies_text_length - 1) // " characters"
          return
       end if
-      if (len_trim(text) == 0) return
+      if (len_trim(text) == 0) then
+         if (given(src, g_bodies, name)) error = at(src, g_bodies, name) // name &
+            & // " = '': an empty value (leave " // name // " out for " // trim(words(1)) &
+            & // "): use " // join(words, ", ")
+         return
+      end if
       do k = 1, size(words)
          if (lower(trim(adjustl(text))) == trim(words(k))) then
             code = codes(k)
