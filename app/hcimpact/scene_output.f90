@@ -4,12 +4,15 @@
 !>
 !> Every file is written as `<name>.partial` and renamed to `<name>` only when the whole
 !> run has succeeded (`commit_results`); on failure the partial files, and the
-!> directories the run created, are removed (`abandon_results`). On success, files of
-!> earlier runs that this run did not write (e.g. `phase.csv` when phase trajectories
-!> are no longer asked for) are removed, so the directory holds exactly this run's
-!> results. Only files whose names this program writes are ever touched. The
-!> checkpoints of sweeps go with the run's other files, whether it succeeds or fails
-!> with an error it reports; only a run that is killed leaves them.
+!> directories the run created, are removed (`abandon_results`). On success, the files
+!> of the earlier run that this run did not write (e.g. `phase.csv` when phase
+!> trajectories are no longer asked for) are removed, so the directory holds exactly
+!> this run's results: those its log.txt lists on its last line (`manifest_line`,
+!> read back by `earlier_files`), and no other. A file of the user's that bears a name
+!> this program writes (their own `summary.csv`) is replaced when this run writes that
+!> name, and otherwise kept. The checkpoints of sweeps go with the run's other files,
+!> whether it succeeds or fails with an error it reports; only a run that is killed
+!> leaves them.
 !>
 !> Every write, the flush to the device and the close are checked (through the C
 !> library, hcimpact_scene_system): a file that could not be written whole makes the
@@ -23,7 +26,8 @@
 module hcimpact_scene_output
    use hcimpact_kinds, only : wp
    use hcimpact_scene_system, only : make_directory, rename_path, remove_path, &
-      & directory_exists, file_exists, output_file, create_file, write_file, close_file
+      & directory_exists, file_exists, output_file, create_file, write_file, close_file, &
+      & read_file_tail
    use hcimpact_scene_text, only : csv_real
    implicit none
    private
@@ -31,7 +35,7 @@ module hcimpact_scene_output
    public :: results_type, csv_type
    public :: open_results, commit_results, abandon_results
    public :: csv_open, csv_row, csv_line, csv_close
-   public :: all_result_files, checkpoint_path
+   public :: all_result_files, checkpoint_path, manifest_line
 
    !> The checkpoints of sweeps (hcimpact_scene_checkpoint): `<output>.checkpoint`
    character(len=*), parameter :: checkpoint_files(4) = [character(len=23) :: &
@@ -48,6 +52,13 @@ module hcimpact_scene_output
 
    !> Most files of one run
    integer, parameter :: max_files = 32
+
+   !> The beginning of log.txt's last line, which lists the files of the run: all that
+   !> a later run into the directory removes (those it does not write itself)
+   character(len=*), parameter :: manifest_lead = "Files of this run:"
+   !> Bytes read from the end of an earlier log.txt for that line (which is shorter
+   !> than size(all_result_files) * 25)
+   integer, parameter :: manifest_bytes = 4096
 
    !> A results directory being written
    type :: results_type
@@ -190,16 +201,19 @@ contains
       end if
    end subroutine csv_close
 
-   !> Rename every .partial file to its name and remove results of earlier runs that
-   !> this run did not write. If a rename fails, every result file of the directory
-   !> goes (the new ones and the old ones they were replacing), so that no mixture of
-   !> two runs is left looking complete.
+   !> Rename every .partial file to its name and remove the results of the earlier run
+   !> (`earlier_files`) that this run did not write. If a rename fails, every result
+   !> file of the directory goes (the new ones, the old ones they were replacing and
+   !> the earlier run's others), so that no mixture of two runs is left looking
+   !> complete.
    subroutine commit_results(res, error)
       type(results_type), intent(inout) :: res
       character(len=:), allocatable, intent(out) :: error
-      logical :: ok
+      logical :: ok, earlier(size(all_result_files))
       integer :: i
       if (.not. res%active) return
+      ! (read before this run's log.txt takes the earlier one's place)
+      earlier = earlier_files(res)
       do i = 1, res%n_files
          call rename_path(res%path // "/" // trim(res%files(i)) // ".partial", &
             & res%path // "/" // trim(res%files(i)), ok)
@@ -207,17 +221,60 @@ contains
             error = res%path // "/" // trim(res%files(i)) // ": cannot rename the finished" &
                & // " file (a directory of that name?); the results in " // res%path &
                & // " were removed"
-            call remove_all_results(res)
+            call remove_all_results(res, earlier)
             call abandon_results(res)
             return
          end if
       end do
       do i = 1, size(all_result_files)
          if (any(res%files(1:res%n_files) == all_result_files(i))) cycle
-         call remove_path(res%path // "/" // trim(all_result_files(i)))
+         if (earlier(i) .or. any(checkpoint_files == all_result_files(i))) &
+            & call remove_path(res%path // "/" // trim(all_result_files(i)))
       end do
       res%n_files = 0
    end subroutine commit_results
+
+   !> The last line of log.txt: `manifest_lead` and the names of the files of the run,
+   !> log.txt among them (written last).
+   function manifest_line(res) result(line)
+      type(results_type), intent(in) :: res
+      character(len=:), allocatable :: line
+      integer :: i
+      line = manifest_lead
+      do i = 1, res%n_files
+         line = line // " " // trim(res%files(i))
+      end do
+   end function manifest_line
+
+   !> Which of `all_result_files` the earlier run into the directory wrote: those the
+   !> last line of its log.txt lists (`manifest_line`). None when there is no such
+   !> line: no log.txt, one that is not a regular file (a link is not followed, a FIFO
+   !> not read), the log of a version that did not write the line, or another file.
+   function earlier_files(res) result(earlier)
+      type(results_type), intent(in) :: res
+      logical :: earlier(size(all_result_files))
+      character(len=:), allocatable :: text, line
+      logical :: ok
+      integer :: start, length, i
+      earlier = .false.
+      call read_file_tail(res%path // "/log.txt", manifest_bytes, text, ok)
+      if (.not. ok) return
+      start = index(text, new_line("a") // manifest_lead, back=.true.)
+      if (start > 0) then
+         start = start + 1
+      else if (index(text, manifest_lead) == 1) then
+         start = 1
+      else
+         return
+      end if
+      length = index(text(start:), new_line("a")) - 1
+      if (length < 0) length = len(text) - start + 1
+      ! the names, each between blanks
+      line = text(start + len(manifest_lead):start + length - 1) // " "
+      do i = 1, size(all_result_files)
+         earlier(i) = index(" " // line, " " // trim(all_result_files(i)) // " ") > 0
+      end do
+   end function earlier_files
 
    !> Remove every file of this run (still .partial) and the directories it created.
    subroutine abandon_results(res)
@@ -247,12 +304,16 @@ contains
       if (res%active) path = res%path // "/" // name // ".checkpoint"
    end function checkpoint_path
 
-   !> Every result file of the directory, whichever run wrote it.
-   subroutine remove_all_results(res)
+   !> Every result file of the directory: this run's, the earlier run's (`earlier`,
+   !> from `earlier_files`) and the checkpoints; no other file.
+   subroutine remove_all_results(res, earlier)
       type(results_type), intent(in) :: res
+      logical, intent(in) :: earlier(:)
       integer :: i
       do i = 1, size(all_result_files)
-         call remove_path(res%path // "/" // trim(all_result_files(i)))
+         if (earlier(i) .or. any(res%files(1:res%n_files) == all_result_files(i)) &
+            & .or. any(checkpoint_files == all_result_files(i))) &
+            & call remove_path(res%path // "/" // trim(all_result_files(i)))
       end do
    end subroutine remove_all_results
 

@@ -37,7 +37,7 @@ module hcimpact_scene_run
    use hcimpact_scene_chain, only : system_method, system_needs_ode, describe_system, &
       & write_system_parameters, run_system
    use hcimpact_scene_output, only : results_type, csv_type, open_results, commit_results, &
-      & abandon_results, csv_open, csv_row, csv_line, csv_close, checkpoint_path
+      & abandon_results, csv_open, csv_row, csv_line, csv_close, checkpoint_path, manifest_line
    use hcimpact_scene_ode, only : ode_available, ode_description, ode_missing, ode_run_type, &
       & ode_chain_description, &
       & ode_impact
@@ -310,6 +310,9 @@ contains
          if (.not. allocated(error)) then
             log_text = console_log()
             if (len(log_text) > 0) call csv_line(csv, log_text(1:len(log_text) - 1))
+            ! the last line lists the files of this run (log.txt among them): those the
+            ! next run into the directory removes when it does not write them itself
+            call csv_line(csv, manifest_line(res))
             call csv_close(csv, error)
          end if
       end if

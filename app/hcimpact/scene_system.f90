@@ -27,7 +27,7 @@ module hcimpact_scene_system
    public :: is_terminal, make_directory, rename_path, remove_path
    public :: directory_exists, file_exists, wall_clock
    public :: output_file, create_file, write_file, flush_file, close_file, write_standard_output
-   public :: last_system_error, ignore_output_signals, pause_microseconds
+   public :: last_system_error, ignore_output_signals, pause_microseconds, read_file_tail
 
    !> A file being written (a C stream)
    type :: output_file
@@ -57,6 +57,14 @@ module hcimpact_scene_system
          character(kind=c_char), intent(in) :: from(*), to(*)
          integer(c_int) :: r
       end function c_rename
+      function c_read_tail(path, buffer, size) bind(C, name="hcimpact_scene_read_tail") &
+            & result(n)
+         import :: c_int, c_char
+         character(kind=c_char), intent(in) :: path(*)
+         character(kind=c_char), intent(out) :: buffer(*)
+         integer(c_int), value :: size
+         integer(c_int) :: n
+      end function c_read_tail
       function c_remove(path) bind(C, name="remove") result(r)
          import :: c_int, c_char
          character(kind=c_char), intent(in) :: path(*)
@@ -186,6 +194,25 @@ contains
       logical :: yes
       inquire(file=trim(path), exist=yes)
    end function file_exists
+
+   !> The last `size` bytes (at most) of the regular file `path`, in `text`; `ok` is
+   !> .false. (and `text` empty) when `path` is not a regular file or cannot be read: a
+   !> symbolic link is not followed, a FIFO or a device not read (hcimpact_scene_read_tail).
+   subroutine read_file_tail(path, size, text, ok)
+      character(len=*), intent(in) :: path
+      integer, intent(in) :: size
+      character(len=:), allocatable, intent(out) :: text
+      logical, intent(out) :: ok
+      character(kind=c_char) :: buffer(max(size, 1))
+      integer(c_int) :: n
+      integer :: i
+      n = c_read_tail(c_string(path), buffer, int(max(size, 0), c_int))
+      ok = n >= 0_c_int
+      allocate(character(len=max(int(n), 0)) :: text)
+      do i = 1, len(text)
+         text(i:i) = buffer(i)
+      end do
+   end subroutine read_file_tail
 
    !> Rename `from` to `to` (replacing a file, or a symbolic link itself, named `to`),
    !> atomically on one file system.

@@ -3,7 +3,8 @@
 """The scene runner against a hostile environment (issue 13): a full disk, a file size
 limit, symbolic links planted in the results directory, a standard output that cannot
 be written (a full device, a closed pipe), and scene files that are not scene files (a directory, a device without
-end, a file of 100 MB, an empty file, a path with escape sequences).
+end, a file of 100 MB, an empty file, a path with escape sequences); a user's own files
+in the results directory, and a log.txt planted there as a link or a FIFO.
 
 Usage: check_robustness.py PROGRAM WORKDIR CASE     (one case; exit 0 if it passes)
        check_robustness.py PROGRAM WORKDIR --all    (every case)
@@ -284,6 +285,75 @@ def case_escape_in_path(program, work):
     return None
 
 
+def case_own_files_kept(program, work):
+    """A directory of the user's given with -o: their files that bear names the runner
+    writes but that this run does not write (motion.csv, phase.csv) are kept, as are
+    their other files; the log's last line lists this run's files. The earlier run's
+    files that a later run does not write are removed (no mixture of two runs), the
+    user's own files among them kept."""
+    base = fresh(work, "own-files-kept")
+    out = os.path.join(base, "mine")
+    os.makedirs(out)
+    own = {"motion.csv": "my motion\n", "phase.csv": "my phase\n", "notes.txt": "notes\n"}
+    for name, text in own.items():
+        with open(os.path.join(out, name), "w") as fh:
+            fh.write(text)
+    result = run(program, ["-q", "-o", out])
+    expect(result.returncode == 0, "the run must succeed", result)
+    for name, text in own.items():
+        path = os.path.join(out, name)
+        expect(os.path.isfile(path) and open(path).read() == text,
+               f"the user's {name} was removed or changed by a run that does not write it")
+    lines = open(os.path.join(out, "log.txt")).read().splitlines()
+    expect(lines[-1] == "Files of this run: parameters.csv summary.csv scene.nml log.txt",
+           f"the log's last line must list the run's files: {lines[-1]!r}")
+    # the earlier run's files (histories.csv, phase.csv) go when the next run does not
+    # write them; a file the user added in between stays
+    done = os.path.join(base, "results")
+    result = run(program, [BIG_SCENE, "-q", "-o", done])
+    expect(result.returncode == 0, "the first run must succeed", result)
+    first = set(os.listdir(done))
+    expect({"histories.csv", "phase.csv"} <= first, f"the first run's files: {sorted(first)}")
+    with open(os.path.join(done, "motion.csv"), "w") as fh:
+        fh.write("my motion\n")
+    result = run(program, ["-q", "-o", done])
+    expect(result.returncode == 0, "the second run must succeed", result)
+    after = sorted(os.listdir(done))
+    expect(after == ["log.txt", "motion.csv", "parameters.csv", "scene.nml", "summary.csv"],
+           f"after the second run: {after}")
+    return None
+
+
+def case_planted_log(program, work):
+    """log.txt planted as a symbolic link to a file that lists motion.csv as a file of
+    the earlier run, or as a FIFO: the link is not followed, the FIFO not read (the run
+    does not wait on it), the user's motion.csv is kept, the link's target unchanged,
+    and log.txt becomes this run's regular file."""
+    base = fresh(work, "planted-log")
+    decoy = os.path.join(base, "decoy.txt")
+    with open(decoy, "w") as fh:
+        fh.write("Files of this run: motion.csv summary.csv log.txt\n")
+    for kind in ("link", "fifo"):
+        out = os.path.join(base, kind)
+        os.makedirs(out)
+        with open(os.path.join(out, "motion.csv"), "w") as fh:
+            fh.write("my motion\n")
+        log = os.path.join(out, "log.txt")
+        if kind == "link":
+            os.symlink(decoy, log)
+        else:
+            os.mkfifo(log)
+        result = run(program, ["-q", "-o", out], timeout=60)
+        expect(result.returncode == 0, f"the run must succeed with log.txt a {kind}", result)
+        expect(os.path.isfile(os.path.join(out, "motion.csv")),
+               f"log.txt a {kind}: the user's motion.csv was removed")
+        expect(os.path.isfile(log) and not os.path.islink(log),
+               f"log.txt a {kind}: log.txt must be this run's regular file")
+    expect(open(decoy).read() == "Files of this run: motion.csv summary.csv log.txt\n",
+           "the target of the planted link was changed")
+    return None
+
+
 CASES = {
     "full-disk": case_full_disk,
     "file-size-limit": case_file_size_limit,
@@ -296,6 +366,8 @@ CASES = {
     "huge-scene": case_huge_scene,
     "empty-scene": case_empty_scene,
     "escape-in-path": case_escape_in_path,
+    "own-files-kept": case_own_files_kept,
+    "planted-log": case_planted_log,
 }
 
 
