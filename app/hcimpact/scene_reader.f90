@@ -1442,6 +1442,11 @@ contains
                & // " or ""log"""
             return
          end if
+         if (len_trim(sweep_spacing) == 0 .and. given(src, g_sampling, "sweep_spacing")) then
+            error = at(src, g_sampling, "sweep_spacing") // "sweep_spacing = '': an empty" &
+               & // " value (leave sweep_spacing out for ""linear""): use ""linear"" or ""log"""
+            return
+         end if
          allocate(sc%sweep(n))
          select case (lower(trim(adjustl(sweep_spacing))))
          case ("", "linear")
@@ -2306,6 +2311,11 @@ contains
       every_combination = .true.
       if (len_trim(vary_combine) >= variations_text_length) then
          error = at(src, gid, "combine") // "combine is too long"
+         return
+      end if
+      if (len_trim(vary_combine) == 0 .and. given(src, gid, "combine")) then
+         error = at(src, gid, "combine") // "combine = '': an empty value (leave combine out" &
+            & // " for ""product""): give ""product"" (every combination) or ""list"" (side by side)"
          return
       end if
       select case (lower(trim(vary_combine)))
