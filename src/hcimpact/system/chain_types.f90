@@ -472,21 +472,28 @@ contains
    !>   phi(E) = b U 2 max c x^(n+1)/(n+1) <= 4 b sqrt(2 (E + B)/m) (E + 2^(1/n) B).
    !> (A wall on the other side, law b2, meets the body with m v^2/2 <= E and
    !> dissipates at most 2 b2 sqrt(2 E/m) E there: phi with b the larger damping.)
-   !> With E1 = t B: if phi(E) <= E/2 for E between E1 and E0 (the initial energy),
-   !> the first contact that starts at or below E1 starts above min(E0, E1)/2, and
-   !> from then on each contact dissipates at most phi(E1): at least
-   !>   min(E0, E1) / (2 phi(E1))
-   !> contacts. t = (c + sqrt(c^2 + 8 c))/2, c = 2^(1/n), makes E1/phi(E1) largest.
-   !> Every term is formed from logarithms (W, x*, B span the whole range of doubles).
-   !> The bound is about 1/(30 b sqrt(2 B/m)) for n = 1.5, some 30 times below the
-   !> contacts a run takes (1093 against 41 for a 1 g ball dropped 10 cm on c = 1e6,
-   !> b = 0.1).
+   !>
+   !> The energy falls from E0 (the start) to below 0 through segments [E_k+1, E_k],
+   !> one per contact, each no longer than phi(E_k). Cut [0, E0] into bands
+   !> (0, E1], (E1, 2 E1], (2 E1, 4 E1], ... (the last one ends at E0): the segments
+   !> that start in a band with top T each cover at most phi(T) of it, and one that
+   !> starts above it at most phi(T) too where phi' <= 1 above E1 (phi(E) - E does not
+   !> grow). So a band of width w holds at least w/phi(T) - 1 starts (w/phi(T) for
+   !> the band of E0, which no segment enters from above), and the contacts are at
+   !> least the sum over the bands. phi' <= 1 on [E1, E0] holds where
+   !>   4 b sqrt(2 (E0 + B)/m) ((t + c)/(2 (t + 1)) + 1) <= 1,
+   !> E1 = t B with t = (c + sqrt(c^2 + 8 c))/2, c = 2^(1/n) (where E1/phi(E1) is
+   !> largest); elsewhere the bound is 0. Bands from the 200th up (each adds 2^(-1/2)
+   !> of the one before, once E >> B) are left out, which keeps it a lower bound.
+   !> Every term is formed from logarithms (W, x*, B span the range of doubles).
    pure function least_contacts_to_rest(chain) result(least)
       type(chain_type), intent(in) :: chain
       real(wp) :: least
+      integer, parameter :: max_bands = 200
       type(contact_law) :: law
       real(wp) :: damping, gap, v, log_m, log_w, log_b, log_c, log_t, log_e0, log_e1, &
-         & log_phi, log_speed_top, n
+         & log_low, log_top, log_width, term, n
+      integer :: band
       least = 0.0_wp
       if (size(chain%mass) /= 1 .or. chain%gravity == 0.0_wp) return
       if (chain%gravity < 0.0_wp .and. chain%left_wall) then
@@ -519,21 +526,57 @@ contains
       if (gap > 0.0_wp) log_e0 = log_sum(log_e0, log_w + log(gap))
       if (log_e0 <= -huge(1.0_wp)) return
       if (log_e0 > log_e1) then
-         ! phi(E)/E <= 4 b sqrt(2 (E0 + B)/m) (1 + c/t) <= 1/2 for E in [E1, E0]
-         log_speed_top = 0.5_wp * (log(2.0_wp) + log_sum(log_e0, log_b) - log_m)
-         if ((log(4.0_wp) + log(damping)) + log_speed_top + log(1.0_wp + exp(log_c - log_t)) &
-            & > log(0.5_wp)) return
+         ! phi' <= 1 on [E1, E0]; (t + c)/(t + 1) = exp(log(t + c) - log(t + 1))
+         if (log(4.0_wp) + log(damping) + 0.5_wp * (log(2.0_wp) + log_sum(log_e0, log_b) &
+            & - log_m) + log(1.0_wp + 0.5_wp * exp(log_sum(log_t, log_c) &
+            & - log_sum(log_t, 0.0_wp))) > 0.0_wp) return
       end if
-      ! phi(E1) = 4 b sqrt(2 (t + 1) B/m) (t + c) B
-      log_phi = (log(4.0_wp) + log(damping)) + 0.5_wp * (log(2.0_wp) + log_sum(log_t, 0.0_wp) &
-         & + log_b - log_m) + log_sum(log_t, log_c) + log_b
-      least = exp(min(min(log_e0, log_e1) - log(2.0_wp) - log_phi, log(huge(1.0_wp))))
+      ! the band (0, min(E1, E0)], then (E1 2^(k-1), E1 2^k] up to E0
+      log_top = min(log_e1, log_e0)
+      least = band_starts(log_top, log_top, log_e0 > log_top)
+      log_low = log_e1
+      do band = 1, max_bands
+         if (log_low >= log_e0) exit
+         log_top = min(log_low + log(2.0_wp), log_e0)
+         if (.not. log_top > log_low) exit
+         ! the width: top - low
+         log_width = log_top + log(-expm1_(log_low - log_top))
+         term = band_starts(log_width, log_top, log_e0 > log_top)
+         ! (a sum beyond the doubles stays at the largest one)
+         if (term > huge(1.0_wp) - least) then
+            least = huge(1.0_wp)
+            exit
+         end if
+         least = least + term
+         log_low = log_top
+      end do
    contains
+      !> At least this many contacts start in a band of width exp(log_width) whose
+      !> top is exp(log_top) (less one for a segment from above, when `entered`)
+      pure real(wp) function band_starts(log_width, log_top, entered)
+         real(wp), intent(in) :: log_width, log_top
+         logical, intent(in) :: entered
+         real(wp) :: log_phi
+         ! phi(T) = 4 b sqrt(2 (T + B)/m) (T + c B)
+         log_phi = log(4.0_wp) + log(damping) + 0.5_wp * (log(2.0_wp) &
+            & + log_sum(log_top, log_b) - log_m) + log_sum(log_top, log_c + log_b)
+         band_starts = exp(min(log_width - log_phi, log(huge(1.0_wp))))
+         if (entered) band_starts = max(band_starts - 1.0_wp, 0.0_wp)
+      end function band_starts
       !> log(exp(a) + exp(b)) without overflow
       pure real(wp) function log_sum(a, b)
          real(wp), intent(in) :: a, b
          log_sum = max(a, b) + log(1.0_wp + exp(-abs(a - b)))
       end function log_sum
+      !> exp(x) - 1 for x <= 0, accurate near 0
+      pure real(wp) function expm1_(x)
+         real(wp), intent(in) :: x
+         if (abs(x) < 1.0e-5_wp) then
+            expm1_ = x * (1.0_wp + 0.5_wp * x)
+         else
+            expm1_ = exp(x) - 1.0_wp
+         end if
+      end function expm1_
    end function least_contacts_to_rest
 
    !> Whether values not negative add up to at most a quarter of the range of doubles,
