@@ -176,7 +176,7 @@ contains
       integer, intent(out) :: stat
       integer :: m, k, i, j, s, n_state, smu
       integer(c_int) :: ierr
-      real(wp) :: x, w, v_ref, x_ref, e_ref, h0, weakest_force, u_out, v_out
+      real(wp) :: x, w, v_ref, x_ref, e_ref, h0, weakest_force, u_out, v_out, stop_time
       real(wp), allocatable :: v_start(:), round_x(:), round_w(:)
       integer :: side
       type(contact_force_type) :: e
@@ -281,7 +281,7 @@ contains
       ! scales: the largest relative speed, the smallest maximum compression at it
       call region_scales(self%region, self%y, self%region%scale, weakest_force, &
          & merge(engine%options%t_end - engine%time, huge(1.0_wp), &
-         & engine%options%t_end > 0.0_wp))
+         & engine%options%t_end > 0.0_wp), stop_time)
       ! forces below the normal range of doubles keep fewer bits than the tolerance
       ! needs (two bodies of 1 kg, c = 1e9 N/m^1.5, touching at 1e-270 m/s were
       ! integrated to 7e-8 relative with success, and at 1e-300 m/s ran to max_steps)
@@ -433,7 +433,7 @@ contains
          ierr = FCVodeSetJacFn(self%mem, c_funloc(chain_jacobian_callback))
          if (ierr /= CV_SUCCESS) exit setup
          where = "CVodeSetInitStep"
-         h0 = first_step(engine%options%rtol, self%region%scale)
+         h0 = first_step(engine%options%rtol, self%region%scale, stop_time)
          if (self%first_step > 0.0_wp) h0 = self%first_step
          self%h_last = h0
          ierr = FCVodeSetInitStep(self%mem, real(h0, c_double))

@@ -107,7 +107,8 @@ contains
          & new_unittest("touching-chain-grows", test_touching_grows), &
          & new_unittest("struck-chain-16", test_struck_chain_16), &
          & new_unittest("far-meetings", test_far_meetings), &
-         & new_unittest("contacts-to-rest", test_contacts_to_rest) &
+         & new_unittest("contacts-to-rest", test_contacts_to_rest), &
+         & new_unittest("damped-at-the-start", test_damped_at_start) &
          & ]
    end subroutine collect_chain
 
@@ -3187,5 +3188,68 @@ contains
          end if
       end function bouncing_ball
    end subroutine test_contacts_to_rest
+
+   !> Contacts so damped (b V from 3e19 to 1e39, inside the model's domain, below 1e40)
+   !> that they stop within a deformation far below the elastic one, at the start of a
+   !> region (touching at t = 0): CVODE's first step, from the elastic scale, was about
+   !> sqrt(b V) times the time in which they stop, and the corrector failed ten times
+   !> in a row at t = 0 (CV_CONV_FAILURE from b V = 3e19 with n = 1, 1e25 with n = 1.5,
+   !> at rtol 1e-6), with method auto too for a cluster. Now the first step is also
+   !> bounded by the time the damping stops the contact (`first_step`):
+   !> - one body of 1 kg at 1 m/s touching a wall (c = 1e9), method integrated, against
+   !>   the closed forms of method auto: velocity within 4 rtol of the speed (measured
+   !>   1.3, Adams at n = 1);
+   !> - three touching balls struck at 1 m/s, by each method: a plastic impact, every
+   !>   ball at 1/3 m/s within 10 rtol (measured 4.8).
+   !> Both integrators, n = 1 and 1.5.
+   subroutine test_damped_at_start(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: rtol = 1.0e-6_wp, bv(3) = [3.0e19_wp, 1.0e25_wp, 1.0e39_wp], &
+         & exponents(2) = [1.0_wp, 1.5_wp]
+      integer, parameter :: integrators(2) = [integrator_bdf, integrator_adams]
+      type(chain_type) :: chain
+      type(chain_result) :: exact, result
+      type(chain_options) :: o
+      character(len=:), allocatable :: what
+      integer :: i, k, l, method
+      do i = 1, size(integrators)
+         do k = 1, size(exponents)
+            do l = 1, size(bv)
+               what = "n = " // format_real(exponents(k)) // ", b V = " // format_real(bv(l)) &
+                  & // ", integrator " // int_text(integrators(i))
+               chain = steel_row(1, -1.0_wp, 0.0_wp, 0.0_wp)
+               chain%mass = 1.0_wp
+               chain%left_wall = .true.
+               chain%left_law = contact_law(1.0e9_wp, exponents(k), bv(l))
+               o = opts(method_auto, rtol)
+               o%integrator = integrators(i)
+               call run(error, chain, o, exact, "a wall, method auto, " // what)
+               if (allocated(error)) return
+               o%method = method_integrated
+               call run(error, chain, o, result, "a wall, method integrated, " // what)
+               if (allocated(error)) return
+               call check(error, abs(result%velocities(1) - exact%velocities(1)) <= 4.0_wp * rtol, &
+                  & "a wall, " // what // ": velocity " // format_real(result%velocities(1)) &
+                  & // " against " // format_real(exact%velocities(1)))
+               if (allocated(error)) return
+               chain = steel_row(3, 1.0_wp, bv(l), 0.0_wp)
+               chain%mass = 1.0_wp
+               chain%law = contact_law(1.0e9_wp, exponents(k), bv(l))
+               do method = method_auto, method_integrated, method_integrated - method_auto
+                  o = opts(method, rtol)
+                  o%integrator = integrators(i)
+                  call run(error, chain, o, result, "three balls, method " // int_text(method) &
+                     & // ", " // what)
+                  if (allocated(error)) return
+                  call check(error, maxval(abs(result%velocities - 1.0_wp / 3.0_wp)) <= 10.0_wp &
+                     & * rtol, "three balls, method " // int_text(method) // ", " // what &
+                     & // ": velocities " // format_real(result%velocities(1)) // ", " &
+                     & // format_real(result%velocities(3)))
+                  if (allocated(error)) return
+               end do
+            end do
+         end do
+      end do
+   end subroutine test_damped_at_start
 
 end module test_cvode_chain

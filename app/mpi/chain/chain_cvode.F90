@@ -93,6 +93,8 @@ module hcimpact_mpi_chain_cvode
       real(wp) :: rtol = 1.0e-8_wp, scale(3) = 1.0_wp, root_n = 1.0_wp
       !> The scale of the walls' impulses (N s: `wall_impulse_scale`)
       real(wp) :: impulse_scale = 1.0_wp
+      !> The shortest time in which a damped contact stops (s: `region_scales`)
+      real(wp) :: stop_time = huge(1.0_wp)
       !> The caller's halting modes (off while CVODE runs)
       logical :: halting(3) = .false.
       type(solver_report) :: report
@@ -205,7 +207,8 @@ contains
          ! t_end = 1e-300 s times the time to the stop, 1e-600, underflowed to 0, which
          ! CVODE took for a stop behind the start: CV_ILL_INPUT)
          where = "CVodeSetInitStep"
-         ierr = FCVodeSetInitStep(mem, real(first_step(run%rtol, run%scale), c_double))
+         ierr = FCVodeSetInitStep(mem, real(first_step(run%rtol, run%scale, run%stop_time), &
+            & c_double))
          if (ierr /= CV_SUCCESS) exit setup
          ! a setup that failed on another rank only: none of them may enter CVode,
          ! whose steps every rank must take together

@@ -197,7 +197,7 @@ contains
       run%block%region%gravity = run%block%region%gravity - a_frame
       whole%gravity = whole%gravity - a_frame
       y(2:3 * n - 1:3) = chain%velocity - v_frame
-      call region_scales(whole, y, run%scale, weakest_force, options%t_end)
+      call region_scales(whole, y, run%scale, weakest_force, options%t_end, run%stop_time)
       run%impulse_scale = wall_impulse_scale(chain%mass, run%scale(2))
       whole%gravity = chain%gravity
       ! (as the serial chain's integration: forces below the normal range keep fewer
