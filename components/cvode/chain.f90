@@ -1228,6 +1228,7 @@ contains
       !> End time and the deformation rate then (< 0)
       real(wp), intent(in) :: t_end, w
       type(contact_record) :: r
+      real(wp) :: e
       self%contact(j)%open = .false.
       ! a touching pair (approach within the velocities' absolute tolerance) that never
       ! pressed beyond rounding (the positions' absolute tolerance) was no contact yet:
@@ -1235,11 +1236,19 @@ contains
       ! Newton corrections), and a contact that opens again while its gap stays that
       ! small began when this one did (before, the struck chain of 16, Adams at rtol
       ! 1e-11, recorded pair 12 from 4.2e-5 s with an approach of 1.6e-315 m/s instead
-      ! of from 0)
+      ! of from 0). Unless it dissipated beyond the energies' tolerance: a pair that
+      ! touches at rest and is pressed by a contact so damped that it stops within
+      ! rounding is a contact (three touching balls struck, b V = 1e12: the second and
+      ! third were not recorded, and their 0.0655 J of 0.333 was left out of the total,
+      ! with success and an energy balance of 0.13). What a pair left out dissipated
+      ! still counts in the total.
+      e = dissipated_so_far(self, j)
       if (.not. (self%contact(j)%deformation > self%atol(1)) .and. &
-         & self%contact(j)%approach <= self%atol(2)) then
+         & self%contact(j)%approach <= self%atol(2) .and. &
+         & .not. (e > engine%options%rtol * self%region%scale(3))) then
          self%contact(j)%touching_since = self%contact(j)%t_start
          self%contact(j)%touching_approach = self%contact(j)%approach
+         if (ieee_is_finite(e)) engine%dissipated = engine%dissipated + e
          return
       end if
       if (.not. (self%contact(j)%peak > 0.0_wp)) return
