@@ -2989,13 +2989,16 @@ contains
    !>   least as many contacts as the bound (2.7 to 4.6 times as many), over exponents
    !>   0.5 to 2.5, damping 0.02 to 0.1 s/m, drops from touching to 2 cm (thrown up or
    !>   down), gravity towards either end, without a wall on the other side or with a
-   !>   damped or elastic one close enough to be hit.
+   !>   damped or elastic one out of its reach.
    !> - The runs that could only end at max_events are refused at once (no step) with
    !>   hcimpact_err_no_convergence: damping 1e-6 and 1e-300 s/m, gravity 5e-324 m/s^2
-   !>   (before: about a day to reach max_events = 1e8); max_events 3 below the bound
-   !>   is refused, 2 above it runs (and ends at max_events after it).
+   !>   (before: about a day to reach max_events = 1e8); the refusal needs the bound
+   !>   above ten times max_events (+ 2): just below that it is refused, just above it
+   !>   runs (and ends at max_events after it).
    !> - It does not apply (0): two bodies, gravity away from the only wall, no
-   !>   gravity, a start too fast for it (b V of 100).
+   !>   gravity, a start too fast for it (b V of 100), a wall on the other side within
+   !>   reach (between two walls at gap 0 a ball rests after 185 contacts in one event
+   !>   of the engine: the bound, 28.6, refused max_events up to 26).
    subroutine test_contacts_to_rest(error)
       type(error_type), allocatable, intent(out) :: error
       type(chain_type) :: chain
@@ -3062,20 +3065,21 @@ contains
          if (allocated(error)) return
       end do
 
-      ! the threshold: 3 below the bound refused before any step, 2 above it run
+      ! the threshold: ten times max_events + 2 just below the bound refused, just
+      ! above it run
       chain = bouncing_ball(1.5_wp, 0.02_wp, 2.0e-2_wp, 0.0_wp, -1, 0)
       least = least_contacts_to_rest(chain)
       call check(error, least > 10.0_wp, "bound of the threshold case: " // &
          & format_real(least))
       if (allocated(error)) return
       o = opts(method_auto, 1.0e-8_wp)
-      o%max_events = int(least, int64) - 3_int64
+      o%max_events = int((least - 2.0_wp) / 10.0_wp, int64) - 1_int64
       call chain_simulate(chain, result, stat, o)
       call check(error, stat == hcimpact_err_no_convergence .and. &
          & index(result%message, "contacts to come to rest") > 0, &
          & "max_events below the bound: " // trim(result%message))
       if (allocated(error)) return
-      o%max_events = int(least, int64) + 2_int64
+      o%max_events = int((least - 2.0_wp) / 10.0_wp, int64) + 1_int64
       call chain_simulate(chain, result, stat, o)
       call check(error, stat == hcimpact_err_no_convergence .and. &
          & index(result%message, "contacts and switches") > 0, &
@@ -3106,6 +3110,31 @@ contains
       chain%left_law = contact_law(steel_wall, 1.5_wp, 1.0e-6_wp)
       chain%gravity = -9.81_wp
       call check(error, least_contacts_to_rest(chain) == 0.0_wp, "two bodies")
+      if (allocated(error)) return
+      ! a wall above within reach: 5 mm above a ball 2 cm up thrown up at 0.5 m/s (it
+      ! could rise 3.3 cm), and a ball between two walls at gap 0, which rests with
+      ! max_events = 2
+      chain = bouncing_ball(1.5_wp, 0.02_wp, 2.0e-2_wp, 0.5_wp, -1, 2)
+      chain%right_gap = 5.0e-3_wp
+      call check(error, least_contacts_to_rest(chain) == 0.0_wp, "a wall within reach")
+      if (allocated(error)) return
+      chain%right_gap = 1.5e-2_wp
+      call check(error, least_contacts_to_rest(chain) > 1.0_wp, "a wall out of reach")
+      if (allocated(error)) return
+      chain = bouncing_ball(1.5_wp, 0.40845083874653615_wp, 0.0_wp, 0.012721610362345467_wp, &
+         & -1, 1)
+      chain%left_law%stiffness = 1.0e6_wp
+      chain%right_law%stiffness = 1.0e6_wp
+      chain%right_gap = 0.0_wp
+      call check(error, least_contacts_to_rest(chain) == 0.0_wp, "between walls at gap 0")
+      if (allocated(error)) return
+      o = opts(method_auto, 1.0e-8_wp)
+      o%max_events = 2
+      o%integrator = integrator_adams
+      call run(error, chain, o, result, "between walls at gap 0, max_events 2")
+      if (allocated(error)) return
+      call check(error, result%rested .and. result%n_contacts > 100, "between walls at " &
+         & // "gap 0: " // int_text(int(result%n_contacts)) // " contacts")
       if (allocated(error)) return
       call extremes(error)
    contains
@@ -3158,7 +3187,7 @@ contains
       !> at `drop`
       !> above it, thrown at `speed` away from it; the floor on the left (side -1,
       !> gravity -9.81) or the right (side 1); `other`: 0 no wall on the other side, 1
-      !> an elastic one, 2 one with damping b, 5 mm above the ball
+      !> an elastic one, 2 one with damping b, 1 m above the ball (out of its reach)
       function bouncing_ball(n, b, drop, speed, side, other) result(ball)
          real(wp), intent(in) :: n, b, drop, speed
          integer, intent(in) :: side, other
@@ -3177,14 +3206,14 @@ contains
             ball%left_gap = drop
             ball%right_wall = other > 0
             ball%right_law = roof
-            ball%right_gap = 5.0e-3_wp
+            ball%right_gap = 1.0_wp
          else
             ball%right_wall = .true.
             ball%right_law = floor
             ball%right_gap = drop
             ball%left_wall = other > 0
             ball%left_law = roof
-            ball%left_gap = 5.0e-3_wp
+            ball%left_gap = 1.0_wp
          end if
       end function bouncing_ball
    end subroutine test_contacts_to_rest
