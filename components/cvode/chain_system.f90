@@ -352,7 +352,7 @@ contains
    !> v_ref, e_ref): a hundredth of sqrt(rtol) times the time x_ref / v_ref. CVODE's
    !> own estimate, from the end time, went to t = +Inf and NaN states for beads at
    !> rest given t_end = 1e159.
-   !> With stop_time (region_scales), at most that fraction of it too: a contact so
+   !> And at most that fraction of stop_time (region_scales): a contact so
    !> damped that it stops well within x_ref (b V of 3e19 at n = 1) needs a first step
    !> of its own time, where CVODE's corrector failed ten times in a row from x_ref /
    !> v_ref (CV_CONV_FAILURE at t = 0, the Jacobian of the start, where the damping's
@@ -360,15 +360,11 @@ contains
    !> below x_ref / v_ref's step where that is smaller): CVODE's products of times
    !> underflow below it (`region_scales`).
    pure real(wp) function first_step(rtol, scale, stop_time)
-      real(wp), intent(in) :: rtol, scale(3)
-      real(wp), intent(in), optional :: stop_time
+      real(wp), intent(in) :: rtol, scale(3), stop_time
       real(wp) :: elastic
       elastic = 0.01_wp * sqrt(rtol) * scale(1) / scale(2)
-      first_step = elastic
-      if (present(stop_time)) then
-         if (stop_time > 0.0_wp) first_step = max(min(elastic, 0.01_wp * sqrt(rtol) &
-            & * stop_time), min(elastic, 1.0e-150_wp))
-      end if
+      first_step = max(min(elastic, 0.01_wp * sqrt(rtol) * stop_time), &
+         & min(elastic, 1.0e-150_wp))
    end function first_step
 
    !> The natural scales of a region in the state y: the deformation x_ref (m), the
@@ -377,7 +373,7 @@ contains
    !> speed of a body; and the kinetic energy e_ref (J) of that speed (the error
    !> weights' scales, `chain_region`%scale); and the weakest force, the smallest of
    !> the contacts' peak forces c x^n at their compressions above (N; huge when no
-   !> contact has a scale); with stop_time, the shortest time in which a damped
+   !> contact has a scale); and stop_time, the shortest time in which a damped
    !> contact stops from v_ref (s; huge without one): x_s / v_ref, x_s the compression
    !> that stops a contact whose force is c b x^n w alone, ((n + 1) mu v_ref / (c b))^(1
    !> / (n + 1)) (below x_ref where b v_ref is above about 2, the elastic scale's).
@@ -388,10 +384,10 @@ contains
       !> The time left to the end of the run (s; huge: the run ends when no contact can
       !> happen again)
       real(wp), intent(in) :: horizon
-      real(wp), intent(out), optional :: stop_time
+      real(wp), intent(out) :: stop_time
       ! exp of at most this is a double
       real(wp), parameter :: max_log = 709.0_wp
-      real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total, lq, lx, mu_max, t_stop
+      real(wp) :: v_ref, x_ref, x_max, mu, e_ref, total, lq, lx, mu_max
       type(contact_law) :: law
       integer :: k, j, m
       logical :: ok
@@ -406,7 +402,7 @@ contains
       x_ref = huge(1.0_wp)
       e_ref = 0.0_wp
       mu_max = 0.0_wp
-      t_stop = huge(1.0_wp)
+      stop_time = huge(1.0_wp)
       weakest_force = huge(1.0_wp)
       do j = 0, m
          if (region%kind(j) == slot_none .or. region%kind(j) == slot_boundary_left &
@@ -467,10 +463,9 @@ contains
          if (law%damping > 0.0_wp .and. v_ref > 0.0_wp) then
             lq = (log(law%exponent + 1.0_wp) + log(mu) + log(v_ref) - log(law%stiffness) &
                & - log(law%damping)) / (law%exponent + 1.0_wp) - log(v_ref)
-            t_stop = min(t_stop, exp(max(-max_log, min(max_log, lq))))
+            stop_time = min(stop_time, exp(max(-max_log, min(max_log, lq))))
          end if
       end do
-      if (present(stop_time)) stop_time = t_stop
       ! a run that ends sooner reaches about the bodies' approach at v_ref, and a fall
       ! under gravity, over the time left (a scale, not a bound: contacts can speed a
       ! body up beyond v_ref, hence 4 times that; a smaller x_ref only tightens the

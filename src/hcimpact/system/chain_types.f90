@@ -23,6 +23,7 @@ module hcimpact_chain_types
       & hcimpact_err_domain, hcimpact_err_size, hcimpact_err_no_convergence
    use hcimpact_contact, only : check_parameters, max_beta
    use hcimpact_power_force, only : product_of, signed_product
+   use hcimpact_libm, only : expm1, log1p
    implicit none
    private
 
@@ -496,7 +497,7 @@ contains
       integer, parameter :: max_bands = 200
       type(contact_law) :: law
       real(wp) :: damping, gap, v, log_m, log_w, log_b, log_c, log_t, log_e0, log_e1, &
-         & log_low, log_top, log_width, term, n
+         & log_low, log_top, log_width, log_k, term, n
       integer :: band
       logical :: other
       least = 0.0_wp
@@ -535,11 +536,12 @@ contains
          if (.not. chain%left_gap + chain%right_gap > 0.0_wp) return
          if (.not. log(chain%left_gap + chain%right_gap) > log_e0 - log_w + 1.0e-9_wp) return
       end if
+      ! phi(E) = k sqrt(E + B) (E + c B), k = 4 b sqrt(2/m)
+      log_k = log(4.0_wp) + log(damping) + 0.5_wp * (log(2.0_wp) - log_m)
       if (log_e0 > log_e1) then
          ! phi' <= 1 on [E1, E0]; (t + c)/(t + 1) = exp(log(t + c) - log(t + 1))
-         if (log(4.0_wp) + log(damping) + 0.5_wp * (log(2.0_wp) + log_sum(log_e0, log_b) &
-            & - log_m) + log(1.0_wp + 0.5_wp * exp(log_sum(log_t, log_c) &
-            & - log_sum(log_t, 0.0_wp))) > 0.0_wp) return
+         if (log_k + 0.5_wp * log_sum(log_e0, log_b) + log1p(0.5_wp * exp(log_sum(log_t, &
+            & log_c) - log_sum(log_t, 0.0_wp))) > 0.0_wp) return
       end if
       ! the band (0, min(E1, E0)], then (E1 2^(k-1), E1 2^k] up to E0
       log_top = min(log_e1, log_e0)
@@ -550,7 +552,7 @@ contains
          log_top = min(log_low + log(2.0_wp), log_e0)
          if (.not. log_top > log_low) exit
          ! the width: top - low
-         log_width = log_top + log(-expm1_(log_low - log_top))
+         log_width = log_top + log(-expm1(log_low - log_top))
          term = band_starts(log_width, log_top, log_e0 > log_top)
          ! (a sum beyond the doubles stays at the largest one)
          if (term > huge(1.0_wp) - least) then
@@ -567,26 +569,15 @@ contains
          real(wp), intent(in) :: log_width, log_top
          logical, intent(in) :: entered
          real(wp) :: log_phi
-         ! phi(T) = 4 b sqrt(2 (T + B)/m) (T + c B)
-         log_phi = log(4.0_wp) + log(damping) + 0.5_wp * (log(2.0_wp) &
-            & + log_sum(log_top, log_b) - log_m) + log_sum(log_top, log_c + log_b)
+         log_phi = log_k + 0.5_wp * log_sum(log_top, log_b) + log_sum(log_top, log_c + log_b)
          band_starts = exp(min(log_width - log_phi, log(huge(1.0_wp))))
          if (entered) band_starts = max(band_starts - 1.0_wp, 0.0_wp)
       end function band_starts
       !> log(exp(a) + exp(b)) without overflow
       pure real(wp) function log_sum(a, b)
          real(wp), intent(in) :: a, b
-         log_sum = max(a, b) + log(1.0_wp + exp(-abs(a - b)))
+         log_sum = max(a, b) + log1p(exp(-abs(a - b)))
       end function log_sum
-      !> exp(x) - 1 for x <= 0, accurate near 0
-      pure real(wp) function expm1_(x)
-         real(wp), intent(in) :: x
-         if (abs(x) < 1.0e-5_wp) then
-            expm1_ = x * (1.0_wp + 0.5_wp * x)
-         else
-            expm1_ = exp(x) - 1.0_wp
-         end if
-      end function expm1_
    end function least_contacts_to_rest
 
    !> Whether values not negative add up to at most a quarter of the range of doubles,
