@@ -178,6 +178,23 @@ typedef struct {
   double *forces;            /**< [count * (n + 1)], N */
 } hcimpact_chain_samples;
 
+/** A caller's watch over a long run (hcimpact_chain_simulate_monitored): the poll is
+ *  called from the run's loop every 64 passes (a pass is one integration step of a
+ *  cluster, one contact or switch of method, or one sample) with the time the run has
+ *  reached (s), the integration steps and the contacts and switches so far, and
+ *  `data`; a nonzero return stops the run there with HCIMPACT_ERR_NO_CONVERGENCE
+ *  (the message begins "stopped by the caller's monitor"). Use it to show progress,
+ *  to keep a deadline, or to stop a run from another thread through a flag that data
+ *  points to. poll runs in the calling thread, must not call back into this run, and
+ *  must be safe to call from every thread that runs a simulation with it. */
+typedef int (*hcimpact_chain_poll)(void *data, double time, int64_t steps, int64_t contacts);
+
+/** The monitor of hcimpact_chain_simulate_monitored: its poll and the caller's data. */
+typedef struct {
+  hcimpact_chain_poll poll; /**< the caller's function (required) */
+  void *data;               /**< handed back to every call of poll */
+} hcimpact_chain_monitor;
+
 /** A system of n bodies on a line, bodies numbered left to right (masses[0] the
  *  leftmost), velocities positive to the right: the closed forms of one impact
  *  wherever a contact is isolated, CVODE (band Jacobian, O(n) per step) for the
@@ -251,6 +268,19 @@ HCIMPACT_API int hcimpact_chain_simulate(int n, const double *masses, const doub
                                          hcimpact_chain_contact *contacts,
                                          hcimpact_chain_samples *samples, char *message,
                                          size_t message_size);
+
+/** hcimpact_chain_simulate with a monitor: the same arguments, statuses and outputs,
+ *  and `monitor` (NULL: none, the same run as hcimpact_chain_simulate) whose poll may
+ *  stop the run (HCIMPACT_ERR_NO_CONVERGENCE, the outputs as after any error). A
+ *  monitor whose poll is NULL gives HCIMPACT_ERR_NULL (nothing written but the
+ *  message). A monitor that never stops the run does not change its results. */
+HCIMPACT_API int hcimpact_chain_simulate_monitored(
+    int n, const double *masses, const double *velocities, const double *gaps,
+    const hcimpact_chain_law *laws, const hcimpact_chain_wall *left_wall,
+    const hcimpact_chain_wall *right_wall, double gravity, const hcimpact_chain_options *options,
+    hcimpact_chain_result *result, double *positions, double *final_velocities,
+    int contact_capacity, hcimpact_chain_contact *contacts, hcimpact_chain_samples *samples,
+    const hcimpact_chain_monitor *monitor, char *message, size_t message_size);
 
 #ifdef __cplusplus
 }

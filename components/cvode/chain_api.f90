@@ -1,6 +1,7 @@
 ! SPDX-License-Identifier: Apache-2.0
-!> C interface of a system of bodies on a line: `hcimpact_chain_simulate`
-!> (include/hcimpact_cvode.h), over `chain_simulate` of hcimpact_cvode_chain.
+!> C interface of a system of bodies on a line: `hcimpact_chain_simulate` and
+!> `hcimpact_chain_simulate_monitored` (include/hcimpact_cvode.h), over
+!> `chain_simulate` of hcimpact_cvode_chain.
 !>
 !> Memory: every array belongs to the caller, inputs and outputs; the library keeps
 !> nothing after the call and allocates nothing the caller must free (the work arrays
@@ -14,7 +15,7 @@
 !> The structures and their conversions are in hcimpact_cvode_chain_capi_types.
 module hcimpact_cvode_chain_api
    use, intrinsic :: iso_c_binding, only : c_double, c_int, c_int64_t, c_ptr, c_size_t, &
-      & c_associated, c_f_pointer
+      & c_associated, c_f_pointer, c_null_ptr
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size, &
       & status_message
@@ -23,12 +24,12 @@ module hcimpact_cvode_chain_api
    use hcimpact_cvode_api, only : copy_message
    use hcimpact_cvode_chain_capi_types, only : hcimpact_chain_law, hcimpact_chain_wall, &
       & hcimpact_chain_options, hcimpact_chain_result, hcimpact_chain_contact, &
-      & hcimpact_chain_samples, to_law, wall_law, to_options, from_result, from_contact, &
-      & failed_result
+      & hcimpact_chain_samples, hcimpact_chain_monitor, c_monitor, to_law, wall_law, &
+      & to_options, from_result, from_contact, failed_result
    implicit none
    private
 
-   public :: c_chain_simulate
+   public :: c_chain_simulate, c_chain_simulate_monitored
 
 contains
 
@@ -82,18 +83,49 @@ contains
 
       call simulate_from_c(n, masses, velocities, gaps, laws, left_wall, right_wall, &
          & gravity, options, result, positions, final_velocities, contact_capacity, &
-         & contacts, samples, stat, text)
+         & contacts, samples, c_null_ptr, stat, text)
       call copy_message(text, message, message_size)
    end function c_chain_simulate
+
+   !> int hcimpact_chain_simulate_monitored(... as hcimpact_chain_simulate ...,
+   !>     hcimpact_chain_samples *samples, const hcimpact_chain_monitor *monitor,
+   !>     char *message, size_t message_size);
+   !>
+   !> hcimpact_chain_simulate with the caller's monitor (NULL: none), whose poll is
+   !> called every monitor_interval passes of the run's loop; nonzero stops the run
+   !> with HCIMPACT_ERR_NO_CONVERGENCE. A monitor whose poll is NULL is
+   !> HCIMPACT_ERR_NULL.
+   function c_chain_simulate_monitored(n, masses, velocities, gaps, laws, left_wall, &
+         & right_wall, gravity, options, result, positions, final_velocities, &
+         & contact_capacity, contacts, samples, monitor, message, message_size) &
+         & result(stat) bind(C, name="hcimpact_chain_simulate_monitored")
+      integer(c_int), value :: n
+      type(c_ptr), value :: masses, velocities, gaps, laws, left_wall, right_wall
+      real(c_double), value :: gravity
+      type(c_ptr), value :: options, result, positions, final_velocities
+      integer(c_int), value :: contact_capacity
+      type(c_ptr), value :: contacts, samples
+      !> const hcimpact_chain_monitor *, or NULL: none
+      type(c_ptr), value :: monitor
+      type(c_ptr), value :: message
+      integer(c_size_t), value :: message_size
+      integer(c_int) :: stat
+      character(len=:), allocatable :: text
+
+      call simulate_from_c(n, masses, velocities, gaps, laws, left_wall, right_wall, &
+         & gravity, options, result, positions, final_velocities, contact_capacity, &
+         & contacts, samples, monitor, stat, text)
+      call copy_message(text, message, message_size)
+   end function c_chain_simulate_monitored
 
    !> The checks of the pointers and sizes, the conversions, the computation and the
    !> copies to the caller's arrays.
    subroutine simulate_from_c(n, masses, velocities, gaps, laws, left_wall, right_wall, &
          & gravity, options, result, positions, final_velocities, contact_capacity, &
-         & contacts, samples, stat, text)
+         & contacts, samples, monitor, stat, text)
       integer(c_int), intent(in) :: n, contact_capacity
       type(c_ptr), intent(in) :: masses, velocities, gaps, laws, left_wall, right_wall, &
-         & options, result, positions, final_velocities, contacts, samples
+         & options, result, positions, final_velocities, contacts, samples, monitor
       real(c_double), intent(in) :: gravity
       integer(c_int), intent(out) :: stat
       character(len=:), allocatable, intent(out) :: text
@@ -103,6 +135,8 @@ contains
       type(hcimpact_chain_options), pointer :: c_options
       type(hcimpact_chain_result), pointer :: c_result
       type(hcimpact_chain_samples), pointer :: c_samples
+      type(hcimpact_chain_monitor), pointer :: c_watch
+      type(c_monitor), target :: watch
       type(chain_type) :: chain
       type(chain_options) :: opts
       type(chain_result) :: fortran_result
@@ -151,6 +185,14 @@ contains
             text = "samples->times is NULL"
             return
          end if
+      end if
+      if (c_associated(monitor)) then
+         call c_f_pointer(monitor, c_watch)
+         if (.not. c_associated(c_watch%poll)) then
+            text = "monitor->poll is NULL"
+            return
+         end if
+         watch%c = c_watch
       end if
 
       ! the options first: their sample times are among the copies allocated below
@@ -203,6 +245,7 @@ contains
          deallocate(opts%sample_times)
       end if
 
+      if (c_associated(monitor)) opts%monitor => watch
       call chain_simulate(chain, fortran_result, status, opts)
       stat = int(status, c_int)
       text = trim(fortran_result%message)

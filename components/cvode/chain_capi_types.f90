@@ -1,9 +1,9 @@
 ! SPDX-License-Identifier: Apache-2.0
 !> The C structures of the chain interface (include/hcimpact_cvode.h:
 !> `hcimpact_chain_law`, `hcimpact_chain_wall`, `hcimpact_chain_options`,
-!> `hcimpact_chain_result`, `hcimpact_chain_contact`, `hcimpact_chain_samples`) and
-!> their one set of conversions to and from the Fortran types of
-!> hcimpact_chain_types.
+!> `hcimpact_chain_result`, `hcimpact_chain_contact`, `hcimpact_chain_samples`,
+!> `hcimpact_chain_monitor`) and their one set of conversions to and from the Fortran
+!> types of hcimpact_chain_types.
 !>
 !> The C entry point (hcimpact_cvode_chain_api) and the FORTRAN 77 routine HCCHN
 !> both build their options with `chain_options_from`, so that the rule "0 means the
@@ -11,16 +11,18 @@
 !> match the header field by field: test/cvode checks them from C, and the Python
 !> package checks its own view against the header (python/tests/test_layout.py).
 module hcimpact_cvode_chain_capi_types
-   use, intrinsic :: iso_c_binding, only : c_double, c_int, c_int64_t, c_ptr
+   use, intrinsic :: iso_c_binding, only : c_double, c_int, c_int64_t, c_ptr, c_funptr, &
+      & c_f_procpointer
    use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact_kinds, only : wp, nan
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
-      & contact_record, integrator_bdf
+      & contact_record, integrator_bdf, chain_monitor
    implicit none
    private
 
    public :: hcimpact_chain_law, hcimpact_chain_wall, hcimpact_chain_options, &
-      & hcimpact_chain_result, hcimpact_chain_contact, hcimpact_chain_samples
+      & hcimpact_chain_result, hcimpact_chain_contact, hcimpact_chain_samples, &
+      & hcimpact_chain_monitor, c_monitor
    public :: to_law, wall_law, to_options, chain_options_from, from_result, from_contact, &
       & failed_result
 
@@ -43,6 +45,32 @@ module hcimpact_cvode_chain_capi_types
       !> Gap between the wall and the end body in m, >= 0
       real(c_double) :: gap
    end type hcimpact_chain_wall
+
+   !> typedef struct { hcimpact_chain_poll poll; void *data; } hcimpact_chain_monitor;
+   type, bind(C) :: hcimpact_chain_monitor
+      !> The caller's function: nonzero stops the run
+      type(c_funptr) :: poll
+      !> Handed back to every call of poll
+      type(c_ptr) :: data
+   end type hcimpact_chain_monitor
+
+   !> The monitor of a C caller: its poll calls the caller's function
+   type, extends(chain_monitor) :: c_monitor
+      type(hcimpact_chain_monitor) :: c
+   contains
+      procedure :: poll => c_monitor_poll
+   end type c_monitor
+
+   abstract interface
+      !> typedef int (*hcimpact_chain_poll)(void *data, double time, int64_t steps,
+      !> int64_t contacts);
+      integer(c_int) function c_poll(data, time, steps, contacts) bind(C)
+         import :: c_int, c_double, c_int64_t, c_ptr
+         type(c_ptr), value :: data
+         real(c_double), value :: time
+         integer(c_int64_t), value :: steps, contacts
+      end function c_poll
+   end interface
 
    !> typedef struct { double t_end, rtol; int64_t max_steps, max_events;
    !> int method, integrator; } hcimpact_chain_options;
@@ -191,6 +219,18 @@ contains
          & int(c%integrator), int(c%max_steps, int64), int(c%max_events, int64))
       options%max_contacts = capacity
    end function to_options
+
+   !> The caller's function on the time and work of the run: true when it says stop
+   !> (nonzero).
+   logical function c_monitor_poll(self, time, steps, contacts) result(stop)
+      class(c_monitor), intent(inout) :: self
+      real(wp), intent(in) :: time
+      integer(int64), intent(in) :: steps, contacts
+      procedure(c_poll), pointer :: poll
+      call c_f_procpointer(self%c%poll, poll)
+      stop = poll(self%c%data, real(time, c_double), int(steps, c_int64_t), &
+         & int(contacts, c_int64_t)) /= 0_c_int
+   end function c_monitor_poll
 
    !> The C result of a Fortran one.
    pure function from_result(result) result(c)

@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
 """A system of bodies on a line from Python: ``hcimpact.chain``.
 
-A thin layer over ``hcimpact_chain_simulate`` (include/hcimpact_cvode.h, the CVODE
-component): the arrays go to the library as they are, the result comes back in NumPy
+A thin layer over ``hcimpact_chain_simulate_monitored`` (include/hcimpact_cvode.h, the
+CVODE component; its monitor, which shows progress and stops a run on Ctrl-C, is in
+_watch.py): the arrays go to the library as they are, the result comes back in NumPy
 arrays, the contacts as a structured array that has the C records' layout. The model,
 the two ways of computing and their accuracy are in doc/chains.md; the conventions are
 those of the C interface (doc/c-api.md):
@@ -24,7 +25,7 @@ import ctypes
 import math
 from ctypes import POINTER, byref, c_double
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 
@@ -33,6 +34,7 @@ from ._api import _MESSAGE_SIZE, _c_int, _component_function, _raise, _real, _sc
 from ._force import contact_force
 from ._types import (CHAIN_COUNTS, ChainContact, ChainLaw, ChainOptions, ChainOutcome,
                      ChainSamples, ChainWall, InputError)
+from ._watch import Watch
 
 __all__ = ["chain", "ChainResult", "has_chain", "BY_CLOSED_FORMS", "BY_INTEGRATION",
            "CONTACT_DTYPE"]
@@ -48,6 +50,7 @@ BY_INTEGRATION = 2
 CONTACT_DTYPE = np.dtype(ChainContact)
 
 _WHERE = "hcimpact_chain_simulate"
+_FUNCTION = "hcimpact_chain_simulate_monitored"
 _METHODS = {"auto": 0, "exact": 1, "integrated": 2}
 _INTEGRATORS = {"bdf": 1, "adams": 2}
 _METHOD_USED = {1: "exact", 2: "integrated", 3: "both"}
@@ -215,7 +218,8 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
           wall_right: Any = None, gravity: float = 0.0, t_end: float | None = None,
           rtol: float = 1.0e-10, method: str = "auto", *, integrator: str = "bdf",
           sample_times: Any = None, max_contacts: int | None = None,
-          max_steps: int | None = None, max_events: int | None = None) -> ChainResult:
+          max_steps: int | None = None, max_events: int | None = None,
+          progress: Callable[[float, int, int], Any] | None = None) -> ChainResult:
     """A system of bodies on a line: the closed forms of one impact wherever contacts
     are isolated, SUNDIALS CVODE where they overlap (doc/chains.md).
 
@@ -244,7 +248,17 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
     - ``max_contacts``: record at most this many contacts (all are counted; None: all;
       the room allocated is that of the contacts made, not the cap); ``max_steps``,
       ``max_events``: the library's limits of steps and contacts, integers in
-      1 .. 2**63 - 1 (None: 1e8 each; beyond them a :class:`ComputationError`).
+      1 .. 2**63 - 1 (None: 1e8 each; beyond them a :class:`ComputationError`);
+    - ``progress``: None, or a function ``progress(time, steps, contacts)`` that the
+      run calls every 64 steps or contacts with the time it has reached (s) and the
+      work done so far; a true answer stops the run (a :class:`ComputationError`,
+      "stopped by the caller's monitor"), an exception it raises stops the run and is
+      raised.
+
+    Ctrl-C (SIGINT) stops a run within 64 steps or contacts and raises
+    ``KeyboardInterrupt`` (through the SIGINT handler that was installed before the
+    call) once the library has returned; a run in a thread other than the main one is
+    stopped by ``progress`` alone.
 
     Returns a :class:`ChainResult`. Bad input raises :class:`InputError` with the
     library's account ("gap 2 is negative ..."); CVODE's failure a
@@ -252,7 +266,11 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
     :class:`OutOfMemoryError` (also a ``MemoryError``); a library without the CVODE
     component an :class:`UnavailableError`.
     """
-    function = _component_function(_WHERE, "cvode", "CVODE component (hcimpact_chain_simulate)")
+    function = _component_function(_FUNCTION, "cvode", "CVODE component (hcimpact_chain_simulate)")
+    if progress is not None and not callable(progress):
+        raise InputError(_ERR_DOMAIN, f"progress must be a function or None, not {progress!r}",
+                         _WHERE)
+    watch = Watch(progress)
     m = _vector(masses, "masses")
     n = m.size
     if n == 0:
@@ -318,8 +336,8 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
                           _scalar(gravity, "gravity", _WHERE), byref(options), byref(outcome),
                           x.ctypes.data_as(pd), vf.ctypes.data_as(pd), capacity,
                           records.ctypes.data_as(POINTER(ChainContact)),
-                          byref(samples) if samples is not None else None, message,
-                          _MESSAGE_SIZE)
+                          byref(samples) if samples is not None else None,
+                          byref(watch.monitor), message, _MESSAGE_SIZE)
         return status, outcome, x, vf, records, message.value.decode(errors="replace")
 
     # max_contacts caps the list and is not allocated: the first try has room for
@@ -327,9 +345,11 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
     # for them up to the cap (the run is deterministic)
     cap = _INT_MAX if recorded_limit is None else recorded_limit
     capacity = min(_FIRST_CAPACITY + 8 * n, cap)
-    status, outcome, x, vf, records, message = run(capacity)
-    if status == 0 and outcome.n_contacts > capacity and capacity < cap:
-        status, outcome, x, vf, records, message = run(int(min(outcome.n_contacts, cap)))
+    with watch:
+        status, outcome, x, vf, records, message = run(capacity)
+        if status == 0 and outcome.n_contacts > capacity and capacity < cap:
+            status, outcome, x, vf, records, message = run(int(min(outcome.n_contacts, cap)))
+    watch.raise_pending()
     if status != 0:
         _raise(status, _WHERE, detail=message)
     contacts = records[:outcome.contacts_recorded].copy()

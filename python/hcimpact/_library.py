@@ -153,8 +153,8 @@ def _declare(lib: ctypes.CDLL) -> None:
 
 
 def _declare_components(lib: ctypes.CDLL) -> None:
-    from ._types import (ChainContact, ChainLaw, ChainOptions, ChainOutcome, ChainSamples,
-                         ChainWall, Contact, Outcome)
+    from ._types import (ChainContact, ChainLaw, ChainMonitor, ChainOptions, ChainOutcome,
+                         ChainSamples, ChainWall, Contact, Outcome)
 
     d, i, pd = c_double, c_int, POINTER(c_double)
     signatures = {
@@ -163,6 +163,10 @@ def _declare_components(lib: ctypes.CDLL) -> None:
                                         POINTER(ChainOutcome), pd, pd, i,
                                         POINTER(ChainContact), POINTER(ChainSamples),
                                         c_char_p, c_size_t]),
+        "hcimpact_chain_simulate_monitored": (
+            i, [i, pd, pd, pd, POINTER(ChainLaw), POINTER(ChainWall), POINTER(ChainWall), d,
+                POINTER(ChainOptions), POINTER(ChainOutcome), pd, pd, i, POINTER(ChainContact),
+                POINTER(ChainSamples), POINTER(ChainMonitor), c_char_p, c_size_t]),
         "hcimpact_simulate": (i, [POINTER(Contact), d, POINTER(Outcome)]),
         "hcimpact_simulate_message": (i, [POINTER(Contact), d, POINTER(Outcome), c_char_p,
                                           c_size_t]),

@@ -99,6 +99,18 @@ class ChainContact(ctypes.Structure):
                 + [("pair", ctypes.c_int), ("method", ctypes.c_int)])
 
 
+#: The poll of a chain's monitor: int fn(void *data, double time, int64_t steps,
+#: int64_t contacts), nonzero to stop the run
+ChainPoll = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, ctypes.c_int64,
+                             ctypes.c_int64)
+
+
+class ChainMonitor(ctypes.Structure):
+    """``hcimpact_chain_monitor``: the poll of a run and the caller's data."""
+
+    _fields_ = [("poll", ChainPoll), ("data", ctypes.c_void_p)]
+
+
 class ChainSamples(ctypes.Structure):
     """``hcimpact_chain_samples``: the sample times and the caller's arrays."""
 

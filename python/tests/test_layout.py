@@ -4,10 +4,10 @@
 ctypes cannot read a header: the package mirrors ``hcimpact_contact``,
 ``hcimpact_outcome``, ``hcimpact_elastic_law``, the chain structures of
 hcimpact_cvode.h (``hcimpact_chain_law``, ``_wall``, ``_options``, ``_result``,
-``_contact``, ``_samples``; hcimpact/_types.py) and ``hcimpact_force``
+``_contact``, ``_samples``, ``_monitor``; hcimpact/_types.py) and ``hcimpact_force``
 (hcimpact/_force.py) by hand. These
 tests parse the header's declarations and compare them with the mirrors field by field
-(name, order, C type), and the callback type with the header's typedef, so that a field
+(name, order, C type), and the callback types with the header's typedefs, so that a field
 added, removed, reordered or retyped in the header fails here instead of silently
 shifting every value that Python reads. They also check that ``ImpactResult`` has the
 outcome's fields. The headers are taken from the source tree (or the directory of
@@ -59,7 +59,8 @@ def struct_fields(text: str, name: str) -> list[tuple[str, str]]:
 # the C types the structures use, and their ctypes counterparts
 C_TYPES = {"double": ctypes.c_double, "void*": ctypes.c_void_p, "int": ctypes.c_int,
            "int64_t": ctypes.c_int64, "const double*": ctypes.POINTER(ctypes.c_double),
-           "double*": ctypes.POINTER(ctypes.c_double), "hcimpact_law_fn": _types.LawFunction}
+           "double*": ctypes.POINTER(ctypes.c_double), "hcimpact_law_fn": _types.LawFunction,
+           "hcimpact_chain_poll": _types.ChainPoll}
 
 
 def python_fields(structure: type[ctypes.Structure]) -> list[tuple[str, object]]:
@@ -77,6 +78,7 @@ def python_fields(structure: type[ctypes.Structure]) -> list[tuple[str, object]]
     ("hcimpact_cvode.h", "hcimpact_chain_result", _types.ChainOutcome),
     ("hcimpact_cvode.h", "hcimpact_chain_contact", _types.ChainContact),
     ("hcimpact_cvode.h", "hcimpact_chain_samples", _types.ChainSamples),
+    ("hcimpact_cvode.h", "hcimpact_chain_monitor", _types.ChainMonitor),
 ])
 def test_structure_matches_header(header, c_name, structure):
     declared = struct_fields(header_text(header), c_name)
@@ -88,19 +90,23 @@ def test_structure_matches_header(header, c_name, structure):
         f"Python {structure._fields_}")
 
 
-def test_law_callback_matches_header():
-    text = header_text()
-    match = re.search(r"typedef\s+(\w+)\s*\(\s*\*\s*hcimpact_law_fn\s*\)\s*\(([^)]*)\)\s*;", text)
-    assert match, "typedef ... (*hcimpact_law_fn)(...); not found in the header"
+@pytest.mark.parametrize("header, c_name, callback", [
+    ("hcimpact.h", "hcimpact_law_fn", _types.LawFunction),
+    ("hcimpact_cvode.h", "hcimpact_chain_poll", _types.ChainPoll),
+])
+def test_callbacks_match_header(header, c_name, callback):
+    text = header_text(header)
+    match = re.search(r"typedef\s+(\w+)\s*\(\s*\*\s*" + c_name + r"\s*\)\s*\(([^)]*)\)\s*;",
+                      text)
+    assert match, f"typedef ... (*{c_name})(...); not found in the header"
     result = match.group(1)
     arguments = []
     for argument in match.group(2).split(","):
         named = re.fullmatch(r"\s*(.*[\s*])\s*[A-Za-z_]\w*\s*", argument)  # drop the name
         ctype = named.group(1) if named else argument
         arguments.append(re.sub(r"\s*\*\s*", "*", ctype.strip()))
-    law = _types.LawFunction
-    assert C_TYPES[result] is law._restype_
-    assert [C_TYPES[a] for a in arguments] == list(law._argtypes_)
+    assert C_TYPES[result] is callback._restype_
+    assert [C_TYPES[a] for a in arguments] == list(callback._argtypes_)
 
 
 def test_result_fields_follow_the_outcome():

@@ -79,6 +79,13 @@ int main(void)
                         hcimpact_chain_result *, double *, double *, int,
                         hcimpact_chain_contact *, hcimpact_chain_samples *, char *, size_t) =
       hcimpact_chain_simulate;
+  int (*chain_simulate_monitored)(int, const double *, const double *, const double *,
+                                  const hcimpact_chain_law *, const hcimpact_chain_wall *,
+                                  const hcimpact_chain_wall *, double,
+                                  const hcimpact_chain_options *, hcimpact_chain_result *,
+                                  double *, double *, int, hcimpact_chain_contact *,
+                                  hcimpact_chain_samples *, const hcimpact_chain_monitor *,
+                                  char *, size_t) = hcimpact_chain_simulate_monitored;
 #endif
   typedef void (*any_fn)(void);
   const any_fn others[] = {
@@ -90,7 +97,8 @@ int main(void)
 #ifdef HCIMPACT_CHECK_COMPONENTS
       ,
       (any_fn)simulate, (any_fn)simulate_message, (any_fn)fit_damping, (any_fn)fit_damping_linear, (any_fn)fit_static,
-      (any_fn)fit_elastic, (any_fn)fit_impact, (any_fn)chain_simulate
+      (any_fn)fit_elastic, (any_fn)fit_impact, (any_fn)chain_simulate,
+      (any_fn)chain_simulate_monitored
 #endif
   };
   hcimpact_contact contact = {0.1, 1.7135e10, 1.5, 0.1, 5.0};

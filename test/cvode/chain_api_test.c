@@ -3,7 +3,8 @@
  * as the header declares them (two bodies against the closed forms of one impact, field
  * by field, so that a field out of place fails), a cradle of touching balls (momentum,
  * energy, not the (0, 0, V) of instantaneous collisions), the samples' layout, options of
- * zeros, the caller's contact array and message buffer, and the statuses for bad input.
+ * zeros, the caller's contact array and message buffer, the statuses for bad input, and
+ * the monitor of hcimpact_chain_simulate_monitored.
  * The bit-for-bit comparison with the Fortran API is test/cvode/test_chain_api.f90.
  * Exit code 0 when every check passes. */
 #include <math.h>
@@ -480,6 +481,86 @@ static void scales_apart(void)
         strstr(message, "below the normal range") != NULL);
 }
 
+/* The monitor of hcimpact_chain_simulate_monitored: what its poll is given, a monitor
+   that never stops leaves the run as it is (bit for bit), one that stops at its third
+   call ends the run there with HCIMPACT_ERR_NO_CONVERGENCE and NaN outputs, and a monitor
+   without a poll is refused. The run: a row of eight touching steel beads struck at one
+   end, until they all separate (some hundred steps). */
+typedef struct {
+  int calls;
+  int stop_at;          /* stop at this call (0: never) */
+  int ordered;          /* time, steps and contacts never decreased */
+  double time;
+  int64_t steps, contacts;
+} watch;
+
+static int poll(void *data, double time, int64_t steps, int64_t contacts)
+{
+  watch *w = (watch *)data;
+  if (w->calls > 0 && (time < w->time || steps < w->steps || contacts < w->contacts))
+    w->ordered = 0;
+  w->time = time;
+  w->steps = steps;
+  w->contacts = contacts;
+  ++w->calls;
+  return w->stop_at > 0 && w->calls >= w->stop_at;
+}
+
+static void monitored(void)
+{
+  enum { n = 8 };
+  const double m[n] = {0.0163, 0.0163, 0.0163, 0.0163, 0.0163, 0.0163, 0.0163, 0.0163};
+  const double v[n] = {1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  const double gap[n - 1] = {0.0};
+  const hcimpact_chain_law steel = {STEEL_PAIR, 1.5, 0.0};
+  hcimpact_chain_law law[n - 1];
+  hcimpact_chain_result plain, r;
+  double x0[n], v0[n], x[n], vf[n];
+  char message[256];
+  watch w = {0, 0, 1, 0.0, 0, 0};
+  hcimpact_chain_monitor monitor = {poll, &w}, no_poll = {NULL, &w};
+  int stat, i;
+
+  for (i = 0; i < n - 1; ++i) law[i] = steel;
+
+  stat = hcimpact_chain_simulate(n, m, v, gap, law, NULL, NULL, 0.0, NULL, &plain, x0, v0, 0,
+                                 NULL, NULL, message, sizeof message);
+  check_status("struck row", stat, HCIMPACT_OK, message);
+  check("struck row: some steps", plain.steps > 64 * 4);
+  stat = hcimpact_chain_simulate_monitored(n, m, v, gap, law, NULL, NULL, 0.0, NULL, &r, x,
+                                           vf, 0, NULL, NULL, &monitor, message, sizeof message);
+  check_status("a monitor that never stops", stat, HCIMPACT_OK, message);
+  check("a monitor that never stops: the same run", memcmp(x, x0, sizeof x) == 0
+        && memcmp(vf, v0, sizeof vf) == 0 && r.time == plain.time && r.steps == plain.steps
+        && r.n_contacts == plain.n_contacts && r.energy_error == plain.energy_error);
+  check("a monitor that never stops: called every 64 passes at least",
+        w.calls >= (int)(plain.steps / 64) && w.calls > 0);
+  check("a monitor that never stops: time, steps and contacts in order", w.ordered);
+  check("a monitor that never stops: it saw the work", w.steps > 0 && w.time > 0.0
+        && w.time <= plain.time && w.steps <= plain.steps);
+  w.calls = 0;
+  w.stop_at = 3;
+  stat = hcimpact_chain_simulate_monitored(n, m, v, gap, law, NULL, NULL, 0.0, NULL, &r, x,
+                                           vf, 0, NULL, NULL, &monitor, message, sizeof message);
+  check_status("a monitor that stops", stat, HCIMPACT_ERR_NO_CONVERGENCE, message);
+  check("a monitor that stops: at its third call", w.calls == 3);
+  check("a monitor that stops: the message says so",
+        strncmp(message, "stopped by the caller's monitor", 31) == 0);
+  check("a monitor that stops: NaN outputs", isnan(r.time) && isnan(x[0]) && isnan(vf[1])
+        && r.steps == 0 && r.n_contacts == 0);
+  r.time = -7.0;
+  x[0] = -7.0;
+  stat = hcimpact_chain_simulate_monitored(n, m, v, gap, law, NULL, NULL, 0.0, NULL, &r, x,
+                                           vf, 0, NULL, NULL, &no_poll, message, sizeof message);
+  check_status("a monitor without a poll", stat, HCIMPACT_ERR_NULL, message);
+  check("a monitor without a poll: nothing written", r.time == -7.0 && x[0] == -7.0
+        && strstr(message, "poll") != NULL);
+  stat = hcimpact_chain_simulate_monitored(n, m, v, gap, law, NULL, NULL, 0.0, NULL, &r, x,
+                                           vf, 0, NULL, NULL, NULL, message, sizeof message);
+  check_status("no monitor", stat, HCIMPACT_OK, message);
+  check("no monitor: the same run", memcmp(x, x0, sizeof x) == 0 && r.steps == plain.steps);
+}
+
 int main(void)
 {
   two_bodies();
@@ -490,6 +571,7 @@ int main(void)
   fast_body_under_gravity();
   small_momenta();
   scales_apart();
+  monitored();
   if (failures) {
     printf("%d checks failed\n", failures);
     return 1;

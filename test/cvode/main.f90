@@ -16,6 +16,7 @@ program tester_cvode
    use test_cvode_chain, only : collect_chain
    use test_cvode_chain_api, only : collect_chain_api
    use test_cvode_chain_newton, only : collect_chain_newton
+   use test_cvode_chain_monitor, only : collect_chain_monitor
    implicit none
    type(testsuite_type), allocatable :: testsuites(:)
 
@@ -27,7 +28,8 @@ program tester_cvode
       new_testsuite("threads", collect_threads), &
       new_testsuite("chain", collect_chain), &
       new_testsuite("chain_api", collect_chain_api), &
-      new_testsuite("chain_newton", collect_chain_newton) &
+      new_testsuite("chain_newton", collect_chain_newton), &
+      new_testsuite("chain_monitor", collect_chain_monitor) &
       ]
 
    call run_tester(testsuites)

@@ -57,7 +57,7 @@ module hcimpact_chain_engine
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
       & kinetic_energy, energy_balance_error, momentum_balance_error, sum_in_range, &
       & not_below_zero, beyond_max_beta, say_beyond_max_beta, &
-      & gravity_impulse, momentum, product_in_range
+      & gravity_impulse, momentum, product_in_range, monitor_interval
    implicit none
    private
 
@@ -335,6 +335,16 @@ contains
             write(engine%message, '(a, i0, a, es11.3e3, a)') "no progress after ", &
                & max_passes, " passes of the event loop (at t = ", engine%time, " s)"
             exit main
+         end if
+         if (associated(options%monitor) .and. mod(passes, int(monitor_interval, int64)) &
+            & == 0_int64) then
+            if (options%monitor%poll(engine%time, engine%counters%steps, engine%events)) then
+               stat = hcimpact_err_no_convergence
+               write(engine%message, '(a, es11.3e3, a, i0, a, i0, a)') "stopped by the " &
+                  & // "caller's monitor at t = ", engine%time, " s, after ", &
+                  & engine%counters%steps, " steps and ", engine%events, " contacts and switches"
+               exit main
+            end if
          end if
          do k = 1, engine%n_regions
             if (engine%regions(k)%integrator%begun) cycle

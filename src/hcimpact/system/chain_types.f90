@@ -28,7 +28,7 @@ module hcimpact_chain_types
    private
 
    public :: contact_law, chain_type, chain_options, contact_record, chain_result
-   public :: chain_counters, chain_switch
+   public :: chain_counters, chain_switch, chain_monitor, monitor_interval
    public :: check_chain, check_rtol, sum_within_range, least_contacts_to_rest
    public :: kinetic_energy, energy_balance_error, momentum_balance_error
    public :: sum_in_range, product_in_range, gravity_impulse, momentum, not_below_zero
@@ -54,6 +54,33 @@ module hcimpact_chain_types
 
    !> Longest message of a result
    integer, parameter :: max_message = 256
+
+   !> Passes of the run's loop (each a step of a cluster, a contact or a switch, or a
+   !> sample) between two calls of a monitor's `poll`
+   integer, parameter :: monitor_interval = 64
+
+   !> A caller's watch over a long run (`chain_options%monitor`): its `poll` is called
+   !> from the run's loop every `monitor_interval` passes with the time reached and the
+   !> work done, and a run whose poll returns true stops there with
+   !> hcimpact_err_no_convergence (a bound the caller set, as max_steps is). Extend it
+   !> with the data the poll needs (a progress display, a deadline, a flag another
+   !> thread sets); the run keeps no other reference to it.
+   type, abstract :: chain_monitor
+   contains
+      procedure(monitor_poll), deferred :: poll
+   end type chain_monitor
+
+   abstract interface
+      !> True: stop the run now
+      logical function monitor_poll(self, time, steps, contacts)
+         import :: chain_monitor, wp, int64
+         class(chain_monitor), intent(inout) :: self
+         !> The time the run has reached, s
+         real(wp), intent(in) :: time
+         !> Integration steps and contacts (and switches of method) so far
+         integer(int64), intent(in) :: steps, contacts
+      end function monitor_poll
+   end interface
 
    !> The contact law of one pair: f = c x^n, damping b
    type :: contact_law
@@ -111,6 +138,8 @@ module hcimpact_chain_types
       !> Times (s) at which to sample positions, velocities and pair forces, in
       !> increasing order (optional)
       real(wp), allocatable :: sample_times(:)
+      !> The caller's watch over the run, or none (chain_monitor)
+      class(chain_monitor), pointer :: monitor => null()
    end type chain_options
 
    !> One contact between a pair, from its start to its end
