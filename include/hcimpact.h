@@ -15,6 +15,10 @@
  *    A NULL pointer for a required argument gives HCIMPACT_ERR_NULL, a size out of
  *    range HCIMPACT_ERR_SIZE (below 1 unless a function says otherwise); then
  *    nothing is written. On any other error every output is NaN.
+ *  - A function that allocates memory sized by its arguments (the time law, the fits,
+ *    a system of bodies, a sweep) returns HCIMPACT_ERR_OUT_OF_MEMORY when the memory
+ *    available cannot hold it: valid arguments, too large for this machine (never an
+ *    abort). Its outputs are then NaN unless the function says otherwise.
  *  - Array ("_array") forms take the number of elements n and plain arrays of n
  *    elements; an output array may be the input array itself (computed in place),
  *    other overlaps are not allowed. In a library built with OpenMP, large arrays
@@ -73,6 +77,8 @@
 #define HCIMPACT_ERR_ELASTIC_LAW 13     /**< an elastic law returned an invalid value */
 #define HCIMPACT_ERR_SIZE 14            /**< an array size is wrong (below 1, ...) */
 #define HCIMPACT_ERR_UNDERDETERMINED 15 /**< the data cannot determine a fit's parameters */
+#define HCIMPACT_ERR_OUT_OF_MEMORY 16   /**< the memory available cannot hold what valid
+                                             arguments need (an allocation failed) */
 
 /** Branches of hcimpact_velocity_at_depth: compression (x' >= 0) and restitution
  *  (x' <= 0). */
@@ -359,17 +365,17 @@ HCIMPACT_API int hcimpact_velocity_at_depth_array(const hcimpact_contact *contac
  *  to double accuracy (large exponents with heavy damping, n = 80 and b V = 6600:
  *  the restitution creeps within 1e-16 of its end, in the trajectory's parameter).
  *  Returns HCIMPACT_OK; the statuses of hcimpact_impact; HCIMPACT_ERR_NOT_FINITE (a
- *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE (also
- *  when the library cannot allocate its copy of the n values: out of memory, outputs
- *  NaN). */
+ *  t is NaN or infinite): all outputs NaN; HCIMPACT_ERR_NULL, HCIMPACT_ERR_SIZE;
+ *  HCIMPACT_ERR_OUT_OF_MEMORY when the library cannot allocate its copies of the n
+ *  values (outputs NaN). */
 HCIMPACT_API int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
                                    double *x, double *v, double *f);
 
 /** The time law on n >= 2 equally spaced times t[i] = contact_time i/(n - 1), written
  *  to t, with x, v and f as in hcimpact_time_law (x[0] = x[n-1] = 0 and
  *  f[0] = f[n-1] = 0 exactly, t[n-1] the contact time of hcimpact_impact).
- *  Returns as hcimpact_time_law; n < 2, or n samples beyond the memory available,
- *  give HCIMPACT_ERR_SIZE (every output NaN). */
+ *  Returns as hcimpact_time_law; n < 2 gives HCIMPACT_ERR_SIZE (nothing written), n
+ *  samples beyond the memory available HCIMPACT_ERR_OUT_OF_MEMORY (every output NaN). */
 HCIMPACT_API int hcimpact_time_law_samples(const hcimpact_contact *contact, int n, double *t,
                                            double *x, double *v, double *f);
 

@@ -231,10 +231,12 @@ typedef struct {
  *                           but the message),
  *  HCIMPACT_ERR_SIZE (14)   n < 1, contact_capacity < 0, samples->count < 0
  *                           (nothing written but the message); sample times that
- *                           decrease; out of memory: the system is too large for the
- *                           memory available (the message begins "out of memory";
- *                           the library's copies, the engine's arrays, a cluster's
- *                           arrays or CVODE's; the outputs as after the errors below),
+ *                           decrease,
+ *  HCIMPACT_ERR_OUT_OF_MEMORY (16) the system is too large for the memory available
+ *                           (the message, "out of memory (...): ...", names what did
+ *                           not fit: the library's copies, the engine's arrays, a
+ *                           cluster's arrays or CVODE's; the outputs as after the
+ *                           errors below),
  *  HCIMPACT_ERR_NOT_FINITE (1), _MASS (2), _STIFFNESS (3), _EXPONENT (4),
  *  _DAMPING (6)             a NaN or infinite value, a mass or a law out of range,
  *  HCIMPACT_ERR_DOMAIN (8)  a negative gap (bodies may touch, not overlap), gaps

@@ -38,12 +38,13 @@
  *   HCIMPACT_ERR_NULL (10)          a required pointer is NULL,
  *   HCIMPACT_ERR_SIZE (14)          npoints < 0, npoints above INT_MAX/2
  *                                   (fit_elastic) or INT_MAX/3 (fit_impact),
- *                                   or too many points for the memory the
- *                                   fit needs (out of memory),
  *   HCIMPACT_ERR_UNDERDETERMINED (15) the data cannot determine the
  *                                   parameters: fewer observations than
  *                                   parameters + 1, or too little variation
- *                                   (e.g. contact times at a single speed).
+ *                                   (e.g. contact times at a single speed),
+ *   HCIMPACT_ERR_OUT_OF_MEMORY (16) too many points for the memory the fit
+ *                                   needs (its copies and work arrays; the
+ *                                   outputs NaN).
  */
 #ifndef HCIMPACT_LAPACK_H
 #define HCIMPACT_LAPACK_H

@@ -50,7 +50,8 @@ extern "C" {
  *                          is NaN and its status in statuses[i]; the others are
  *                          computed regardless (statuses as for hcimpact_impact),
  *  HCIMPACT_ERR_NULL (10)  contacts or outcomes NULL with n > 0 (nothing written),
- *  HCIMPACT_ERR_SIZE (14)  n above INT_MAX, or no memory for the working copies
+ *  HCIMPACT_ERR_SIZE (14)  n above INT_MAX (nothing written),
+ *  HCIMPACT_ERR_OUT_OF_MEMORY (16) no memory on rank 0 for the working copies
  *                          (nothing written).
  *  A rank that dies ends the job through MPI's error handler. */
 HCIMPACT_API int hcimpact_mpi_impact_sweep(MPI_Fint comm, size_t n,

@@ -16,7 +16,7 @@ module hcimpact
       & hcimpact_err_velocity, hcimpact_err_damping, hcimpact_err_restitution, &
       & hcimpact_err_domain, hcimpact_err_no_convergence, hcimpact_err_null, &
       & hcimpact_err_solver, hcimpact_err_unavailable, hcimpact_err_elastic_law, &
-      & hcimpact_err_size, hcimpact_err_underdetermined
+      & hcimpact_err_size, hcimpact_err_underdetermined, hcimpact_err_out_of_memory
    use hcimpact_quadrature, only : integrand_type, quadrature_result, tanh_sinh, &
       & quadrature_status_message
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &

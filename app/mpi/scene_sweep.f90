@@ -24,7 +24,7 @@ module hcimpact_scene_sweep
    use hcimpact_impact_model, only : contact_type, outcome_type
    use hcimpact_mpi_sweep, only : mpi_impact_sweep, sweep_listener, mpi_sweep_max_chunk
    use hcimpact_mpi_hand_out, only : mpi_hand_out, sweep_worker, items_listener
-   use hcimpact_status, only : hcimpact_ok
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_out_of_memory, status_message
    use hcimpact_scene_system_items, only : compute_system_item
    use hcimpact_scene_console, only : progress_begin, progress_step, progress_end
    use hcimpact_scene_text, only : str
@@ -201,7 +201,8 @@ contains
       !> How many impacts came from the checkpoint
       integer, intent(out) :: resumed
       !> Why the checkpoint could not be written (the impacts are all computed: the
-      !> other ranks must not be left with chunks nobody takes)
+      !> other ranks must not be left with chunks nobody takes), or that rank 0 had
+      !> no memory for the sweep's copies (none is computed)
       character(len=:), allocatable, intent(out) :: error
       type(sweep_recorder) :: recorder
       logical, allocatable :: held(:)
@@ -221,6 +222,9 @@ contains
       call checkpoint_finish(recorder%ck, recorder%error)
       call progress_end()
       if (allocated(recorder%error)) call move_alloc(recorder%error, error)
+      ! (rank 0 could not copy the impacts: none was computed)
+      if (status == hcimpact_err_out_of_memory .and. .not. allocated(error)) &
+         & error = status_message(status)
    end subroutine sweep_impacts
 
    !> Rank 0: a chunk is done: its outcomes to the checkpoint (flushed), the progress.

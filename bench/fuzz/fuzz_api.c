@@ -130,7 +130,7 @@ static void contract(int ok, const char *what)
 
 static void check_status(int status)
 {
-  contract(status >= HCIMPACT_OK && status <= HCIMPACT_ERR_UNDERDETERMINED, "unknown status");
+  contract(status >= HCIMPACT_OK && status <= HCIMPACT_ERR_OUT_OF_MEMORY, "unknown status");
   contract(hcimpact_status_message(status) != NULL, "status message NULL");
 }
 

@@ -31,7 +31,7 @@ module hcimpact_cvode_chain
    use hcimpact_cvode_halting, only : halting_suspend, halting_resume, callback_enter, &
       & callback_leave
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_solver, hcimpact_err_domain, &
-      & hcimpact_err_no_convergence, hcimpact_err_size
+      & hcimpact_err_no_convergence, hcimpact_err_out_of_memory
    use hcimpact_force_element, only : contact_force_type
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
       & contact_record, by_integration, integrator_adams, method_integrated, not_below_zero, &
@@ -144,7 +144,8 @@ contains
    !> hcimpact_err_domain for a cluster with method exact; hcimpact_err_solver
    !> when CVODE fails (the message names its flag); hcimpact_err_no_convergence for
    !> more than options%max_events contacts (give t_end) or max_steps steps;
-   !> hcimpact_err_size out of memory ("out of memory (what): ...").
+   !> hcimpact_err_out_of_memory when the memory available cannot hold the system
+   !> ("out of memory (what): ...").
    subroutine chain_simulate(chain, result, stat, options)
       !> The system
       type(chain_type), intent(in) :: chain
@@ -448,7 +449,7 @@ contains
       if (ierr /= 0) then
          ! (a context or a constructor that fails, or CV_MEM_FAIL: CVODE's memory)
          if (ierr == -1 .or. ierr == CV_MEM_FAIL .or. where == "SUNContext_Create") then
-            stat = hcimpact_err_size
+            stat = hcimpact_err_out_of_memory
             call no_memory(engine, "CVODE's vectors and matrix in " // trim(where))
          else
             stat = hcimpact_err_solver
@@ -474,7 +475,7 @@ contains
          call release_all(self)
          call halting_resume(halting)
          call no_memory(engine, what)
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
       end subroutine out_of_memory
    end subroutine region_begin
 
@@ -624,7 +625,7 @@ contains
       ! (an allocation of the work arrays failed, here or in what was called)
       if (self%out_of_memory) then
          call no_memory(engine, "the work arrays of a cluster")
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
          what = advance_failed
       end if
       call halting_resume(halting)
@@ -823,7 +824,7 @@ contains
       allocate(dy(size(self%y)), stat=alloc_stat)
       if (alloc_stat /= 0) then
          call no_memory(engine, "the work arrays of a cluster")
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
          return
       end if
       call region_rhs(self%region, self%time, self%y, dy, ok)

@@ -18,8 +18,8 @@ module hcimpact_cvode_chain_api
       & c_associated, c_f_pointer, c_null_ptr
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size, &
-      & status_message
-   use hcimpact_chain_types, only : chain_type, chain_options, chain_result
+      & hcimpact_err_out_of_memory, status_message
+   use hcimpact_chain_types, only : chain_type, chain_options, chain_result, no_memory_tail
    use hcimpact_cvode_chain, only : chain_simulate
    use hcimpact_cvode_api, only : copy_message
    use hcimpact_cvode_chain_capi_types, only : hcimpact_chain_law, hcimpact_chain_wall, &
@@ -44,8 +44,8 @@ contains
    !> Statuses: HCIMPACT_ERR_NULL (a required pointer is NULL) and HCIMPACT_ERR_SIZE
    !> (n < 1, contact_capacity < 0, samples->count < 0): nothing is written but the
    !> message. Every other error: those of chain_simulate, with NaN in the result's
-   !> reals, 0 in its counts and NaN in the output arrays; so is HCIMPACT_ERR_SIZE out
-   !> of memory, also for the copies of the input made here.
+   !> reals, 0 in its counts and NaN in the output arrays; so is
+   !> HCIMPACT_ERR_OUT_OF_MEMORY, also for the copies of the input made here.
    function c_chain_simulate(n, masses, velocities, gaps, laws, left_wall, right_wall, &
          & gravity, options, result, positions, final_velocities, contact_capacity, &
          & contacts, samples, message, message_size) result(stat) &
@@ -202,14 +202,13 @@ contains
       else
          opts%max_contacts = int(contact_capacity)
       end if
-      ! the copies of the input, checked (out of memory: HCIMPACT_ERR_SIZE, every output
-      ! NaN as for the engine's own failure)
+      ! the copies of the input, checked (out of memory: HCIMPACT_ERR_OUT_OF_MEMORY,
+      ! every output NaN as for the engine's own failure)
       allocate(chain%mass(n), chain%velocity(n), chain%gap(n - 1), chain%law(n - 1), &
          & opts%sample_times(count), stat=alloc_stat)
       if (alloc_stat /= 0) then
-         status = hcimpact_err_size
-         text = "out of memory (the copies of the input): the system is too large for the " &
-            & // "memory available"
+         status = hcimpact_err_out_of_memory
+         text = "out of memory (the copies of the input" // no_memory_tail
          call fail_outputs()
          return
       end if

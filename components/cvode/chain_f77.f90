@@ -15,16 +15,17 @@
 !> order of the arguments; the real outputs are NaN, the counts 0); > 0 the library's
 !> status code (HCMSG gives its text; MSG says more): 9 more than MAXEVT contacts or
 !> MAXSTP steps, 11 CVODE failed, 8 a cluster with METHOD = 1 (exact only) or
-!> arguments each valid whose combination is outside the domain (MSG names it).
+!> arguments each valid whose combination is outside the domain (MSG names it), 16
+!> out of memory (the system is too large for the memory available).
 subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt, maxc, &
       & ldc, cont, icon, msg, info)
    use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact_kinds, only : wp, nan, finite_value
-   use hcimpact_status, only : hcimpact_ok, status_message
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_out_of_memory, status_message
    use hcimpact_contact, only : check_parameters
    use hcimpact_f77_support, only : law_info
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
-      & check_rtol, sum_within_range, max_message
+      & check_rtol, sum_within_range, max_message, no_memory_tail
    use hcimpact_cvode_chain, only : chain_simulate
    use hcimpact_cvode_chain_capi_types, only : chain_options_from
    implicit none
@@ -86,7 +87,7 @@ subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt,
    type(chain_type) :: chain
    type(chain_options) :: options
    type(chain_result) :: result
-   integer :: i, k, stat
+   integer :: i, k, stat, alloc_stat
    integer(int64) :: counts(11)
 
    res = nan
@@ -100,10 +101,20 @@ subroutine hcchn(n, xm, v, gap, plaw, wall, grav, opts, iopts, x, vf, res, icnt,
       return
    end if
 
-   chain%mass = xm(1:n)
-   chain%velocity = v(1:n)
-   chain%gap = gap(1:n - 1)
-   allocate(chain%law(n - 1))
+   ! the copies, checked (out of memory: INFO = hcimpact_err_out_of_memory, the outputs
+   ! as after the library's own failure)
+   allocate(chain%mass(n), chain%velocity(n), chain%gap(n - 1), chain%law(n - 1), &
+      & stat=alloc_stat)
+   if (alloc_stat /= 0) then
+      msg = "out of memory (the copies of the input" // no_memory_tail
+      x(1:n) = nan
+      vf(1:n) = nan
+      info = hcimpact_err_out_of_memory
+      return
+   end if
+   chain%mass(:) = xm(1:n)
+   chain%velocity(:) = v(1:n)
+   chain%gap(:) = gap(1:n - 1)
    do i = 1, n - 1
       chain%law(i) = contact_law(stiffness=plaw(1, i), exponent=plaw(2, i), &
          & damping=plaw(3, i))

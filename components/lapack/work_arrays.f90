@@ -10,16 +10,17 @@
 !> the series) are not checked.
 module hcimpact_work_arrays
    use hcimpact_kinds, only : wp
-   use hcimpact_status, only : hcimpact_ok, hcimpact_err_size
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_out_of_memory
    implicit none
    private
 
    public :: out_of_memory, allocate_copy
 
-   !> Status of a fit whose work arrays cannot be allocated: that of a wrong array
-   !> size (HCIMPACT_ERR_SIZE, 14), since it is the size of the data that the memory
-   !> cannot hold. (The C interface then writes nothing, as for any size error.)
-   integer, parameter :: out_of_memory = hcimpact_err_size
+   !> Status of a fit whose work arrays cannot be allocated: the library's out of
+   !> memory (HCIMPACT_ERR_OUT_OF_MEMORY, 16; the data are valid, the memory too small
+   !> for them). The C interface then sets its outputs to NaN, as for any error but a
+   !> NULL pointer or a wrong size.
+   integer, parameter :: out_of_memory = hcimpact_err_out_of_memory
 
 contains
 

@@ -16,7 +16,7 @@
 module hcimpact_mpi_sweep
    use mpi_f08, only : MPI_Comm
    use hcimpact_kinds, only : wp
-   use hcimpact_status, only : hcimpact_ok, hcimpact_err_size
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_size, hcimpact_err_out_of_memory
    use hcimpact_impact_model, only : contact_type, outcome_type, impact
    use hcimpact_impact_values, only : contact_values_size, outcome_values_size, &
       & contact_values, values_contact, outcome_values, values_outcome
@@ -80,7 +80,8 @@ contains
    !> (arrays of size 0 will do). `status` on every rank: hcimpact_ok when every item
    !> succeeded, otherwise the status of the first (lowest index) that failed;
    !> hcimpact_err_size when, on rank 0, `out`, `stats` or `known` is not of the size
-   !> of `contacts` (nothing computed); the same value on every rank.
+   !> of `contacts`, hcimpact_err_out_of_memory when rank 0 cannot allocate its copies
+   !> of them (nothing computed); the same value on every rank.
    subroutine mpi_impact_sweep(comm, contacts, out, stats, status, known, listener)
       !> The communicator (its rank 0 gives the contacts)
       type(MPI_Comm), intent(in) :: comm
@@ -98,7 +99,7 @@ contains
       type(impact_worker) :: worker
       type(unpacking_listener) :: unpacking
       real(wp), allocatable :: inputs(:, :), outputs(:, :)
-      integer :: i, n
+      integer :: i, n, alloc_stat
 
       if (mpi_sweep_rank(comm) /= 0) then
          allocate(inputs(contact_values_size, 0), outputs(outcome_values_size, 0))
@@ -111,7 +112,13 @@ contains
          status = hcimpact_err_size
          return
       end if
-      allocate(inputs(contact_values_size, n), outputs(outcome_values_size, n))
+      allocate(inputs(contact_values_size, n), outputs(outcome_values_size, n), &
+         & stat=alloc_stat)
+      if (alloc_stat /= 0) then
+         call mpi_sweep_refuse(comm, hcimpact_err_out_of_memory)
+         status = hcimpact_err_out_of_memory
+         return
+      end if
       do i = 1, n
          inputs(:, i) = contact_values(contacts(i))
          outputs(:, i) = outcome_values(out(i), stats(i))

@@ -4,7 +4,8 @@
 module hcimpact_mpi_sweep_capi
    use, intrinsic :: iso_c_binding, only : c_int, c_size_t, c_ptr, c_associated, c_f_pointer
    use mpi_f08, only : MPI_Comm
-   use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size, &
+      & hcimpact_err_out_of_memory
    use hcimpact_impact_model, only : contact_type, outcome_type
    use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome, to_contact, from_outcome
    use hcimpact_mpi_sweep, only : mpi_impact_sweep, mpi_sweep_refuse, mpi_sweep_rank
@@ -21,8 +22,9 @@ contains
    !> Collective over comm (a Fortran handle: MPI_Comm_c2f); rank 0's n, contacts,
    !> outcomes and statuses are read, the other ranks' are not. The result, the same on
    !> every rank: HCIMPACT_OK, the status of the first impact that failed, or
-   !> HCIMPACT_ERR_NULL (contacts or outcomes NULL while n > 0) or HCIMPACT_ERR_SIZE
-   !> (n beyond a C int, or the copies cannot be allocated), which write nothing.
+   !> HCIMPACT_ERR_NULL (contacts or outcomes NULL while n > 0), HCIMPACT_ERR_SIZE
+   !> (n beyond a C int) or HCIMPACT_ERR_OUT_OF_MEMORY (the copies cannot be
+   !> allocated), which write nothing.
    function c_mpi_impact_sweep(comm, n, contacts, outcomes, statuses) result(stat) &
          & bind(C, name="hcimpact_mpi_impact_sweep")
       !> MPI_Fint handle of the communicator
@@ -63,7 +65,7 @@ contains
       if (status == hcimpact_ok) then
          m = int(n)
          allocate(in(m), out(m), stats(m), stat=failed)
-         if (failed /= 0) status = hcimpact_err_size
+         if (failed /= 0) status = hcimpact_err_out_of_memory
       end if
       if (status /= hcimpact_ok) then
          ! the other ranks are in the collective call: they return the same status
@@ -76,7 +78,8 @@ contains
          in = to_contact(c_in)
       end if
       call mpi_impact_sweep(f_comm, in, out, stats, status)
-      if (m > 0) then
+      ! (out of memory for the sweep's own copies: nothing computed, nothing written)
+      if (m > 0 .and. status /= hcimpact_err_out_of_memory) then
          call c_f_pointer(outcomes, c_out, [m])
          c_out = from_outcome(out)
          if (c_associated(statuses)) then

@@ -70,10 +70,10 @@ def _lib() -> ctypes.CDLL:
 def _raise(status: int, function: str, index: Any = None, detail: str = "") -> None:
     """Raise the exception of a status; ``detail`` is the library's account of the
     failure when it gives one (the ODE solver's message), else the status text."""
-    kind = error_class(status, detail)
+    kind = error_class(status)
     message = _lib().hcimpact_status_message(status).decode()
-    if kind is OutOfMemoryError:
-        message = detail    # (status 14's text, "the wrong size", would mislead)
+    if kind is OutOfMemoryError and detail:
+        message = detail    # (it says what did not fit; the status text, what it means)
     elif detail and detail != message:
         message = f"{message}: {detail}"
     raise kind(status, message, function, index)
@@ -520,29 +520,44 @@ def time_law(t: Any, *, mass: Any, stiffness: Any, exponent: Any = 1.5, damping:
     they broadcast together (NumPy's rules), and element i is the time law of contact i
     at time t[i] (one C call per distinct contact). Returns (x, v, f) of the broadcast
     shape (floats when everything is scalar). Raises InputError for a bad contact (with
-    the element's ``index``) or shapes that do not broadcast.
+    the element's ``index``) or shapes that do not broadcast, OutOfMemoryError when the
+    library cannot hold its copies of the times.
     """
     lib = _lib()
     where = "hcimpact_time_law"
     args = (mass, stiffness, exponent, damping, velocity)
-    shape, contacts, (times,) = _contact_rows(args, [(t, "t")], where)
+    if all(_is_scalar(a) for a in args):
+        # one contact, all the times in one call on the arrays themselves: no rows of
+        # contacts to sort (five copies of t and more), so that a t too large for the
+        # memory fails in the library, an OutOfMemoryError, rather than in NumPy
+        t_real = _real(t, "t", where)
+        shape, times = t_real.shape, np.ascontiguousarray(t_real).reshape(-1)
+        groups = [(_contact(*args, function=where), None)]
+    else:
+        shape, contacts, (times,) = _contact_rows(args, [(t, "t")], where)
+        # the distinct contacts, each with all its times in one call
+        unique, inverse = np.unique(contacts, axis=0, return_inverse=True)
+        inverse = np.asarray(inverse).reshape(-1)
+        groups = [(Contact(*[float(c) for c in unique[row]]), np.flatnonzero(inverse == row))
+                  for row in range(unique.shape[0])]
     x, v, f = (np.empty(times.size) for _ in range(3))
-    # the distinct contacts, each with all its times in one call
-    unique, inverse = np.unique(contacts, axis=0, return_inverse=True)
-    inverse = np.asarray(inverse).reshape(-1)
-    for row in range(unique.shape[0]):
-        members = np.flatnonzero(inverse == row)
-        ts = np.ascontiguousarray(times[members])
-        xs, vs, fs = np.empty_like(ts), np.empty_like(ts), np.empty_like(ts)
-        contact = Contact(*[float(c) for c in unique[row]])
+    for contact, members in groups:
+        if members is None:
+            ts, xs, vs, fs = times, x, v, f
+        else:
+            ts = np.ascontiguousarray(times[members])
+            xs, vs, fs = np.empty_like(ts), np.empty_like(ts), np.empty_like(ts)
+        if ts.size == 0:
+            continue
         n = _c_int(ts.size, "the number of times", where)
         status = lib.hcimpact_time_law(byref(contact), n, _ptr(ts), _ptr(xs), _ptr(vs),
                                        _ptr(fs))
         if status != 0:
-            first = int(members[0])
+            first = 0 if members is None else int(members[0])
             index = np.unravel_index(first, shape) if len(shape) > 1 else first
             _raise(status, where, index if shape else None)
-        x[members], v[members], f[members] = xs, vs, fs
+        if members is not None:
+            x[members], v[members], f[members] = xs, vs, fs
     if not shape:
         return float(x[0]), float(v[0]), float(f[0])
     return x.reshape(shape), v.reshape(shape), f.reshape(shape)
@@ -553,6 +568,7 @@ def time_law_samples(n: int, *, mass: float, stiffness: float, exponent: float =
     """The time law on n >= 2 equally spaced times from 0 to the contact time.
 
     One contact (scalars). Returns (t, x, v, f), arrays of n elements (s, m, m/s, N).
+    Raises OutOfMemoryError when the library cannot hold the n samples.
     """
     lib = _lib()
     where = "hcimpact_time_law_samples"

@@ -178,7 +178,7 @@ STATUS_NAMES = {
     6: "HCIMPACT_ERR_DAMPING", 7: "HCIMPACT_ERR_RESTITUTION", 8: "HCIMPACT_ERR_DOMAIN",
     9: "HCIMPACT_ERR_NO_CONVERGENCE", 10: "HCIMPACT_ERR_NULL", 11: "HCIMPACT_ERR_SOLVER",
     12: "HCIMPACT_ERR_UNAVAILABLE", 13: "HCIMPACT_ERR_ELASTIC_LAW", 14: "HCIMPACT_ERR_SIZE",
-    15: "HCIMPACT_ERR_UNDERDETERMINED",
+    15: "HCIMPACT_ERR_UNDERDETERMINED", 16: "HCIMPACT_ERR_OUT_OF_MEMORY",
 }
 
 
@@ -202,7 +202,7 @@ class HcimpactError(Exception):
 
 class InputError(HcimpactError, ValueError):
     """An argument is invalid: NaN, infinite, or outside its domain (statuses 1-8, 10,
-    13, 14 but out of memory)."""
+    13, 14)."""
 
 
 class ComputationError(HcimpactError, ArithmeticError):
@@ -211,27 +211,21 @@ class ComputationError(HcimpactError, ArithmeticError):
 
 
 class OutOfMemoryError(HcimpactError, MemoryError):
-    """The memory available is too small for the computation (status 14 with a message
-    that begins "out of memory": a system of bodies too large for it). Also a
-    ``MemoryError``."""
+    """The memory available is too small for the computation (status 16,
+    ``HCIMPACT_ERR_OUT_OF_MEMORY``: a system of bodies, a time law, a fit too large for
+    it; the arguments are valid). Also a ``MemoryError``."""
 
 
 class UnavailableError(HcimpactError, RuntimeError):
     """The component (CVODE, LAPACK) is not part of this build or installation (12)."""
 
 
-#: How the library's message of a status 14 begins when the memory ran out
-#: (hcimpact_chain_simulate, include/hcimpact_cvode.h)
-OUT_OF_MEMORY = "out of memory"
-
-
-def error_class(status: int, detail: str = "") -> type[HcimpactError]:
-    """The exception type of a status code; ``detail`` is the library's own message
-    of the failure, when it gives one (what tells out of memory from a wrong size)."""
+def error_class(status: int) -> type[HcimpactError]:
+    """The exception type of a status code (the one place that decides)."""
     if status in (9, 11, 15):
         return ComputationError
     if status == 12:
         return UnavailableError
-    if status == 14 and detail.startswith(OUT_OF_MEMORY):
+    if status == 16:
         return OutOfMemoryError
     return InputError

@@ -20,7 +20,7 @@ module hcimpact_status
       & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
       & hcimpact_err_no_convergence, hcimpact_err_null, hcimpact_err_solver, &
       & hcimpact_err_unavailable, hcimpact_err_elastic_law, hcimpact_err_size, &
-      & hcimpact_err_underdetermined
+      & hcimpact_err_underdetermined, hcimpact_err_out_of_memory
 
    !> Success
    integer, parameter :: hcimpact_ok = 0
@@ -55,9 +55,12 @@ module hcimpact_status
    !> The data cannot determine the parameters of a fit (too few points, or points
    !> that do not vary enough, e.g. all at one speed)
    integer, parameter :: hcimpact_err_underdetermined = 15
+   !> The memory available cannot hold what the input needs (an allocation failed):
+   !> the arguments are valid, the machine is too small for them
+   integer, parameter :: hcimpact_err_out_of_memory = 16
 
    !> Largest status code with a text of its own
-   integer, parameter :: max_status_code = hcimpact_err_underdetermined
+   integer, parameter :: max_status_code = hcimpact_err_out_of_memory
    !> Length of every entry of `status_texts` (blank-padded)
    integer, parameter :: status_text_length = 79
 
@@ -83,6 +86,7 @@ module hcimpact_status
       & "the elastic law returned an invalid value", &
       & "an array argument has the wrong size", &
       & "the data cannot determine the parameters (too few or too similar points)", &
+      & "out of memory: the input needs more memory than is available", &
       & "unknown status code"]
 
 contains

@@ -118,7 +118,7 @@ static void test_status_messages(void)
   const char *unknown = hcimpact_status_message(-1);
   check_true("message(-1) is 'unknown status code'",
              unknown != NULL && strcmp(unknown, "unknown status code") == 0);
-  check_true("message(16) is unknown", strcmp(hcimpact_status_message(16), unknown) == 0);
+  check_true("message(17) is unknown", strcmp(hcimpact_status_message(17), unknown) == 0);
   check_true("message(INT_MAX-ish) is unknown",
              strcmp(hcimpact_status_message(2147483647), unknown) == 0);
   check_true("message(INT_MIN-ish) is unknown",
@@ -126,7 +126,9 @@ static void test_status_messages(void)
   check_true("message(0) is 'success'", strcmp(hcimpact_status_message(HCIMPACT_OK), "success") == 0);
   check_true("message(NULL) mentions NULL",
              strstr(hcimpact_status_message(HCIMPACT_ERR_NULL), "NULL") != NULL);
-  for (i = HCIMPACT_OK; i <= HCIMPACT_ERR_UNDERDETERMINED; ++i) {
+  check_true("message(OUT_OF_MEMORY) begins 'out of memory'",
+             strncmp(hcimpact_status_message(HCIMPACT_ERR_OUT_OF_MEMORY), "out of memory", 13) == 0);
+  for (i = HCIMPACT_OK; i <= HCIMPACT_ERR_OUT_OF_MEMORY; ++i) {
     const char *m = hcimpact_status_message(i);
     check_true("message is non-empty and known", m != NULL && m[0] != '\0' && strcmp(m, unknown) != 0);
     check_true("message is static (same pointer twice)", m == hcimpact_status_message(i));

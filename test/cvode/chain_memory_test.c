@@ -1,7 +1,7 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * Out of memory, hcimpact_chain_simulate returns HCIMPACT_ERR_SIZE (the system is
- * too large for the memory) with a message that says so, never a crash or an abort
+ * Out of memory, hcimpact_chain_simulate returns HCIMPACT_ERR_OUT_OF_MEMORY (the
+ * system is too large for the memory) with a message that says so, never a crash or an abort
  * of the Fortran runtime. Three systems of n bodies (default 100 000), each with
  * four sample times and a contact array of n records:
  *   - a row of balls with gaps, neighbours approaching in pairs (method auto: n / 2
@@ -17,7 +17,7 @@
  * result). A child that dies from a signal (an unchecked automatic array or
  * temporary: NULL dereferenced), exits with the Fortran runtime's error (1 or 2:
  * "Error allocating ... bytes") or returns anything but HCIMPACT_OK or
- * HCIMPACT_ERR_SIZE with "out of memory" in the message fails the test.
+ * HCIMPACT_ERR_OUT_OF_MEMORY with "out of memory" in the message fails the test.
  *
  * Linux (fork, setrlimit, /proc/self/statm). Usage: chain_memory_test [n >= 1000
  * [case 0 to 2 [headroom in KiB]]]: a case alone runs in this process, without a cap or
@@ -100,7 +100,8 @@ static int bodies(const data_t *d, int which)
   return which == TOUCHING_INTEGRATED ? d->n / 10 : d->n;
 }
 
-/* one call; its status, or WRONG_MESSAGE for HCIMPACT_ERR_SIZE without "out of memory" */
+/* one call; its status, or WRONG_MESSAGE for HCIMPACT_ERR_OUT_OF_MEMORY without "out of
+ * memory" */
 static int run_case(const data_t *d, int which)
 {
   const double times[4] = {1e-6, 5e-6, 1e-5, 5.5e-4};
@@ -134,11 +135,11 @@ static int run_case(const data_t *d, int which)
   stat = hcimpact_chain_simulate(n, d->m, d->v, d->gap, d->law, NULL, NULL, 0.0, &options,
                                  &result, d->x, d->vf, n, d->contacts, &samples, message,
                                  sizeof message);
-  if (stat == HCIMPACT_ERR_SIZE && strstr(message, "out of memory") == NULL) {
+  if (stat == HCIMPACT_ERR_OUT_OF_MEMORY && strstr(message, "out of memory") == NULL) {
     fprintf(stderr, "%s: %s\n", case_names[which], message);
     return WRONG_MESSAGE;
   }
-  if (stat != HCIMPACT_OK && stat != HCIMPACT_ERR_SIZE)
+  if (stat != HCIMPACT_OK && stat != HCIMPACT_ERR_OUT_OF_MEMORY)
     fprintf(stderr, "%s: status %d: %s\n", case_names[which], stat, message);
   return stat;
 }
@@ -171,15 +172,15 @@ static int try_case(const data_t *d, int which)
     }
     outcome = WEXITSTATUS(wstatus) - 40;
     if (outcome == HCIMPACT_OK) {
-      printf("%s, %d bodies: HCIMPACT_ERR_SIZE at %d headrooms from %.2f MiB, "
+      printf("%s, %d bodies: HCIMPACT_ERR_OUT_OF_MEMORY at %d headrooms from %.2f MiB, "
              "success at %.2f MiB\n", case_names[which], bodies(d, which), stopped,
              start / 1048576.0, headroom / 1048576.0);
       return stopped > 0 ? 0 : 1;
     }
-    if (outcome != HCIMPACT_ERR_SIZE) {
+    if (outcome != HCIMPACT_ERR_OUT_OF_MEMORY) {
       printf("FAIL %s, headroom %.2f MiB: exit status %d (%s)\n", case_names[which],
              headroom / 1048576.0, WEXITSTATUS(wstatus),
-             outcome == WRONG_MESSAGE ? "HCIMPACT_ERR_SIZE without \"out of memory\""
+             outcome == WRONG_MESSAGE ? "HCIMPACT_ERR_OUT_OF_MEMORY without \"out of memory\""
                                       : "not a status of the library");
       return 1;
     }

@@ -1,15 +1,15 @@
 /* SPDX-License-Identifier: Apache-2.0 */
 /*
- * Out of memory, the calibration fits return a status: HCIMPACT_ERR_SIZE (the data
- * are too large for the memory the fit needs), nothing written, never a crash or an
- * abort of the Fortran runtime. Each fit runs in a child process (fork) whose
+ * Out of memory, the calibration fits return a status: HCIMPACT_ERR_OUT_OF_MEMORY (the
+ * data are too large for the memory the fit needs; not HCIMPACT_ERR_SIZE, a wrong
+ * size), every output NaN, never a crash or an abort of the Fortran runtime. Each fit runs in a child process (fork) whose
  * address space is capped (setrlimit RLIMIT_AS) at what it already uses plus a
  * headroom; the headroom grows in steps of half an input array until the fit
  * succeeds, so that the allocations fail one after the other at every depth of
  * the fit (the copies of the inputs, the model's arrays, the Jacobian, LAPACK's
  * workspace, the singular value decomposition, the residuals). A child that dies
  * from a signal (an unchecked automatic array: NULL dereferenced) or exits with
- * anything but HCIMPACT_OK or HCIMPACT_ERR_SIZE fails the test.
+ * anything but HCIMPACT_OK or HCIMPACT_ERR_OUT_OF_MEMORY fails the test.
  *
  * Linux (fork, setrlimit, /proc/self/statm). Usage: memory_test [log2 of the points
  * of the linear fits, default 20].
@@ -106,11 +106,12 @@ static int capped_fit(int which, const data_t *d, size_t headroom, int *signal_n
   if (pid < 0) return -2;
   if (pid == 0) {
     if (cap_address_space(headroom) != 0) _exit(100);
-    /* the outputs must stay as they are on HCIMPACT_ERR_SIZE */
+    /* the outputs must be NaN on HCIMPACT_ERR_OUT_OF_MEMORY (the rule of any error but
+       a NULL pointer or a wrong size) */
     d->out[0] = 42.0;
     {
       int status = run_fit(which, d);
-      if (status == HCIMPACT_ERR_SIZE && d->out[0] != 42.0) _exit(101);
+      if (status == HCIMPACT_ERR_OUT_OF_MEMORY && !isnan(d->out[0])) _exit(101);
       _exit(status);
     }
   }
@@ -140,19 +141,20 @@ int main(int argc, char **argv)
     const data_t *d = which >= FIT_ELASTIC ? &small : &large;
     size_t step = (size_t)d->n * sizeof(double) / 2, headroom = step;
     size_t limit = 200 * (size_t)d->n * sizeof(double) + ((size_t)64 << 20);
-    int status = HCIMPACT_ERR_SIZE, signal_number = 0, tries = 0, clean_failures = 0;
+    int status = HCIMPACT_ERR_OUT_OF_MEMORY, signal_number = 0, tries = 0, clean_failures = 0;
     while (headroom < limit) {
       status = capped_fit(which, d, headroom, &signal_number);
       ++tries;
       if (status == HCIMPACT_OK) break;
-      if (status == HCIMPACT_ERR_SIZE) {
+      if (status == HCIMPACT_ERR_OUT_OF_MEMORY) {
         ++clean_failures;
       } else {
         if (status == -1) {
           printf("FAIL %s, %d points, headroom %.1f MiB: killed by signal %d\n",
                  fit_names[which], d->n, headroom / 1048576.0, signal_number);
         } else if (status == 101) {
-          printf("FAIL %s, %d points, headroom %.1f MiB: HCIMPACT_ERR_SIZE wrote an output\n",
+          printf("FAIL %s, %d points, headroom %.1f MiB: HCIMPACT_ERR_OUT_OF_MEMORY left an "
+                 "output not NaN\n",
                  fit_names[which], d->n, headroom / 1048576.0);
         } else {
           printf("FAIL %s, %d points, headroom %.1f MiB: exit status %d\n", fit_names[which],
@@ -164,10 +166,10 @@ int main(int argc, char **argv)
       headroom += step;
     }
     if (status == HCIMPACT_OK) {
-      printf("%-18s %8d points: HCIMPACT_ERR_SIZE at %d headrooms from %.0f KiB, success at "
-             "%.1f MiB\n", fit_names[which], d->n, clean_failures, step / 1024.0,
+      printf("%-18s %8d points: HCIMPACT_ERR_OUT_OF_MEMORY at %d headrooms from %.0f KiB, "
+             "success at %.1f MiB\n", fit_names[which], d->n, clean_failures, step / 1024.0,
              headroom / 1048576.0);
-    } else if (status == HCIMPACT_ERR_SIZE) {
+    } else if (status == HCIMPACT_ERR_OUT_OF_MEMORY) {
       printf("FAIL %s: no success up to a headroom of %.1f MiB\n", fit_names[which],
              limit / 1048576.0);
       ++failures;
@@ -178,6 +180,7 @@ int main(int argc, char **argv)
     printf("%d fit(s) failed out of memory\n", failures);
     return 1;
   }
-  printf("out of memory: every fit returned HCIMPACT_ERR_SIZE and wrote nothing, or succeeded\n");
+  printf("out of memory: every fit returned HCIMPACT_ERR_OUT_OF_MEMORY with NaN outputs, or "
+         "succeeded\n");
   return 0;
 }

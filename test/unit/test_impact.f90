@@ -26,7 +26,7 @@ module test_impact
       & hcimpact_err_stiffness, hcimpact_err_exponent, hcimpact_err_velocity, &
       & hcimpact_err_damping, hcimpact_err_restitution, hcimpact_err_domain, &
       & hcimpact_err_null, hcimpact_err_size, hcimpact_err_elastic_law, &
-      & hcimpact_err_no_convergence
+      & hcimpact_err_no_convergence, hcimpact_err_out_of_memory
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, impact_law, &
       & velocity_at_depth, time_law, time_law_samples, damping_for_restitution, &
       & default_min_velocity, compression_branch, restitution_branch, min_exponent, max_beta, &
@@ -2523,8 +2523,9 @@ contains
    !> law): with the address space limited (setrlimit RLIMIT_AS, Linux) to what the
    !> process uses plus 16 MB, time_law_samples of 2^22 samples and the C entry points
    !> hcimpact_time_law and hcimpact_time_law_samples, whose copies need 128 MB, give
-   !> hcimpact_err_size with NaN outputs and nothing allocated; the limit is restored
-   !> and the same calls with 11 samples work.
+   !> hcimpact_err_out_of_memory (not hcimpact_err_size: the size is valid) with NaN
+   !> outputs and nothing allocated; the limit is restored and the same calls with 11
+   !> samples work.
    subroutine test_out_of_memory(error)
       type(error_type), allocatable, intent(out) :: error
       integer, parameter :: n = 2**22
@@ -2570,11 +2571,11 @@ contains
       alloc_stat = c_setrlimit(rlimit_as, old_limit)
       call check(error, alloc_stat == 0, "setrlimit could not restore the limit")
       if (allocated(error)) return
-      call check(error, stat == hcimpact_err_size .and. .not. (allocated(ts) .or. &
+      call check(error, stat == hcimpact_err_out_of_memory .and. .not. (allocated(ts) .or. &
          & allocated(xs) .or. allocated(vs) .or. allocated(fs)), "time_law_samples, " &
          & // int_text(n) // " samples without the memory: status " // int_text(stat))
       if (allocated(error)) return
-      call check(error, c_stat == hcimpact_err_size .and. ieee_is_nan(x(1)) &
+      call check(error, c_stat == hcimpact_err_out_of_memory .and. ieee_is_nan(x(1)) &
          & .and. ieee_is_nan(f(n)), "hcimpact_time_law without the memory: status " &
          & // int_text(int(c_stat)))
       if (allocated(error)) return
@@ -2585,7 +2586,8 @@ contains
       c_stat = c_time_law_samples(c_loc(c_contact), int(n, c_int), c_loc(t), c_loc(x), &
          & c_loc(v), c_loc(f))
       alloc_stat = c_setrlimit(rlimit_as, old_limit)
-      call check(error, stat == 0 .and. alloc_stat == 0 .and. c_stat == hcimpact_err_size &
+      call check(error, stat == 0 .and. alloc_stat == 0 &
+         & .and. c_stat == hcimpact_err_out_of_memory &
          & .and. ieee_is_nan(t(1)) .and. ieee_is_nan(x(n)), "hcimpact_time_law_samples " &
          & // "without the memory: status " // int_text(int(c_stat)))
       if (allocated(error)) return

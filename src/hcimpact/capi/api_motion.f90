@@ -11,7 +11,8 @@ module hcimpact_api_motion
    use, intrinsic :: iso_fortran_env, only : int64
    use hcimpact_parallel, only : failure_key, key_status, no_failure
    !$ use hcimpact_parallel, only : min_parallel_cheap, min_parallel_impact
-   use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size
+   use hcimpact_status, only : hcimpact_ok, hcimpact_err_null, hcimpact_err_size, &
+      & hcimpact_err_out_of_memory
    use hcimpact_impact_model, only : contact_type, outcome_type, impact, velocity_at_depth, &
       & time_law, time_law_samples
    use hcimpact_capi_types, only : hcimpact_contact, hcimpact_outcome, to_contact, from_outcome
@@ -156,8 +157,8 @@ contains
    !> int hcimpact_time_law(const hcimpact_contact *contact, int n, const double *t,
    !>                       double *x, double *v, double *f)
    !>
-   !> HCIMPACT_ERR_SIZE also when the library cannot allocate its copies of the n
-   !> values (out of memory); x, v, f are then NaN.
+   !> HCIMPACT_ERR_OUT_OF_MEMORY when the library cannot allocate its copies of the n
+   !> values; x, v, f are then NaN.
    function c_time_law(contact, n, t, x, v, f) result(stat) bind(C, name="hcimpact_time_law")
       !> const hcimpact_contact *
       type(c_ptr), value, intent(in) :: contact
@@ -192,13 +193,13 @@ contains
       call c_f_pointer(v, vs, [n])
       call c_f_pointer(f, fs, [n])
       ! copies (the outputs may be the time array itself); out of memory for them is
-      ! HCIMPACT_ERR_SIZE with NaN outputs (n too large for the memory available)
+      ! HCIMPACT_ERR_OUT_OF_MEMORY with NaN outputs (n too large for the memory available)
       allocate(tt(n), xx(n), vv(n), ff(n), stat=alloc_stat)
       if (alloc_stat /= 0) then
          xs = nan
          vs = nan
          fs = nan
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
          return
       end if
       tt = ts
@@ -213,8 +214,8 @@ contains
    !>                               double *x, double *v, double *f)
    !>
    !> n >= 2 equally spaced times from 0 to the contact time, both included.
-   !> HCIMPACT_ERR_SIZE also when the n samples cannot be allocated (out of memory);
-   !> every output is then NaN.
+   !> HCIMPACT_ERR_OUT_OF_MEMORY when the n samples cannot be allocated; every output
+   !> is then NaN.
    function c_time_law_samples(contact, n, t, x, v, f) result(stat) &
          & bind(C, name="hcimpact_time_law_samples")
       !> const hcimpact_contact *

@@ -752,7 +752,7 @@ subroutine hctsam(m, c, en, b, v, nt, t, x, xdot, f, info)
    real(wp), intent(inout) :: xdot(*)
    !> F(NT): contact force in N
    real(wp), intent(inout) :: f(*)
-   !> 0; -1 .. -5 contact, -6 NT < 2; 8 or 9 failure
+   !> 0; -1 .. -5 contact, -6 NT < 2; 8 or 9 failure; 16 out of memory for NT samples
    integer, intent(out) :: info
    real(wp), allocatable :: ts(:), xs(:), vs(:), fs(:)
    integer :: stat

@@ -10,7 +10,7 @@ module hcimpact_law_impact
       & ieee_positive_inf
    use hcimpact_kinds, only : wp, ik, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
-      & hcimpact_err_size, hcimpact_err_elastic_law
+      & hcimpact_err_size, hcimpact_err_elastic_law, hcimpact_err_out_of_memory
    use hcimpact_double_double, only : dd_real, dd, two_prod, operator(+), &
       & operator(-), operator(*), operator(/), &
       & dd_exp
@@ -194,7 +194,7 @@ contains
       allocate(f%law, source=law, stat=alloc_stat)
       if (alloc_stat /= 0) then
          ! out of memory for the copy of the law
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
          return
       end if
       f%tr = new_trajectory(two_prod(damping, velocity))
@@ -310,7 +310,8 @@ contains
    !> hcimpact_err_elastic_law when the law returns a non-finite, negative or
    !> non-increasing value where it is evaluated; hcimpact_err_domain also when the
    !> peak force acts closer to the impact than the smallest double (a law that jumps
-   !> at x = 0, e.g. c x^n with n near 0).
+   !> at x = 0, e.g. c x^n with n near 0); hcimpact_err_out_of_memory when the copy of
+   !> the law cannot be allocated.
    pure subroutine impact_law(law, mass, damping, velocity, outcome, stat)
       !> The elastic law
       class(elastic_law), intent(in) :: law

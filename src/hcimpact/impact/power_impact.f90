@@ -8,7 +8,7 @@ module hcimpact_power_impact
    use, intrinsic :: ieee_arithmetic, only : ieee_is_finite, ieee_is_nan
    use hcimpact_kinds, only : wp, ik, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_not_finite, hcimpact_err_domain, &
-      & hcimpact_err_size, hcimpact_err_no_convergence
+      & hcimpact_err_size, hcimpact_err_no_convergence, hcimpact_err_out_of_memory
    use hcimpact_double_double, only : dd_real, dd, operator(+), &
       & operator(-), operator(*), operator(/), &
       & dd_exp, dd_log, dd_sqrt, dd_inverse
@@ -319,10 +319,10 @@ contains
    !> The time law on nsamples equally spaced times from 0 to the contact time
    !> (both included): t(i) = contact_time (i - 1)/(nsamples - 1).
    !>
-   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2, or if the four
-   !> arrays of nsamples elements cannot be allocated (out of memory: then none of them
-   !> is allocated). Otherwise the outputs are allocated with max(nsamples, 0) elements
-   !> in every case, NaN on error.
+   !> Errors: those of `time_law`; hcimpact_err_size if nsamples < 2;
+   !> hcimpact_err_out_of_memory if the four arrays of nsamples elements cannot be
+   !> allocated (then none of them is allocated). Otherwise the outputs are allocated
+   !> with max(nsamples, 0) elements in every case, NaN on error.
    pure subroutine time_law_samples(contact, nsamples, t, x, v, f, stat)
       !> The contact
       type(contact_type), intent(in) :: contact
@@ -344,12 +344,12 @@ contains
       allocate(t(max(nsamples, 0)), x(max(nsamples, 0)), v(max(nsamples, 0)), &
          & f(max(nsamples, 0)), stat=alloc_stat)
       if (alloc_stat /= 0) then
-         ! out of memory: nothing is allocated, and the size is what was asked too much
+         ! out of memory: nothing is allocated
          if (allocated(t)) deallocate(t)
          if (allocated(x)) deallocate(x)
          if (allocated(v)) deallocate(v)
          if (allocated(f)) deallocate(f)
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
          return
       end if
       t = nan

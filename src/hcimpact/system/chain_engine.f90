@@ -46,7 +46,7 @@ module hcimpact_chain_engine
    use hcimpact_kinds, only : wp, nan
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_unavailable, &
       & hcimpact_err_no_convergence, hcimpact_err_domain, hcimpact_err_solver, &
-      & hcimpact_err_size
+      & hcimpact_err_out_of_memory
    use hcimpact_contact, only : contact_type, outcome_type
    use hcimpact_impact_model, only : impact, time_law
    use hcimpact_force_element, only : contact_force_type, contact_force_pair, &
@@ -57,7 +57,7 @@ module hcimpact_chain_engine
       & method_integrated, by_closed_forms, by_integration, by_both, max_message, &
       & kinetic_energy, energy_balance_error, momentum_balance_error, sum_in_range, &
       & not_below_zero, beyond_max_beta, say_beyond_max_beta, &
-      & gravity_impulse, momentum, product_in_range, monitor_interval
+      & gravity_impulse, momentum, product_in_range, monitor_interval, no_memory_tail
    implicit none
    private
 
@@ -156,7 +156,7 @@ module hcimpact_chain_engine
       integer, allocatable :: parts(:, :)
       integer :: n_parts = 0
       !> An allocation of the integrator failed where it could not tell the engine
-      !> (`state_at`, `finish`): the engine stops with hcimpact_err_size
+      !> (`state_at`, `finish`): the engine stops with hcimpact_err_out_of_memory
       logical :: out_of_memory = .false.
    contains
       procedure(integrator_begin), deferred :: begin
@@ -219,9 +219,9 @@ module hcimpact_chain_engine
       !> Initial positions q_i(0) and the failure message
       real(wp), allocatable :: q_initial(:)
       character(len=max_message) :: message = "success"
-      !> An allocation failed (`no_memory`): the run stops with hcimpact_err_size at the
-      !> next pass of its loop, and what failed returned without a change it could
-      !> not complete
+      !> An allocation failed (`no_memory`): the run stops with
+      !> hcimpact_err_out_of_memory at the next pass of its loop, and what failed
+      !> returned without a change it could not complete
       logical :: out_of_memory = .false.
       !> Memory held for the way out: `no_memory` frees it, so that what gfortran
       !> allocates unchecked while the engine is taken down (the finalisation of the
@@ -457,7 +457,7 @@ contains
       do while (engine%n_regions > 0)
          call close_region(engine, engine%n_regions)
       end do
-      if (engine%out_of_memory) stat = hcimpact_err_size
+      if (engine%out_of_memory) stat = hcimpact_err_out_of_memory
       if (stat /= hcimpact_ok) then
          call fail(engine, result, stat)
          return
@@ -466,7 +466,7 @@ contains
       ! samples after the end: nothing more happens (until_rest), or none (t_end)
       if (until_rest) call take_samples(engine, all=.true.)
       if (engine%out_of_memory) then
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
       else
          call fill_result(engine, result, stat)
       end if
@@ -484,7 +484,8 @@ contains
    end function whole_at_rest
 
    !> Initial state: bodies at rest in their initial positions, the slots' events.
-   !> hcimpact_err_size (and engine%message) when the memory does not hold the arrays.
+   !> hcimpact_err_out_of_memory (and engine%message) when the memory does not hold the
+   !> arrays.
    subroutine setup(engine, chain, options, stat)
       type(chain_engine), intent(out) :: engine
       type(chain_type), intent(in) :: chain
@@ -512,7 +513,7 @@ contains
       if (alloc_stat == 0) allocate(engine%reserve(8192), stat=alloc_stat)
       if (alloc_stat /= 0) then
          call no_memory(engine, "the system's arrays")
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
          return
       end if
       stat = hcimpact_ok
@@ -2238,7 +2239,7 @@ contains
       if (alloc_stat /= 0) then
          ! (the caller clears the result)
          call no_memory(engine, "the result")
-         stat = hcimpact_err_size
+         stat = hcimpact_err_out_of_memory
          return
       end if
       do i = 1, engine%n
@@ -2450,13 +2451,13 @@ contains
       end subroutine put_int
    end subroutine compose
 
-   !> An allocation failed: the run stops with hcimpact_err_size, the message says what
-   !> did not fit (the first that failed).
+   !> An allocation failed: the run stops with hcimpact_err_out_of_memory, the message
+   !> says what did not fit (the first that failed).
    subroutine no_memory(engine, what)
       type(chain_engine), intent(inout) :: engine
       character(len=*), intent(in) :: what
       if (.not. engine%out_of_memory) engine%message = "out of memory (" // what // &
-         & "): the system is too large for the memory available"
+         & no_memory_tail
       engine%out_of_memory = .true.
       if (allocated(engine%reserve)) deallocate(engine%reserve)
    end subroutine no_memory

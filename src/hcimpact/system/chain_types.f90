@@ -36,7 +36,7 @@ module hcimpact_chain_types
    public :: method_auto, method_exact, method_integrated
    public :: integrator_bdf, integrator_adams
    public :: by_closed_forms, by_integration, by_both
-   public :: max_message
+   public :: max_message, no_memory_tail
 
    !> The method that decides per contact (closed forms where contacts are isolated,
    !> CVODE for clusters); the default
@@ -54,6 +54,10 @@ module hcimpact_chain_types
 
    !> Longest message of a result
    integer, parameter :: max_message = 256
+   !> The end of the message of a system the memory cannot hold (status
+   !> hcimpact_err_out_of_memory), after "out of memory (" and what did not fit
+   character(len=*), parameter :: no_memory_tail = &
+      & "): the system is too large for the memory available"
 
    !> Passes of the run's loop (each a step of a cluster, a contact or a switch, or a
    !> sample) between two calls of a monitor's `poll`
