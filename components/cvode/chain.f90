@@ -44,7 +44,7 @@ module hcimpact_cvode_chain
       & region_jacobian, region_scales, weights_rtol, slot_state, dissipation_index, &
       & impulse_index, set_weight, wall_impulse, wall_impulse_scale, &
       & force_rate, slot_force_rate, error_weights, upper_band, lower_band, slot_none, slot_pair, &
-      & region_frame, frame_motion, first_step, &
+      & region_frame, frame_motion, first_step, region_rebase, log_touch_step, &
       & slot_left_wall, slot_right_wall, slot_boundary_left, slot_boundary_right
    use hcimpact_cvode_sundials, only : N_Vector, SUNMatrix, SUNLinearSolver, &
       & FN_VGetArrayPointer, FN_VDestroy, FSUNMatDestroy, FSUNLinSolFree, &
@@ -54,7 +54,8 @@ module hcimpact_cvode_chain
       & FCVodeWFtolerances, FCVodeSetLinearSolver, FCVodeSetJacFn, &
       & FCVodeSetMaxNumSteps, FCVodeSetMaxHnilWarns, FCVodeSetInitStep, FCVode, &
       & FCVodeFree, FCVodeSetStopTime, FCVodeGetDky, FCVodeGetNumRhsEvals, &
-      & FCVodeGetNumJacEvals, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS, CV_MEM_FAIL
+      & FCVodeGetNumJacEvals, FCVodeReInit, CV_BDF, CV_ADAMS, CV_ONE_STEP, CV_SUCCESS, &
+      & CV_MEM_FAIL
    use fnvector_serial_mod, only : FN_VMake_Serial
    use fsunmatrix_band_mod, only : FSUNBandMatrixStorage, FSUNBandMatrix_Data, &
       & FSUNBandMatrix_LDim, FSUNBandMatrix_StoredUpperBandwidth
@@ -121,8 +122,16 @@ module hcimpact_cvode_chain
       !> forces on the one inside push it outwards only, so such a gap never opens:
       !> it closes as soon as the body inside is pushed.
       logical :: touching(2) = .false.
-      !> The size of the last step, or before the first the initial step (s)
+      !> The size of the last step, or before the first the initial step (s; CVODE's
+      !> time)
       real(wp) :: h_last = 0.0_wp
+      !> CVODE's time and the region's (that of `chain_region`'s procedures) are the
+      !> engine's less `origin` (s): 0 from the region's start, the instant of the
+      !> last rebase after one (`rebase`); CVODE's time at the end of the last step
+      !> (tn less origin, but exact where tn is rounded); the first step CVODE begins
+      !> with (s); whether a slot's law has an exponent below 1 (rebases are looked for)
+      real(wp) :: origin = 0.0_wp, tn_cvode = 0.0_wp, h_start = 0.0_wp
+      logical :: low_exponent = .false.
       !> The region's frame (`engine_frame`): its start (s), every body's displacement
       !> then (m), and the frame's velocity then (m/s) and acceleration (m/s^2)
       real(wp) :: t0 = 0.0_wp, v_frame = 0.0_wp, a_frame = 0.0_wp
@@ -367,6 +376,13 @@ contains
       self%time = engine%time
       self%next = engine%time
       self%tn = engine%time
+      self%origin = 0.0_wp
+      self%tn_cvode = engine%time
+      self%low_exponent = .false.
+      do j = 0, m
+         if (any(self%region%kind(j) == [slot_pair, slot_left_wall, slot_right_wall])) &
+            & self%low_exponent = self%low_exponent .or. self%region%law(j)%exponent < 1.0_wp
+      end do
       self%stepped = .false.
       self%due = advance_reached
       self%stalled = 0
@@ -435,6 +451,7 @@ contains
          if (ierr /= CV_SUCCESS) exit setup
          where = "CVodeSetInitStep"
          h0 = first_step(engine%options%rtol, self%region%scale, stop_time)
+         self%h_start = h0
          if (self%first_step > 0.0_wp) h0 = self%first_step
          self%h_last = h0
          ierr = FCVodeSetInitStep(self%mem, real(h0, c_double))
@@ -590,20 +607,32 @@ contains
             what = advance_failed
             exit run
          end if
+         ! a contact of an exponent below 1 about to start where CVODE's time or the
+         ! displacements no longer resolve its first steps: the region begins anew
+         if (self%low_exponent .and. self%tn == self%time) then
+            if (wants_rebase(self)) then
+               call rebase(self, engine, stat)
+               if (stat /= hcimpact_ok) then
+                  what = advance_failed
+                  exit run
+               end if
+            end if
+         end if
          ! (one step: tout gives only the direction; a huge one upsets CVODE's first step)
-         ierr = FCVode(self%mem, real(min(t_end, self%tn + 1.0_wp), c_double), &
-            & self%y_vec, tret, CV_ONE_STEP)
+         ierr = FCVode(self%mem, real(min(t_end - self%origin, self%tn_cvode + 1.0_wp), &
+            & c_double), self%y_vec, tret, CV_ONE_STEP)
          if (ierr < 0) then
             stat = hcimpact_err_solver
-            write(engine%message, '(a, es11.3e3, a)') "CVODE failed at t = ", tret(1), &
-               & " s: " // cvode_flag_name(ierr) // report_detail(self%region%report)
+            write(engine%message, '(a, es11.3e3, a)') "CVODE failed at t = ", &
+               & self%origin + tret(1), " s: " // cvode_flag_name(ierr) &
+               & // report_detail(self%region%report)
             call beyond_domain(self, engine, tret(1), stat)
             what = advance_failed
             exit run
          end if
          ! steps too small to move the time (t + h = t: forces that change on a scale
          ! below the time's resolution) would go on until max_steps, 1e8 by default
-         if (tret(1) > self%tn) then
+         if (tret(1) > self%tn_cvode) then
             self%stalled = 0
          else
             self%stalled = self%stalled + 1
@@ -616,8 +645,9 @@ contains
                exit run
             end if
          end if
-         if (tret(1) > self%tn) self%h_last = tret(1) - self%tn
-         self%tn = max(tret(1), self%tn)
+         if (tret(1) > self%tn_cvode) self%h_last = tret(1) - self%tn_cvode
+         self%tn_cvode = max(tret(1), self%tn_cvode)
+         self%tn = max(self%origin + tret(1), self%tn)
          engine%counters%steps = engine%counters%steps + 1
          self%stepped = .true.
          call boundary_closing(self)
@@ -631,10 +661,10 @@ contains
       call halting_resume(halting)
    end subroutine region_advance
 
-   !> After CVODE failed at t (self%y its state there): where a contact of the region
-   !> is open or closing with b V beyond the model's domain (`beyond_max_beta`: the
-   !> corrector fails on such contacts), that is what stat and the message say
-   !> (hcimpact_err_domain), the first such pair from the left.
+   !> After CVODE failed at its time t (self%y its state there): where a contact of
+   !> the region is open or closing with b V beyond the model's domain
+   !> (`beyond_max_beta`: the corrector fails on such contacts), that is what stat and
+   !> the message say (hcimpact_err_domain), the first such pair from the left.
    subroutine beyond_domain(self, engine, t, stat)
       type(cvode_chain_integrator), intent(in) :: self
       type(chain_engine), intent(inout) :: engine
@@ -650,7 +680,7 @@ contains
          if (.not. (w > 0.0_wp .or. x >= 0.0_wp)) cycle
          if (beyond_max_beta(self%region%law(j)%damping, w)) then
             stat = hcimpact_err_domain
-            call say_beyond_max_beta(engine%message, self%first - 1 + j, t, &
+            call say_beyond_max_beta(engine%message, self%first - 1 + j, self%origin + t, &
                & self%region%law(j)%damping, w)
             return
          end if
@@ -827,7 +857,7 @@ contains
          stat = hcimpact_err_out_of_memory
          return
       end if
-      call region_rhs(self%region, self%time, self%y, dy, ok)
+      call region_rhs(self%region, self%time - self%origin, self%y, dy, ok)
       if (.not. ok) then
          stat = hcimpact_err_solver
          write(engine%message, '(a, es11.3e3, a)') "at t = ", self%time, &
@@ -838,9 +868,112 @@ contains
       engine%counters%rhs_evals = engine%counters%rhs_evals + 1
       self%time = t_end
       self%tn = t_end
+      self%tn_cvode = t_end - self%origin
       self%next = t_end
       self%stepped = .false.
    end subroutine drift_to
+
+   !> Whether the region should begin anew (`rebase`) before its next step: a slot
+   !> whose law has an exponent n below 1 closes (rate w > 0) with its touch near,
+   !> where CVODE's time or its bodies' displacements no longer resolve the steps
+   !> that the error test asks across the touch, h = (tol mu / (c w^n))^(1 / (n + 1))
+   !> (`log_touch_step`, tol the weights' rtol times v_ref): the force rises as t^n,
+   !> and at n = 0.3, rtol 1e-10, h = 5e-16 s, below half an ulp of t = 10 s, where
+   !> CVODE's steps no longer moved the time ("100 steps in a row did not advance the
+   !> time"). Needed where the spacing of the region's time (CVODE's) exceeds h /
+   !> margin, or the spacing of the slot's displacements exceeds w h / margin; near
+   !> where the touch is ahead within h / (margin^2 eps) (after the rebase, the
+   !> time of the touch resolves h to 2 / margin^2 of it, and the test above is not
+   !> met again before it), or came within margin h before (a step that crossed it).
+   !> With exponents of 1 and above, never (the region keeps its start: h is far
+   !> above the time's resolution, 1e-8 s at n = 1.5 in the case above). From the
+   !> state at the end of the last step, O(m).
+   function wants_rebase(self) result(wanted)
+      type(cvode_chain_integrator), intent(in) :: self
+      logical :: wanted
+      !> How far from the resolution a rebase is made
+      real(wp), parameter :: margin = 64.0_wp
+      real(wp) :: x, w, lh, tol, reach, lmargin
+      type(contact_force_type) :: e
+      integer :: j, m
+      logical :: near, needed
+      wanted = .false.
+      m = self%region%m
+      tol = self%region%rtol * self%region%scale(2)
+      lmargin = log(margin)
+      do j = 0, m
+         if (.not. any(self%region%kind(j) == [slot_pair, slot_left_wall, slot_right_wall])) &
+            & cycle
+         if (.not. self%region%law(j)%exponent < 1.0_wp) cycle
+         call slot_state(self%region, j, self%tn_cvode, self%y, x, w, e)
+         if (.not. w > 0.0_wp) cycle
+         lh = log_touch_step(self%region, j, w, tol)
+         if (.not. lh < 0.5_wp * huge(1.0_wp)) cycle
+         ! (by logarithms: x / w may leave the range)
+         if (x < 0.0_wp) then
+            near = log(-x) - log(w) <= lh - 2.0_wp * lmargin - log(epsilon(1.0_wp))
+         else
+            near = x == 0.0_wp
+            if (.not. near) near = log(x) - log(w) <= lh + lmargin
+         end if
+         if (.not. near) cycle
+         select case (self%region%kind(j))
+         case (slot_pair)
+            reach = max(abs(self%y(3 * j - 2)), abs(self%y(3 * j + 1)))
+         case (slot_left_wall)
+            reach = abs(self%y(1))
+         case default
+            reach = abs(self%y(3 * m - 2))
+         end select
+         needed = log(spacing(abs(self%tn_cvode))) > lh - lmargin .or. &
+            & log(spacing(reach)) > log(w) + lh - lmargin
+         if (needed) then
+            wanted = .true.
+            return
+         end if
+      end do
+   end function wants_rebase
+
+   !> Begin the region anew at the end of its last step (self%time = self%tn, no step
+   !> pending): its displacements counted from there (`region_rebase`: every
+   !> deformation kept, the bodies' references u_ref moved by what they had gone),
+   !> CVODE's time from there (origin), and CVODE restarted (CVodeReInit: order 1,
+   !> the region's first step, its counters added to the engine's first). The
+   !> velocities, energies, impulses, the frame and the contacts' records go on as
+   !> they were.
+   subroutine rebase(self, engine, stat)
+      type(cvode_chain_integrator), intent(inout) :: self
+      type(chain_engine), intent(inout) :: engine
+      integer, intent(out) :: stat
+      integer(c_int) :: ierr
+      integer :: m
+      character(len=24) :: where
+      stat = hcimpact_ok
+      m = self%region%m
+      call add_counters(self, engine)
+      self%u_ref = self%u_ref + self%y(1:3 * m:3)
+      call region_rebase(self%region, self%tn_cvode, self%y)
+      self%origin = self%tn
+      self%tn_cvode = 0.0_wp
+      self%h_last = self%h_start
+      self%stalled = 0
+      where = "CVodeReInit"
+      ierr = FCVodeReInit(self%mem, 0.0_c_double, self%y_vec)
+      if (ierr == CV_SUCCESS) then
+         where = "CVodeSetInitStep"
+         ierr = FCVodeSetInitStep(self%mem, real(self%h_start, c_double))
+      end if
+      if (ierr == CV_SUCCESS .and. engine%options%t_end > 0.0_wp) then
+         where = "CVodeSetStopTime"
+         ierr = FCVodeSetStopTime(self%mem, real(engine%options%t_end - self%origin, c_double))
+      end if
+      if (ierr /= CV_SUCCESS) then
+         stat = hcimpact_err_solver
+         write(engine%message, '(a, es11.3e3, a)') "CVODE at t = ", self%origin, &
+            & " s: restart failed in " // trim(where) // ": " // cvode_flag_name(ierr) &
+            & // report_detail(self%region%report)
+      end if
+   end subroutine rebase
 
    !> After a step: where the engine must come back (self%next, self%due): the first
    !> instant in the step at which a gap at the region's boundary closes (from the
@@ -856,7 +989,7 @@ contains
       do j = 0, self%region%m, max(self%region%m, 1)
          select case (self%region%kind(j))
          case (slot_boundary_left, slot_boundary_right)
-            call slot_state(self%region, j, self%tn, self%y, x, w, e)
+            call slot_state(self%region, j, self%tn_cvode, self%y, x, w, e)
             if (.not. x > 0.0_wp) cycle
             h = self%tn - self%history(j)%t
             call hermite_crossing(self%history(j)%x, self%history(j)%w, x, w, h, tc, wc)
@@ -907,7 +1040,7 @@ contains
          return
       end if
       ! every slot's element once, with the accelerations its force rate needs
-      call region_rhs(self%region, t, self%y, dy, ok, xs, ws, elements)
+      call region_rhs(self%region, t - self%origin, self%y, dy, ok, xs, ws, elements)
       do j = 0, m
          if (self%region%kind(j) == slot_none) cycle
          x = xs(j)
@@ -1061,16 +1194,18 @@ contains
          real(wp) :: x, w
          type(contact_force_type) :: e
          integer(c_int) :: ierr
-         ierr = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, dky_vec)
+         real(wp) :: tau
+         tau = cvode_time(self, t)
+         ierr = FCVodeGetDky(self%mem, real(tau, c_double), 0_c_int, dky_vec)
          ok = ierr == CV_SUCCESS
          rate = 0.0_wp
          val = 0.0_wp
          if (.not. ok) return
          if (of_force) then
-            call slot_force_rate(self%region, j, t, dky, x, w, e, rate, ok)
+            call slot_force_rate(self%region, j, tau, dky, x, w, e, rate, ok)
             val = e%force
          else
-            call slot_state(self%region, j, t, dky, x, w, e)
+            call slot_state(self%region, j, tau, dky, x, w, e)
             rate = w
             val = x
          end if
@@ -1096,7 +1231,7 @@ contains
       allocate(dky(size(self%y)), stat=alloc_stat)
       if (alloc_stat /= 0) return
       call interpolate(self, t, dky, ok)
-      if (ok) call slot_state(self%region, j, t, dky, x, w, e)
+      if (ok) call slot_state(self%region, j, cvode_time(self, t), dky, x, w, e)
    end function dense_rate
 
    !> The time (from the step's start, in [0, h]) where the cubic Hermite interpolant
@@ -1158,9 +1293,21 @@ contains
       ok = .false.
       vec => FN_VMake_Serial(int(size(state), c_int64_t), state, self%ctx)
       if (.not. associated(vec)) return
-      ok = FCVodeGetDky(self%mem, real(t, c_double), 0_c_int, vec) == CV_SUCCESS
+      ok = FCVodeGetDky(self%mem, real(cvode_time(self, t), c_double), 0_c_int, vec) &
+         & == CV_SUCCESS
       call FN_VDestroy(vec)
    end subroutine interpolate
+
+   !> CVODE's time of the engine's time t within the last step: t less the origin,
+   !> and after a rebase held within the last step (whose ends the engine's times
+   !> keep only to their own rounding, up to steps below it: `rebase`)
+   pure real(wp) function cvode_time(self, t) result(tau)
+      type(cvode_chain_integrator), intent(in) :: self
+      real(wp), intent(in) :: t
+      tau = t - self%origin
+      if (self%origin /= 0.0_wp) tau = min(max(tau, self%tn_cvode - self%h_last), &
+         & self%tn_cvode)
+   end function cvode_time
 
    !> Open the record of a contact of slot j that started at t_start with the
    !> approach speed given, the slot's dissipated energy then being e_base.
@@ -1291,7 +1438,7 @@ contains
       do j = 0, self%region%m
          select case (self%region%kind(j))
          case (slot_pair, slot_left_wall, slot_right_wall)
-            call slot_state(self%region, j, self%time, self%y, x, w, e)
+            call slot_state(self%region, j, self%time - self%origin, self%y, x, w, e)
             ! (a touching pair that has never pressed and does not approach is apart)
             if (self%contact(j)%open .and. (self%contact(j)%peak > 0.0_wp .or. x > 0.0_wp &
                & .or. w > 0.0_wp)) then
@@ -1317,7 +1464,7 @@ contains
       type(contact_force_type) :: e
       never = .true.
       do j = 0, self%region%m
-         call slot_state(self%region, j, self%time, self%y, x, w, e)
+         call slot_state(self%region, j, self%time - self%origin, self%y, x, w, e)
          select case (self%region%kind(j))
          case (slot_pair, slot_boundary_left, slot_boundary_right)
             ! the common acceleration cancels: the rate stays w

@@ -49,7 +49,7 @@ module hcimpact_cvode_chain_system
    public :: region_frame, frame_motion, first_step
    public :: error_weights, wall_impulse_scale, weights_rtol, newton_factor, &
       & factor_newton_matrix, solve_newton
-   public :: set_weight, wall_impulse, pushing_impulse
+   public :: set_weight, wall_impulse, pushing_impulse, region_rebase, log_touch_step
    public :: slot_state, dissipation_index, impulse_index, force_rate, &
       & slot_force_rate, upper_band, lower_band
    public :: slot_none, slot_pair, slot_left_wall, slot_right_wall, slot_boundary_left, &
@@ -539,6 +539,68 @@ contains
       if (region%weight_side > 0) dy(impulse_index(m, region%weight_side)) = &
          & dy(impulse_index(m, region%weight_side)) + region%weight
    end subroutine region_rhs
+
+   !> Count the region's displacements anew from the state y at its time t, which
+   !> becomes time 0 (`hcimpact_cvode_chain`'s rebase): every displacement of y is set
+   !> to 0 and every slot keeps its deformation, a pair's or a wall's to the bit (its
+   !> gap at zero displacements is minus that deformation), a boundary's through the
+   !> outside body's free flight counted from then. Velocities, energies and impulses
+   !> are left as they are (the frame is not changed).
+   pure subroutine region_rebase(region, t, y)
+      type(chain_region), intent(inout) :: region
+      real(wp), intent(in) :: t
+      real(wp), intent(inout) :: y(:)
+      real(wp) :: x, w, ql, vl, qr, vr, d
+      type(contact_force_type) :: e
+      integer :: j, m
+      m = region%m
+      do j = 0, m
+         select case (region%kind(j))
+         case (slot_pair, slot_left_wall, slot_right_wall)
+            call slot_state(region, j, t, y, x, w, e)
+            region%gap0(j) = -x
+         case (slot_boundary_left)
+            call slot_ends(region, j, t, y, ql, vl, qr, vr, d)
+            region%out_t0(1) = 0.0_wp
+            region%out_u0(1) = ql - y(1)
+            region%out_v0(1) = vl
+         case (slot_boundary_right)
+            call slot_ends(region, j, t, y, ql, vl, qr, vr, d)
+            region%out_t0(2) = 0.0_wp
+            region%out_u0(2) = qr - y(3 * m - 2)
+            region%out_v0(2) = vr
+         end select
+      end do
+      y(1:3 * m:3) = 0.0_wp
+   end subroutine region_rebase
+
+   !> The logarithm of the step (s) that the error test allows across the first touch
+   !> of slot j, closing at the rate w (m/s), for a tolerance tol of the velocities
+   !> (m/s): a step h across the touch changes the relative velocity by about c w^n
+   !> h^(n + 1) / mu (the force rises as (w t)^n; mu the pair's reduced mass, or the
+   !> body's on a wall), so h = (tol mu / (c w^n))^(1 / (n + 1)); by logarithms, each
+   !> factor a positive double. huge where w or tol is not positive, or the slot has
+   !> no contact law (a boundary, none).
+   pure real(wp) function log_touch_step(region, j, w, tol) result(lh)
+      type(chain_region), intent(in) :: region
+      integer, intent(in) :: j
+      real(wp), intent(in) :: w, tol
+      real(wp) :: mu
+      lh = huge(1.0_wp)
+      select case (region%kind(j))
+      case (slot_pair)
+         mu = region%mass(j) * (region%mass(j + 1) / (region%mass(j) + region%mass(j + 1)))
+      case (slot_left_wall)
+         mu = region%mass(1)
+      case (slot_right_wall)
+         mu = region%mass(region%m)
+      case default
+         return
+      end select
+      if (.not. (w > 0.0_wp .and. tol > 0.0_wp .and. mu > 0.0_wp)) return
+      lh = (log(tol) + log(mu) - log(region%law(j)%stiffness) &
+         & - region%law(j)%exponent * log(w)) / (region%law(j)%exponent + 1.0_wp)
+   end function log_touch_step
 
    !> The wall that gravity points to in a region (weight_side) and the region's
    !> weight, M g (N); none where M g is beyond the range of doubles.
