@@ -477,7 +477,8 @@ module fcvode_mod
       & FCVodeGetNumSteps, FCVodeGetNumRhsEvals, FCVodeGetNumJacEvals, &
       & FCVodeGetNumGEvals, FCVodeGetNumErrTestFails, FCVodeGetNumNonlinSolvIters, &
       & FCVodeGetNumNonlinSolvConvFails, FCVodeGetNumLinSolvSetups, &
-      & FCVodeGetNumLinRhsEvals, FCVodeWFtolerances, FCVodeSetStopTime, FCVodeGetDky
+      & FCVodeGetNumLinRhsEvals, FCVodeWFtolerances, FCVodeSetStopTime, FCVodeGetDky, &
+      & FCVodeReInit
 
    interface
       ! void* CVodeCreate(int lmm, SUNContext)
@@ -496,6 +497,14 @@ module fcvode_mod
          type(c_ptr), value :: y0
          integer(c_int) :: flag
       end function c_init
+      ! int CVodeReInit(void*, sunrealtype t0, N_Vector y0)
+      function c_reinit(mem, t0, y0) result(flag) bind(C, name="CVodeReInit")
+         import :: c_int, c_ptr, c_double
+         type(c_ptr), value :: mem
+         real(c_double), value :: t0
+         type(c_ptr), value :: y0
+         integer(c_int) :: flag
+      end function c_reinit
       ! int CVodeSetUserData(void*, void*)
       function c_set_user_data(mem, data) result(flag) bind(C, name="CVodeSetUserData")
          import :: c_int, c_ptr
@@ -689,6 +698,14 @@ contains
       integer(c_int) :: flag
       flag = c_init(cvode_mem, f, t0, c_loc(y0))
    end function FCVodeInit
+
+   function FCVodeReInit(cvode_mem, t0, y0) result(flag)
+      type(c_ptr) :: cvode_mem
+      real(c_double), intent(in) :: t0
+      type(N_Vector), target, intent(inout) :: y0
+      integer(c_int) :: flag
+      flag = c_reinit(cvode_mem, t0, c_loc(y0))
+   end function FCVodeReInit
 
    function FCVodeSetUserData(cvode_mem, user_data) result(flag)
       type(c_ptr) :: cvode_mem
