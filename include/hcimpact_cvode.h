@@ -180,14 +180,16 @@ typedef struct {
 
 /** A caller's watch over a long run (hcimpact_chain_simulate_monitored): the poll is
  *  called from the run's loop every 64 passes (a pass is one integration step of a
- *  cluster, one contact or switch of method, or one sample) with the time the run has
- *  reached (s), the integration steps and the contacts and switches so far, and
- *  `data`; a nonzero return stops the run there with HCIMPACT_ERR_NO_CONVERGENCE
+ *  cluster, one event of the closed forms or switch of method, or the samples due)
+ *  with `data`, the time the run has reached (s), the integration steps and the
+ *  events so far (what max_events bounds: the starts and ends of the contacts the
+ *  closed forms compute and the switches of method; the contacts inside an
+ *  integrated cluster are not events); a nonzero return stops the run there with HCIMPACT_ERR_NO_CONVERGENCE
  *  (the message begins "stopped by the caller's monitor"). Use it to show progress,
  *  to keep a deadline, or to stop a run from another thread through a flag that data
  *  points to. poll runs in the calling thread, must not call back into this run, and
  *  must be safe to call from every thread that runs a simulation with it. */
-typedef int (*hcimpact_chain_poll)(void *data, double time, int64_t steps, int64_t contacts);
+typedef int (*hcimpact_chain_poll)(void *data, double time, int64_t steps, int64_t events);
 
 /** The monitor of hcimpact_chain_simulate_monitored: its poll and the caller's data. */
 typedef struct {

@@ -63,12 +63,12 @@ module hcimpact_cvode_chain_capi_types
 
    abstract interface
       !> typedef int (*hcimpact_chain_poll)(void *data, double time, int64_t steps,
-      !> int64_t contacts);
-      integer(c_int) function c_poll(data, time, steps, contacts) bind(C)
+      !> int64_t events);
+      integer(c_int) function c_poll(data, time, steps, events) bind(C)
          import :: c_int, c_double, c_int64_t, c_ptr
          type(c_ptr), value :: data
          real(c_double), value :: time
-         integer(c_int64_t), value :: steps, contacts
+         integer(c_int64_t), value :: steps, events
       end function c_poll
    end interface
 
@@ -222,14 +222,14 @@ contains
 
    !> The caller's function on the time and work of the run: true when it says stop
    !> (nonzero).
-   logical function c_monitor_poll(self, time, steps, contacts) result(stop)
+   logical function c_monitor_poll(self, time, steps, events) result(stop)
       class(c_monitor), intent(inout) :: self
       real(wp), intent(in) :: time
-      integer(int64), intent(in) :: steps, contacts
+      integer(int64), intent(in) :: steps, events
       procedure(c_poll), pointer :: poll
       call c_f_procpointer(self%c%poll, poll)
       stop = poll(self%c%data, real(time, c_double), int(steps, c_int64_t), &
-         & int(contacts, c_int64_t)) /= 0_c_int
+         & int(events, c_int64_t)) /= 0_c_int
    end function c_monitor_poll
 
    !> The C result of a Fortran one.

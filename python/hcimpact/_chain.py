@@ -126,8 +126,9 @@ class ChainResult:
 
 
 def has_chain() -> bool:
-    """True when the library has ``hcimpact_chain_simulate`` (the CVODE component)."""
-    return _library.component(_WHERE, "hcimpact_cvode") is not None
+    """True when the library has ``hcimpact_chain_simulate_monitored`` (the CVODE
+    component), which :func:`chain` calls."""
+    return _library.component(_FUNCTION, "hcimpact_cvode") is not None
 
 
 def _vector(values: Any, name: str, size: int | None = None) -> np.ndarray:
@@ -249,13 +250,15 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
       the room allocated is that of the contacts made, not the cap); ``max_steps``,
       ``max_events``: the library's limits of steps and contacts, integers in
       1 .. 2**63 - 1 (None: 1e8 each; beyond them a :class:`ComputationError`);
-    - ``progress``: None, or a function ``progress(time, steps, contacts)`` that the
-      run calls every 64 steps or contacts with the time it has reached (s) and the
-      work done so far; a true answer stops the run (a :class:`ComputationError`,
+    - ``progress``: None, or a function ``progress(time, steps, events)`` that the
+      run calls every 64 passes of its loop (steps, events) with the time it has
+      reached (s), the integration steps and the events so far (what ``max_events``
+      counts: the starts and ends of the contacts the closed forms compute and the
+      switches of method, not the contacts inside an integrated cluster); a true answer stops the run (a :class:`ComputationError`,
       "stopped by the caller's monitor"), an exception it raises stops the run and is
       raised.
 
-    Ctrl-C (SIGINT) stops a run within 64 steps or contacts and raises
+    Ctrl-C (SIGINT) stops a run within 64 passes and raises
     ``KeyboardInterrupt`` (through the SIGINT handler that was installed before the
     call) once the library has returned; a run in a thread other than the main one is
     stopped by ``progress`` alone.
@@ -348,6 +351,7 @@ def chain(masses: Any, velocities: Any, gaps: Any = None, stiffness: Any = None,
     with watch:
         status, outcome, x, vf, records, message = run(capacity)
         if status == 0 and outcome.n_contacts > capacity and capacity < cap:
+            watch.again()
             status, outcome, x, vf, records, message = run(int(min(outcome.n_contacts, cap)))
     watch.raise_pending()
     if status != 0:

@@ -100,7 +100,7 @@ class ChainContact(ctypes.Structure):
 
 
 #: The poll of a chain's monitor: int fn(void *data, double time, int64_t steps,
-#: int64_t contacts), nonzero to stop the run
+#: int64_t events), nonzero to stop the run
 ChainPoll = ctypes.CFUNCTYPE(ctypes.c_int, ctypes.c_void_p, ctypes.c_double, ctypes.c_int64,
                              ctypes.c_int64)
 

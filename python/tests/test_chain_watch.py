@@ -2,7 +2,7 @@
 """Watching a run of hcimpact.chain (hcimpact/_watch.py): ``progress`` is called with
 the time and the work in order, a true answer stops the run (ComputationError), an
 exception it raises is raised, a run that nobody stops equals the run without
-``progress``, and Ctrl-C (a real SIGINT from another thread, while the library
+``progress``, a run made again for a longer contact list is shown once, and Ctrl-C (a real SIGINT from another thread, while the library
 computes) stops a long run within a poll and raises KeyboardInterrupt, with the
 SIGINT handler of before put back."""
 
@@ -17,6 +17,7 @@ import numpy as np
 import pytest
 
 import hcimpact
+from hcimpact import _chain
 
 pytestmark = pytest.mark.cvode
 
@@ -46,12 +47,12 @@ def resting_stack(**kwargs):
 def test_progress_sees_the_run_and_changes_nothing():
     seen = []
     plain = struck_row()
-    watched = struck_row(progress=lambda t, steps, contacts: seen.append((t, steps, contacts)))
+    watched = struck_row(progress=lambda t, steps, events: seen.append((t, steps, events)))
     assert np.array_equal(watched.velocities, plain.velocities)
     assert np.array_equal(watched.positions, plain.positions)
     assert watched.counters == plain.counters and watched.time == plain.time
     assert len(seen) >= plain.counters["steps"] // 64 > 0
-    assert seen == sorted(seen)                          # time, steps, contacts in order
+    assert seen == sorted(seen)                          # time, steps, events in order
     assert all(isinstance(s, int) and isinstance(c, int) for _, s, c in seen)
     assert seen[-1][0] <= plain.time and seen[-1][1] <= plain.counters["steps"]
 
@@ -59,7 +60,7 @@ def test_progress_sees_the_run_and_changes_nothing():
 def test_a_true_answer_stops_the_run():
     calls = []
 
-    def stop_at_third(t, steps, contacts):
+    def stop_at_third(t, steps, events):
         calls.append(t)
         return len(calls) >= 3
 
@@ -71,13 +72,36 @@ def test_a_true_answer_stops_the_run():
 def test_an_exception_of_progress_is_raised():
     calls = []
 
-    def fails(t, steps, contacts):
+    def fails(t, steps, events):
         calls.append(t)
         raise ValueError("from progress")
 
     with pytest.raises(ValueError, match="from progress"):
         struck_row(progress=fails)
     assert len(calls) == 1
+
+
+def test_a_run_made_again_is_shown_once(monkeypatch):
+    """chain makes a run again when its contacts did not fit the first array: progress
+    sees the calls of one run, in order, as many as without the second run."""
+    once, twice = [], []
+    struck_row(progress=lambda *seen: once.append(seen))
+    monkeypatch.setattr(_chain, "_FIRST_CAPACITY", 2 - 8 * 12)   # room for 2
+    result = struck_row(progress=lambda *seen: twice.append(seen))
+    assert result.n_contacts > 2 and len(result.contacts) == result.n_contacts
+    assert twice == once and len(once) > 0
+
+
+def test_ctrl_c_wins_over_an_exception_of_progress():
+    def interrupted_then_fails(t, steps, events):
+        signal.raise_signal(signal.SIGINT)
+        raise ValueError("after the signal")
+
+    if threading.current_thread() is not threading.main_thread():
+        pytest.skip("signals reach the main thread only")
+    with pytest.raises(KeyboardInterrupt) as info:
+        struck_row(progress=interrupted_then_fails)
+    assert isinstance(info.value.__context__, ValueError)
 
 
 def test_progress_must_be_a_function():

@@ -489,19 +489,19 @@ static void scales_apart(void)
 typedef struct {
   int calls;
   int stop_at;          /* stop at this call (0: never) */
-  int ordered;          /* time, steps and contacts never decreased */
+  int ordered;          /* time, steps and events never decreased */
   double time;
-  int64_t steps, contacts;
+  int64_t steps, events;
 } watch;
 
-static int poll(void *data, double time, int64_t steps, int64_t contacts)
+static int poll(void *data, double time, int64_t steps, int64_t events)
 {
   watch *w = (watch *)data;
-  if (w->calls > 0 && (time < w->time || steps < w->steps || contacts < w->contacts))
+  if (w->calls > 0 && (time < w->time || steps < w->steps || events < w->events))
     w->ordered = 0;
   w->time = time;
   w->steps = steps;
-  w->contacts = contacts;
+  w->events = events;
   ++w->calls;
   return w->stop_at > 0 && w->calls >= w->stop_at;
 }
@@ -535,7 +535,7 @@ static void monitored(void)
         && r.n_contacts == plain.n_contacts && r.energy_error == plain.energy_error);
   check("a monitor that never stops: called every 64 passes at least",
         w.calls >= (int)(plain.steps / 64) && w.calls > 0);
-  check("a monitor that never stops: time, steps and contacts in order", w.ordered);
+  check("a monitor that never stops: time, steps and events in order", w.ordered);
   check("a monitor that never stops: it saw the work", w.steps > 0 && w.time > 0.0
         && w.time <= plain.time && w.steps <= plain.steps);
   w.calls = 0;

@@ -25,7 +25,7 @@ module test_cvode_chain_monitor
       integer :: stop_at = 0
       logical :: ordered = .true.
       real(wp) :: time = 0.0_wp
-      integer(int64) :: steps = 0, contacts = 0
+      integer(int64) :: steps = 0, events = 0
    contains
       procedure :: poll => counting_poll
    end type counting_monitor
@@ -47,15 +47,15 @@ contains
          & ]
    end subroutine collect_chain_monitor
 
-   logical function counting_poll(self, time, steps, contacts) result(stop)
+   logical function counting_poll(self, time, steps, events) result(stop)
       class(counting_monitor), intent(inout) :: self
       real(wp), intent(in) :: time
-      integer(int64), intent(in) :: steps, contacts
+      integer(int64), intent(in) :: steps, events
       if (self%calls > 0 .and. (time < self%time .or. steps < self%steps .or. &
-         & contacts < self%contacts)) self%ordered = .false.
+         & events < self%events)) self%ordered = .false.
       self%time = time
       self%steps = steps
-      self%contacts = contacts
+      self%events = events
       self%calls = self%calls + 1
       stop = self%stop_at > 0 .and. self%calls >= self%stop_at
    end function counting_poll

@@ -170,12 +170,12 @@ typedef struct {
   int calls, stop_at;
 } chain_watch;
 
-static int chain_poll(void *data, double time, int64_t steps, int64_t contacts)
+static int chain_poll(void *data, double time, int64_t steps, int64_t events)
 {
   chain_watch *w = (chain_watch *)data;
   (void)time;
   (void)steps;
-  (void)contacts;
+  (void)events;
   ++w->calls;
   return w->stop_at > 0 && w->calls >= w->stop_at;
 }

@@ -342,7 +342,7 @@ contains
                stat = hcimpact_err_no_convergence
                write(engine%message, '(a, es11.3e3, a, i0, a, i0, a)') "stopped by the " &
                   & // "caller's monitor at t = ", engine%time, " s, after ", &
-                  & engine%counters%steps, " steps and ", engine%events, " contacts and switches"
+                  & engine%counters%steps, " steps and ", engine%events, " events"
                exit main
             end if
          end if

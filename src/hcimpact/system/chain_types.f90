@@ -59,8 +59,8 @@ module hcimpact_chain_types
    character(len=*), parameter :: no_memory_tail = &
       & "): the system is too large for the memory available"
 
-   !> Passes of the run's loop (each a step of a cluster, a contact or a switch, or a
-   !> sample) between two calls of a monitor's `poll`
+   !> Passes of the run's loop (each one step of a cluster, one event of the closed forms
+   !> or a switch of method, or the samples due) between two calls of a monitor's `poll`
    integer, parameter :: monitor_interval = 64
 
    !> A caller's watch over a long run (`chain_options%monitor`): its `poll` is called
@@ -76,13 +76,15 @@ module hcimpact_chain_types
 
    abstract interface
       !> True: stop the run now
-      logical function monitor_poll(self, time, steps, contacts)
+      logical function monitor_poll(self, time, steps, events)
          import :: chain_monitor, wp, int64
          class(chain_monitor), intent(inout) :: self
          !> The time the run has reached, s
          real(wp), intent(in) :: time
-         !> Integration steps and contacts (and switches of method) so far
-         integer(int64), intent(in) :: steps, contacts
+         !> Integration steps so far, and events: the starts and ends of contacts the
+         !> closed forms compute and the switches of method (what max_events bounds;
+         !> the contacts inside an integrated cluster are not events)
+         integer(int64), intent(in) :: steps, events
       end function monitor_poll
    end interface
 
