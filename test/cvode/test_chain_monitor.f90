@@ -11,7 +11,7 @@ module test_cvode_chain_monitor
    use hcimpact_kinds, only : wp
    use hcimpact_status, only : hcimpact_ok, hcimpact_err_no_convergence
    use hcimpact_chain_types, only : contact_law, chain_type, chain_options, chain_result, &
-      & chain_monitor, monitor_interval, method_auto, method_integrated, integrator_adams
+      & chain_monitor, monitor_interval, method_integrated, integrator_adams
    use hcimpact_cvode_chain, only : chain_simulate
    implicit none
    private
