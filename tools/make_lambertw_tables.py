@@ -429,7 +429,10 @@ def write_geo(w):
                              f"may hold ({MAX_CONSTRUCTOR}); split it")
         w("")
         w(f"   !> The rows of the tables {', '.join(names)}")
-        w(f"   real(wp), parameter :: {array}(0:{width - 1}, 0:{n - 1}) = reshape([ &")
+        w(f"   !> (a protected variable, not a parameter: read only, SAVEd and never written,")
+        w(f"   !> so that a procedure that uses it does not copy the whole constructor into its")
+        w(f"   !> own code; as a parameter it cost gfortran a minute of parsing per build)")
+        w(f"   real(wp), protected :: {array}(0:{width - 1}, 0:{n - 1}) = reshape([ &")
         write_rows(w, all_rows)
         w(f"      & [{width}, {n}])")
 

@@ -15,7 +15,9 @@
 #  - every module variable (nm type B, D, b or d with _MOD_ in the name), except the
 #    compiler's read-only tables (__vtab_*, __def_init_*), the C layer's constant
 #    message and version tables (hcimpact_api: message_table, version_text, `save,
-#    target` so that C receives pointers into them, never written) and the indices
+#    target` so that C receives pointers into them, never written), the tables of
+#    Lambert W (hcimpact_lambertw_tables: geo_z, geo_t, `protected` and initialised,
+#    never written; see that module for why they are not parameters) and the indices
 #    of implied-do loops in constant initialisers, which the library names with a
 #    trailing underscore (jj_; written only at compile time);
 #  - COMMON blocks (nm type C, or B/D named like FORTRAN 77 commons).
@@ -38,8 +40,9 @@ fi
 
 # startup code of a shared library (crtstuff, the dynamic linker's tables)
 toolchain='^(completed\.[0-9]+|__TMC_END__|_DYNAMIC|_GLOBAL_OFFSET_TABLE_|__dso_handle|__frame_dummy_init_array_entry|__do_global_dtors_aux_fini_array_entry|__bss_start|_edata|_end|__data_start|data_start)$'
-# read-only module data of gfortran and of the C layer, implied-do indices
-module_ok='(_MOD___vtab_|_MOD___def_init_|^__hcimpact_api_MOD_(message_table|version_text)$|_MOD_[a-z0-9_]*[a-z0-9]_$)'
+# read-only module data of gfortran, of the C layer and of Lambert W's tables,
+# implied-do indices
+module_ok='(_MOD___vtab_|_MOD___def_init_|^__hcimpact_api_MOD_(message_table|version_text)$|^__hcimpact_lambertw_tables_MOD_geo_[zt]$|_MOD_[a-z0-9_]*[a-z0-9]_$)'
 
 findings=0
 for lib in "$@"; do

@@ -98,7 +98,10 @@ module hcimpact_lambertw_tables
    integer, parameter :: yb_base = 32832
 
    !> The rows of the tables wa, wb, wc, wd, we, ya, yb
-   real(wp), parameter :: geo_z(0:10, 0:5155) = reshape([ &
+   !> (a protected variable, not a parameter: read only, SAVEd and never written,
+   !> so that a procedure that uses it does not copy the whole constructor into its
+   !> own code; as a parameter it cost gfortran a minute of parsing per build)
+   real(wp), protected :: geo_z(0:10, 0:5155) = reshape([ &
       & 0.0_wp, 0.0_wp, -1.0_wp, &
       & 0.0_wp, 0.0_wp, 0.0_wp, &
       & 0.0_wp, 0.0_wp, 0.0_wp, &
@@ -20740,7 +20743,10 @@ module hcimpact_lambertw_tables
    integer, parameter :: tb_base = 31008
 
    !> The rows of the tables ta, tb
-   real(wp), parameter :: geo_t(0:10, 0:3968) = reshape([ &
+   !> (a protected variable, not a parameter: read only, SAVEd and never written,
+   !> so that a procedure that uses it does not copy the whole constructor into its
+   !> own code; as a parameter it cost gfortran a minute of parsing per build)
+   real(wp), protected :: geo_t(0:10, 0:3968) = reshape([ &
       & 5.637851296924623e-17_wp, -5.00638565427366e-25_wp, 1.0618711086580594e-8_wp, &
       & 94173387.07378902_wp, -4.175943226448083e23_wp, 3.7034882675346385e39_wp, &
       & -4.105606986251607e55_wp, 5.097553347250804e71_wp, -6.7812448193818015e87_wp, &
