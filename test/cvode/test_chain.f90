@@ -109,7 +109,8 @@ contains
          & new_unittest("far-meetings", test_far_meetings), &
          & new_unittest("contacts-to-rest", test_contacts_to_rest), &
          & new_unittest("damped-at-the-start", test_damped_at_start), &
-         & new_unittest("low-exponent-late", test_low_exponent_late) &
+         & new_unittest("low-exponent-late", test_low_exponent_late), &
+         & new_unittest("low-exponent-late-damped", test_low_exponent_late_damped) &
          & ]
    end subroutine collect_chain
 
@@ -3364,5 +3365,84 @@ contains
       call check(error, failed == 0, int_text(failed) // " of " // int_text(size(masses) &
          & * size(gaps) * size(exponents) * size(rtols) * size(integrators)) // " runs failed")
    end subroutine test_low_exponent_late
+
+   !> A damped contact of an exponent below 1 late in a region that began at rest under
+   !> gravity (method integrated): a ball released above a floor meets it at sqrt(2 g
+   !> h). The region's scales came from its start at rest (v_ref 3e-8 m/s for 5 m, c
+   !> = 1e9 N/m^0.5): every run of n = 0.3 here stopped at the touch ("100 steps in a
+   !> row did not advance the time") but one, which ran on for more than 8 minutes;
+   !> the rebase near the touch now takes the scales of the state there. Reference: method auto at rtol 1e-13, whose region
+   !> begins at the touch (gravity acts in the contact: no closed form), at t_end
+   !> after the first rebound, the ball flying up; allowed 300 rtol of the impact
+   !> speed in the velocity and 300 rtol in the energy balance (the exponents below 1
+   !> of `low-exponent-late` reach about 160).
+   subroutine test_low_exponent_late_damped(error)
+      type(error_type), allocatable, intent(out) :: error
+      real(wp), parameter :: rtols(2) = [1.0e-8_wp, 1.0e-10_wp], &
+         & exponents(2) = [0.3_wp, 0.6_wp], dampings(2) = [0.05_wp, 1.0_wp], &
+         & heights(2) = [1.0e-3_wp, 5.0_wp], g = 9.81_wp
+      integer, parameter :: integrators(2) = [integrator_bdf, integrator_adams]
+      type(chain_type) :: chain
+      type(chain_result) :: result, ref
+      type(chain_options) :: o
+      character(len=:), allocatable :: what
+      character(len=100) :: line
+      real(wp) :: worst(2), err_v, speed, t_fall
+      integer :: i, k, l, q, h, stat, failed
+      worst = 0.0_wp
+      failed = 0
+      do h = 1, size(heights)
+         speed = sqrt(2.0_wp * g * heights(h))
+         t_fall = speed / g
+         do k = 1, size(exponents)
+            do l = 1, size(dampings)
+               chain = chain_type(mass=[1.0_wp], velocity=[0.0_wp])
+               chain%left_wall = .true.
+               chain%left_law = contact_law(1.0e9_wp, exponents(k), dampings(l))
+               chain%left_gap = heights(h)
+               chain%gravity = -g
+               ! (the ball flies up at 0.05 of its fall time after the touch: its contact
+               ! lasts 1e-4 of that at most, and it rebounds at 0.1 of its speed at least)
+               call run(error, chain, opts(method_auto, 1.0e-13_wp, 1.05_wp * t_fall), ref, &
+                  & "reference")
+               if (allocated(error)) return
+               call check(error, size(ref%contacts) == 1 .and. ref%velocities(1) > 0.0_wp, &
+                  & "reference: not one rebound")
+               if (allocated(error)) return
+               do q = 1, size(rtols)
+                  do i = 1, size(integrators)
+                     write(line, '(a, es7.1e1, a, f3.1, a, f4.2, a, es7.1e2, a, i0)') "h = ", &
+                        & heights(h), ", n = ", exponents(k), ", b = ", dampings(l), &
+                        & ", rtol ", rtols(q), ", integrator ", integrators(i)
+                     what = trim(line)
+                     o = opts(method_integrated, rtols(q), 1.05_wp * t_fall)
+                     o%integrator = integrators(i)
+                     call chain_simulate(chain, result, stat, o)
+                     if (stat /= hcimpact_ok) then
+                        print '(2x, a)', what // ": status " // int_text(stat) // " " &
+                           & // trim(result%message)
+                        failed = failed + 1
+                        cycle
+                     end if
+                     err_v = abs(result%velocities(1) - ref%velocities(1)) / (rtols(q) * speed)
+                     worst = max(worst, [err_v, result%energy_error / rtols(q)])
+                     if (.not. (size(result%contacts) == 1 .and. err_v <= 300.0_wp .and. &
+                        & result%energy_error <= 300.0_wp * rtols(q))) then
+                        write(line, '(a, i0, a, es9.2, a, es9.2, a)') ": ", size(result%contacts), &
+                           & " contacts, velocity error ", err_v, " rtol, energy error ", &
+                           & result%energy_error / rtols(q), " rtol"
+                        print '(2x, a)', what // trim(line)
+                        failed = failed + 1
+                     end if
+                  end do
+               end do
+            end do
+         end do
+      end do
+      print '(2x, a, 2es10.2)', "largest errors / rtol (velocity, energy):", worst
+      call check(error, failed == 0, int_text(failed) // " of " // int_text(size(heights) &
+         & * size(exponents) * size(dampings) * size(rtols) * size(integrators)) // &
+         & " runs failed")
+   end subroutine test_low_exponent_late_damped
 
 end module test_cvode_chain
