@@ -3440,6 +3440,18 @@ contains
          end do
       end do
       print '(2x, a, 2es10.2)', "largest errors / rtol (velocity, energy):", worst
+      ! (one body without the arrays of gaps and laws, which it needs not have: the check
+      ! for a run that never ends read its laws, and the Debug build crashed there)
+      chain = chain_type(mass=[1.0_wp], velocity=[0.0_wp])
+      chain%left_wall = .true.
+      chain%left_law = contact_law(1.0e9_wp, 0.5_wp, 0.0_wp)
+      chain%left_gap = 1.0_wp
+      chain%gravity = -g
+      call chain_simulate(chain, result, stat, opts(method_integrated, 1.0e-8_wp))
+      call check(error, stat == hcimpact_err_domain .and. index(result%message, &
+         & "never ends") > 0, "one body without laws on an undamped floor, no t_end: status " &
+         & // int_text(stat) // " " // trim(result%message))
+      if (allocated(error)) return
       call check(error, failed == 0, int_text(failed) // " of " // int_text(size(heights) &
          & * size(exponents) * size(dampings) * size(rtols) * size(integrators)) // &
          & " runs failed")

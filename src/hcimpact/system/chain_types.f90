@@ -481,7 +481,10 @@ contains
             & any(chain%velocity /= 0.0_wp)
          return
       end if
-      undamped = all(chain%law%damping == 0.0_wp)
+      ! (a single body's laws may be missing, or of any size: none is read; it was, and
+      ! a body released above a floor with no law array given crashed the Debug build)
+      undamped = .true.
+      if (size(chain%mass) > 1) undamped = all(chain%law%damping == 0.0_wp)
       ! (a damped wall on the other side does not end it: gravity pulls the bodies
       ! away from it, and once they no longer reach it, they bounce without loss)
       if (chain%gravity < 0.0_wp .and. chain%left_wall) then
